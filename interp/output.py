@@ -1,0 +1,65 @@
+"""Files `interp run`/`interp model` write: steps CSV, trace CSV, model VCD, plot."""
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+from .models.base import Run
+
+PERIOD_NS = 10      # the benches' clock period, also used for model waveforms
+
+
+def write_steps(path, steps, axes: str = "xy") -> None:
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["cycle"] + [f"d{a}" for a in axes])
+        w.writerows(steps)
+
+
+def write_trace(path, header, rows) -> None:
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=header)
+        w.writeheader()
+        for row in rows:
+            w.writerow({k: ("" if row.get(k) is None else row[k]) for k in header})
+
+
+def write_model_vcd(path, samples: list[dict], scope: str) -> None:
+    """The model's per-cycle samples as a VCD (1-bit signals as wires)."""
+    from vcd import VCDWriter
+
+    names = list(samples[0]) if samples else []
+    one_bit = {n for n in names if all(s[n] in (0, 1) for s in samples)}
+    with open(path, "w") as f, VCDWriter(f, timescale="1 ns", date="today") as vcd:
+        clk = vcd.register_var(scope, "clk", "wire", size=1)
+        variables = {n: vcd.register_var(scope, n, "wire" if n in one_bit else "integer",
+                                         size=1 if n in one_bit else 64) for n in names}
+        for cycle, sample in enumerate(samples):
+            t = cycle * PERIOD_NS
+            vcd.change(clk, t, 1)
+            vcd.change(clk, t + PERIOD_NS // 2, 0)
+            for n, v in sample.items():
+                vcd.change(variables[n], t + PERIOD_NS // 2, v)
+
+
+def write_run(core, args, run: Run, model_vcd: bool) -> None:
+    write_steps(args.steps, run.steps, core.axes)
+    if args.trace:
+        write_trace(args.trace, core.trace_header, run.trace)
+    if args.vcd and model_vcd:
+        write_model_vcd(args.vcd, run.samples, core.toplevel)
+    if args.plot:
+        from .plot import plot_path
+
+        plot_path(args.plot, run.steps, core.ideal(args), title=f"{core.name} {' '.join(describe(args))}")
+
+
+def describe(args) -> list[str]:
+    skip = {"command", "core", "func", "steps", "trace", "vcd", "plot", "sim", "max_cycles"}
+    return [f"{k}={v}" for k, v in vars(args).items() if k not in skip and v is not None]
+
+
+def ensure_dir(path) -> Path:
+    p = Path(path)
+    p.mkdir(parents=True, exist_ok=True)
+    return p

@@ -1,0 +1,51 @@
+`default_nettype none
+// Reversible (up/down) counter with parallel load, direct and inverted outputs.
+// SU1571551: counters 1 and 2.  SU1665343: counters CT7, CT8 (ones' complement;
+// CT8's "subtract in bit 1" input is `dec2`).
+// Priority: rst, load, then the count inputs.  Simultaneous count requests
+// add up (inc + dec = no change), so no request is ever dropped.
+module updown_counter #(
+    parameter integer WIDTH = 8,            // counter width in bits (>= 3)
+    parameter integer ONES_COMPLEMENT = 0   // 1: ones'-complement arithmetic with end-around carry
+) (
+    input  wire             clk,
+    input  wire             rst,
+    input  wire             load,       // q <= load_value
+    input  wire [WIDTH-1:0] load_value,
+    input  wire             inc,        // +1
+    input  wire             dec,        // -1
+    input  wire             dec2,       // -2 (subtract in bit 1)
+    output wire [WIDTH-1:0] q,          // direct outputs
+    output wire [WIDTH-1:0] q_n         // inverted outputs
+);
+    initial begin
+        if (WIDTH < 3) $error("%m: WIDTH must be at least 3");
+        if (ONES_COMPLEMENT != 0 && ONES_COMPLEMENT != 1) $error("%m: ONES_COMPLEMENT must be 0 or 1");
+    end
+
+    reg [WIDTH-1:0] q_q;
+
+    // Net change in {-3 .. +1}, as a WIDTH-bit two's complement addend.
+    wire signed [2:0]      delta = $signed({2'b00, inc}) - $signed({2'b00, dec}) - $signed({1'b0, dec2, 1'b0});
+    wire [WIDTH-1:0]       addend = {{(WIDTH-3){delta[2]}}, delta};
+    wire [WIDTH-1:0]       twos_sum = q_q + addend;
+    // Ones' complement: the addend is the ones' code of delta (two's minus one
+    // when negative), and the carry out of the top bit wraps into the LSB.
+    wire [WIDTH-1:0]       ones_addend = addend - {{(WIDTH-1){1'b0}}, delta[2]};
+    wire [WIDTH:0]         ones_raw = {1'b0, q_q} + {1'b0, ones_addend};
+    wire [WIDTH-1:0]       ones_sum = ones_raw[WIDTH-1:0] + {{(WIDTH-1){1'b0}}, ones_raw[WIDTH]};
+    wire [WIDTH-1:0]       next = ONES_COMPLEMENT != 0 ? ones_sum : twos_sum;
+
+    always @(posedge clk) begin
+        if (rst)
+            q_q <= {WIDTH{1'b0}};
+        else if (load)
+            q_q <= load_value;
+        else
+            q_q <= next;
+    end
+
+    assign q   = q_q;
+    assign q_n = ~q_q;
+endmodule
+`default_nettype wire
