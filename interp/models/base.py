@@ -84,3 +84,9 @@ def steps_of(samples: list[dict[str, int]], axes: str = "xy") -> list[tuple[int,
         if any(deltas):
             rows.append((cycle, *deltas))
     return rows
+
+
+def sequence(inputs: Iterable[Mapping[str, int]]) -> Stimulus:
+    """A fixed list of per-cycle inputs as a stimulus (samples are not looked at)."""
+    for item in inputs:
+        yield item

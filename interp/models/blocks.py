@@ -1,0 +1,121 @@
+"""Models of the building blocks (SPEC §2), one per rtl/ module."""
+from __future__ import annotations
+
+from .base import CycleModel
+
+
+def end_around_add(a: int, b: int, width: int, cin: int = 0) -> int:
+    """Ones'-complement addition: the carry out of the top bit wraps into the LSB."""
+    mask = (1 << width) - 1
+    total = (a & mask) + (b & mask) + cin
+    return ((total & mask) + (total >> width)) & mask
+
+
+def ones_code(value: int, width: int) -> int:
+    """Ones'-complement code of a small integer (negative: bits of |value| inverted)."""
+    mask = (1 << width) - 1
+    return value & mask if value >= 0 else ~(-value) & mask
+
+
+def ones_value(code: int, width: int) -> int:
+    """Integer meaning of a ones'-complement code (both zeros read as 0)."""
+    mask = (1 << width) - 1
+    code &= mask
+    return -(~code & mask) if code >> (width - 1) else code
+
+
+class UpDownCounter(CycleModel):
+    """rtl/updown_counter.v: q += inc - dec - 2*dec2, or load."""
+
+    watch = {"q": False, "q_n": False}
+
+    def __init__(self, width: int, ones_complement: bool = False):
+        self.width, self.ones = width, ones_complement
+        self.mask = (1 << width) - 1
+        self.q = 0
+
+    @property
+    def q_n(self) -> int:
+        return ~self.q & self.mask
+
+    def clock(self, inputs) -> None:
+        if inputs["rst"]:
+            self.q = 0
+        elif inputs["load"]:
+            self.q = inputs["load_value"] & self.mask
+        else:
+            delta = inputs["inc"] - inputs["dec"] - 2 * inputs["dec2"]
+            if self.ones:
+                self.q = end_around_add(self.q, ones_code(delta, self.width), self.width)
+            else:
+                self.q = (self.q + delta) & self.mask
+
+
+class AccumAddSub(CycleModel):
+    """rtl/accum_addsub.v: F += operand + cin (ones' complement: end-around carry)."""
+
+    watch = {"f": False, "negative": False, "non_negative": False}
+
+    def __init__(self, width: int, ones_complement: bool = False):
+        self.width, self.ones = width, ones_complement
+        self.mask = (1 << width) - 1
+        self.f = 0
+
+    @property
+    def negative(self) -> int:
+        return self.f >> (self.width - 1)
+
+    @property
+    def non_negative(self) -> int:
+        return 1 - self.negative
+
+    def clock(self, inputs) -> None:
+        if inputs["rst"] or inputs["clear"]:
+            self.f = 0
+        elif inputs["load"]:
+            self.f = inputs["load_value"] & self.mask
+        elif inputs["add"]:
+            if self.ones:
+                self.f = end_around_add(self.f, inputs["operand"], self.width, inputs["cin"])
+            else:
+                self.f = (self.f + inputs["operand"] + inputs["cin"]) & self.mask
+
+
+class StartStop(CycleModel):
+    """rtl/start_stop.v: trigger 14 — set by start when idle, reset by stop."""
+
+    watch = {"run": False, "accept": False, "finish": False}
+
+    def __init__(self):
+        self.run = 0
+        self.inputs = {"start": 0, "stop": 0}
+
+    @property
+    def accept(self) -> int:     # combinational outputs follow the inputs driven now
+        return self.inputs["start"] & (1 - self.run)
+
+    @property
+    def finish(self) -> int:
+        return self.inputs["stop"] & self.run
+
+    def clock(self, inputs) -> None:
+        self.inputs = {"start": inputs["start"], "stop": inputs["stop"]}
+        if inputs["rst"]:
+            self.run = 0
+        elif self.accept:
+            self.run = 1
+        elif self.finish:
+            self.run = 0
+
+
+def sign_analysis(tick: int, enable: int, negative: int) -> dict:
+    """Node 18: AND 5 passes the generator pulse for F >= 0, AND 6 for F < 0."""
+    return {"pulse_pos": tick & enable & (1 - negative), "pulse_neg": tick & enable & negative}
+
+
+def increment_former(axial: int, diagonal: int, x_is_long: int) -> dict:
+    """Node 20: long axis gets every step (OR 10/11), short axis the diagonals."""
+    long_pulse, short_pulse = axial | diagonal, diagonal
+    if x_is_long:
+        return {"inc_x": long_pulse, "inc_y": short_pulse}
+    return {"inc_x": short_pulse, "inc_y": long_pulse}

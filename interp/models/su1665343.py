@@ -1,0 +1,277 @@
+"""Golden models of the SU 1665343 circular interpolator (SPEC §4).
+
+`steps()` is the step-level algorithm, the patent's evaluation functions (1)-(6)
+written out (F is kept as 4F so it stays an integer; it is always n + 0.75):
+
+    sector 1 (X > Y):  F >= 0: Y step,   F -= 2Y + 1           (new Y)
+                       F <  0: diagonal, F += 2(X - Y) - 1     (new X, Y)
+    sector 2 (Y >= X): F >= 0: diagonal, F += 2(X - Y) - 1
+                       F <  0: X step,   F += 2X - 1           (new X)
+    switch when X - Y - 1 < 0: F += X + Y;  stop when X = 0 (CT7 = X - 1 < 0)
+
+`Su1665343` is the cycle model of rtl/circ_su1665343.v: the same registers
+(counters and adder as ones'-complement bit patterns), the same
+micro-operations in the same cycles.  `trace()` turns its (or the RTL's)
+per-cycle samples into the patent's Table 2 rows.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .base import MOTION_OUTPUTS, CycleModel
+
+CORRECTION_CYCLES = 4       # pulse expander 25
+KINDS = {"y": (0, 1), "x": (-1, 0), "diagonal": (-1, 1)}
+
+
+# ---- ones' complement ----
+def oc_bits(value: int, width: int) -> int:
+    """The ones'-complement code of `value` (negative: the bits of |value| inverted)."""
+    mask = (1 << width) - 1
+    return value & mask if value >= 0 else ~(-value) & mask
+
+
+def oc_value(bits: int, width: int) -> int:
+    """The value of a ones'-complement code (both zeros read as 0)."""
+    mask = (1 << width) - 1
+    return -(~bits & mask) if bits >> (width - 1) & 1 else bits
+
+
+def oc_add(a: int, b: int, width: int) -> int:
+    """a + b with end-around carry (rtl/accum_addsub.v, rtl/updown_counter.v)."""
+    mask = (1 << width) - 1
+    s = a + b
+    return ((s & mask) + (s >> width)) & mask
+
+
+def r_max(width: int) -> int:
+    """Largest radius the counters hold (|CT7|, |CT8| <= R + 1)."""
+    return (1 << (width - 1)) - 2
+
+
+def start_error(r: int, x0: int, y0: int, width: int) -> str | None:
+    """Why the core refuses this start, or None (the RTL's `error` condition)."""
+    if r < 1:
+        return f"R = {r}: the radius must be at least 1"
+    if r > r_max(width):
+        return f"R = {r} does not fit WIDTH = {width} (R <= {r_max(width)})"
+    if x0 < 0 or y0 < 0 or not (r - 1) ** 2 <= x0 * x0 + y0 * y0 <= (r + 1) ** 2:
+        return f"start point ({x0}, {y0}) is farther than one step from the circle R = {r}"
+    return None
+
+
+def preload(r: int, x0: int, y0: int) -> tuple[int, int, int, int]:
+    """(4 F0, CT7, CT8, T16) by formulas (3)/(4); T16 = input 34 (Y >= X)."""
+    if y0 >= x0:        # (4): F2,0 = R^2 - (X - 1)^2 - (Y + 0.5)^2
+        return 4 * r * r - 4 * (x0 - 1) ** 2 - (2 * y0 + 1) ** 2, x0 - 1, x0 - y0, 1
+    # (3): F1,0 = R^2 - (X - 0.5)^2 - (Y + 1)^2
+    return 4 * r * r - (2 * x0 - 1) ** 2 - 4 * (y0 + 1) ** 2, y0, x0 - y0 - 1, 0
+
+
+@dataclass
+class Step:
+    kind: str           # "y" | "x" | "diagonal"
+    x: int              # point after the step
+    y: int
+    f4: int             # 4F after the step and its correction
+    switch: str = ""    # "", "A" or "B": the sector switch this step caused
+
+
+def steps(r: int, x0: int | None = None, y0: int | None = None) -> list[Step]:
+    """The step sequence from (x0, y0) (default (R, 0)) to X = 0 by the equations."""
+    x, y = (r, 0) if x0 is None else (x0, y0)
+    f4, _, _, sector2 = preload(r, x, y)
+    out = []
+    while x > 0:
+        switch = ""
+        if not sector2:
+            if f4 >= 0:
+                kind, y = "y", y + 1
+                f4 -= 4 * (2 * y + 1)
+            else:
+                kind, x, y = "diagonal", x - 1, y + 1
+                f4 += 4 * (2 * (x - y) - 1)
+            if x - y - 1 < 0:                       # (6): F2 = F1 + X + Y
+                switch = "B" if x - y < 0 else "A"
+                f4 += 4 * (x + y)
+                sector2 = 1
+        elif f4 >= 0:
+            kind, x, y = "diagonal", x - 1, y + 1
+            f4 += 4 * (2 * (x - y) - 1)
+        else:
+            kind, x = "x", x - 1
+            f4 += 4 * (2 * x - 1)
+        out.append(Step(kind, x, y, f4, switch))
+    return out
+
+
+def path_string(path: list[Step]) -> str:
+    return "".join({"y": "Y", "x": "X", "diagonal": "D"}[s.kind] for s in path)
+
+
+def radial_error(r: int, path: list[Step], x0: int | None = None, y0: int | None = None) -> float:
+    """Largest | |P| - R | over the start point and every point of the path."""
+    points = [(r, 0) if x0 is None else (x0, y0)] + [(s.x, s.y) for s in path]
+    return max(abs((x * x + y * y) ** 0.5 - r) for x, y in points)
+
+
+class Su1665343(CycleModel):
+    """Cycle model of rtl/circ_su1665343.v (names as the RTL's nets)."""
+
+    watch = {**MOTION_OUTPUTS, "error": False, "ct7": False, "ct8": False, "f": False,
+             "t16": False, "code": False, "xfer_step": False, "xfer_corr": False,
+             "corr_end": False}
+
+    def __init__(self, width: int = 12):
+        self.width, self.fw = width, width + 5
+        self.reset()
+
+    def reset(self) -> None:
+        self.run = self.t16 = 0
+        self.ct7 = self.ct8 = self.f = 0
+        self.d12, self.d13, self.d14, self.d26, self.d19 = [0, 0], [0, 0], [0, 0], [0, 0], [0] * 4
+        self.expander = 0
+        self.step_x = self.step_y = self.dir_x = self.dir_y = self.done = self.error = 0
+
+    @property
+    def busy(self) -> int:
+        return self.run
+
+    def _ct8_is(self, value: int) -> bool:
+        return self.ct8 == oc_bits(value, self.width)
+
+    # Combinational nets of the RTL that depend only on registers.
+    @property
+    def and22(self) -> int:
+        return int((self.d12[0] or self.d13[0]) and not self.t16 and self._ct8_is(-1))
+
+    @property
+    def and23(self) -> int:
+        return int(self.d12[0] and not self.t16 and self._ct8_is(-2))
+
+    @property
+    def or15(self) -> int:
+        return int(self.d14[1] or self.and22 or self.d19[2])
+
+    @property
+    def code(self) -> int:
+        """Commutator 6: {~CT7, 0}, {CT8, ~T16} or {CT7, T16}."""
+        mask = (1 << self.width) - 1
+        if self.d13[1]:
+            return (~self.ct7 & mask) << 1
+        if self.d12[1]:
+            return self.ct8 << 1 | (1 - self.t16)
+        if self.or15:
+            return self.ct7 << 1 | self.t16
+        return 0
+
+    @property
+    def xfer_step(self) -> int:
+        return int(self.d12[1] or self.d13[1] or self.d14[1])
+
+    @property
+    def xfer_corr(self) -> int:
+        return int(self.and22 or self.d19[2])
+
+    @property
+    def corr_end(self) -> int:
+        return int(self.d26[1] or self.d19[3])
+
+    def _count(self, q: int, delta: int) -> int:
+        return oc_add(q, oc_bits(delta, self.width), self.width)
+
+    def clock(self, inputs) -> None:
+        if inputs.get("rst"):
+            self.reset()
+            return
+        w, fw = self.width, self.fw
+        ct7_negative = self.ct7 >> (w - 1) & 1
+        finish = self.run and ct7_negative
+        idle_start = bool(inputs.get("start")) and not self.run
+        r, x0, y0 = (int(inputs.get(k, 0)) for k in ("r", "x0", "y0"))
+        ok = start_error(r, x0, y0, w) is None
+        load, refuse = idle_start and ok, idle_start and not ok
+        settle = any(self.d12) or any(self.d13) or any(self.d14) or self.expander
+        enable = self.run and not ct7_negative and not settle and inputs.get("tick")
+        f_negative = self.f >> (fw - 1) & 1
+        and2 = enable and not self.t16 and f_negative
+        and3 = enable and not self.t16 and not f_negative
+        and10 = enable and self.t16 and not f_negative
+        and11 = enable and self.t16 and f_negative
+        or9 = and2 or and10
+        and22, and23 = self.and22, self.and23
+        add = self.d13[1] or self.d12[1] or self.or15
+        code = self.code
+        sign = code >> w & 1
+        operand = code << 2 | sign * 3 | (((1 << (fw - w - 3)) - 1) * sign) << (w + 3)
+
+        if load:
+            f4, ct7, ct8, sector2 = preload(r, x0, y0)
+            nxt = dict(f=oc_bits(f4, fw), ct7=oc_bits(ct7, w), ct8=oc_bits(ct8, w))
+        elif finish:
+            nxt = dict(f=0, ct7=0, ct8=0)
+        else:
+            corr_ct7 = self.d19[1] or self.d19[3] or self.d26[1]
+            or17 = or9 or and3 or and11 or corr_ct7
+            ct7_delta = (-1 if self.t16 else 1) if or17 else 0
+            ct8_delta = (1 if (and22 or and23) else 0) - (1 if (and3 or and11) else 0) - (2 if or9 else 0)
+            nxt = dict(ct7=self._count(self.ct7, ct7_delta), ct8=self._count(self.ct8, ct8_delta),
+                       f=oc_add(self.f, operand, fw) if add else self.f)
+        # triggers 4 and 16 (start_stop: set when clear, reset when set)
+        t16_set = (load and preload(r, x0, y0)[3]) or and22 or and23
+        if t16_set and not self.t16:
+            self.t16 = 1
+        elif finish and self.t16:
+            self.t16 = 0
+        self.run = 1 if load else (0 if finish else self.run)
+        if finish:
+            self.d12, self.d13, self.d14, self.d26, self.d19 = [0, 0], [0, 0], [0, 0], [0, 0], [0] * 4
+            self.expander = 0
+        else:
+            self.d12 = [int(bool(or9)), self.d12[0]]
+            self.d13 = [int(bool(and3)), self.d13[0]]
+            self.d14 = [int(bool(and11)), self.d14[0]]
+            self.d26 = [and22, self.d26[0]]
+            self.d19 = [and23] + self.d19[:3]
+            self.expander = CORRECTION_CYCLES if (and22 or and23) else max(self.expander - 1, 0)
+        self.step_x = int(bool(or9 or and11))
+        self.step_y = int(bool(or9 or and3))
+        if load:
+            self.dir_x, self.dir_y = 1, 0
+        self.done, self.error = int(bool(finish)), int(refuse)
+        for name, value in nxt.items():
+            setattr(self, name, value)
+
+
+def trace(samples: list[dict], width: int) -> list[dict]:
+    """Table 2 rows from per-cycle samples: one per step and per correction micro-step.
+
+    A step row holds CT7, CT8, F after the step's transfer and the commutator
+    code it added; the last step (CT7 negative, no transfer) has no code and no F.
+    Correction rows ("9a", "9b") follow the circuit's order: in case A the
+    correction's transfer precedes the step's own (see the RTL header).
+    """
+    rows, step, letter = [], 0, 0
+    pending = None
+
+    def row(label, kind, after, code=None, with_f=True):
+        return {"step": label, "kind": kind, "ct7": oc_value(after["ct7"], width),
+                "ct8": oc_value(after["ct8"], width),
+                "code": None if code is None else oc_value(code, width + 1),
+                "f": oc_value(after["f"], width + 5) / 4 if with_f else None}
+
+    for i, s in enumerate(samples[:-1]):
+        if s["step_x"] or s["step_y"]:
+            step, letter = step + 1, 0
+            pending = "diagonal" if s["step_x"] and s["step_y"] else ("x" if s["step_x"] else "y")
+            if samples[i + 1]["done"]:
+                rows.append(row(str(step), pending, s, with_f=False))
+                pending = None
+        if s["xfer_step"] and pending:
+            rows.append(row(str(step), pending, samples[i + 1], s["code"]))
+            pending = None
+        if s["xfer_corr"] or s["corr_end"]:
+            label = f"{step}{'abcd'[letter]}"
+            letter += 1
+            rows.append(row(label, "correction", samples[i + 1], s["code"] if s["xfer_corr"] else None))
+    return rows

@@ -1,0 +1,71 @@
+`default_nettype none
+// Synchronous first-in first-out buffer: the command queue of motion_top and
+// the store of the lecture's synchronization buffer (step_sync).
+// `dout` shows the oldest entry while `valid` is high; `pop` removes it.  A
+// `push` and a `pop` in the same cycle are both taken, also when full.  A push
+// into a full queue without a pop is refused: nothing stored is touched and
+// `overflow` is high in that cycle.
+module sync_fifo #(
+    parameter integer WIDTH = 8,    // bits per entry (>= 1)
+    parameter integer DEPTH = 4,    // number of entries (>= 1, any value)
+    parameter integer LW    = 3     // width of `level` (2^LW > DEPTH)
+) (
+    input  wire             clk,
+    input  wire             rst,
+    input  wire             push,
+    input  wire [WIDTH-1:0] din,
+    input  wire             pop,        // ignored while empty
+    output wire [WIDTH-1:0] dout,       // oldest entry
+    output wire             valid,      // not empty
+    output wire             full,
+    output wire [LW-1:0]    level,      // entries stored
+    output wire             overflow    // push refused this cycle (full, no pop)
+);
+    initial begin
+        if (WIDTH < 1) $error("%m: WIDTH must be at least 1");
+        if (DEPTH < 1) $error("%m: DEPTH must be at least 1");
+        if (LW < 1 || (1 << LW) <= DEPTH) $error("%m: LW must satisfy 2^LW > DEPTH");
+    end
+
+    localparam integer PW = LW;         // pointers 0 .. DEPTH-1 fit in LW bits
+
+    // Indexed by the full pointer width; only entries 0 .. DEPTH-1 are used.
+    reg [WIDTH-1:0] mem [0:(1<<PW)-1];
+    reg [PW-1:0]    rd_q, wr_q;
+    reg [LW-1:0]    level_q;
+
+    assign valid    = level_q != {LW{1'b0}};
+    assign full     = level_q == DEPTH[LW-1:0];
+    wire   take     = pop & valid;
+    wire   put      = push & (~full | take);
+    assign overflow = push & ~put;
+    assign dout     = mem[rd_q];
+    assign level    = level_q;
+
+    function [PW-1:0] next_ptr(input [PW-1:0] p);
+        next_ptr = (p == DEPTH[PW-1:0] - 1'b1) ? {PW{1'b0}} : p + 1'b1;
+    endfunction
+
+    integer i;
+    always @(posedge clk) begin
+        if (rst) begin
+            rd_q    <= {PW{1'b0}};
+            wr_q    <= {PW{1'b0}};
+            level_q <= {LW{1'b0}};
+            for (i = 0; i < DEPTH; i = i + 1)
+                mem[i] <= {WIDTH{1'b0}};
+        end else begin
+            if (put) begin
+                mem[wr_q] <= din;
+                wr_q      <= next_ptr(wr_q);
+            end
+            if (take)
+                rd_q <= next_ptr(rd_q);
+            if (put & ~take)
+                level_q <= level_q + 1'b1;
+            else if (take & ~put)
+                level_q <= level_q - 1'b1;
+        end
+    end
+endmodule
+`default_nettype wire
