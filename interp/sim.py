@@ -6,6 +6,8 @@ under sim_build/<sim>/<name> so parameter sets build side by side and
 """
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import hashlib
 import json
 import logging
@@ -87,37 +89,47 @@ def run_cocotb(
     if quiet:
         for logger in ("Icarus", "IcarusVcd", "Verilator"):
             logging.getLogger(logger).setLevel(logging.ERROR)
-    runner = _IcarusVcd() if waves and sim == "icarus" else get_runner(sim)
-    runner.build(
-        sources=sources,
-        hdl_toplevel=toplevel,
-        parameters=parameters,
-        defines=defines,
-        build_args=build_args,
-        build_dir=build_dir,
-        always=sim == "icarus",   # the runner's staleness check sees only the top's file
-        waves=bool(waves) and sim == "verilator",
-        timescale=("1ns", "1ps") if sim == "icarus" else None,
-        log_file=build_dir / "build.log" if quiet else None,
-    )
-    results = runner.test(
-        hdl_toplevel=toplevel,
-        test_module=test_module,
-        testcase=testcase,
-        build_dir=build_dir,
-        test_dir=Path(test_dir or build_dir),
-        extra_env={k: str(v) for k, v in (env or {}).items()},
-        parameters=parameters,
-        plusargs=plusargs,
-        test_args=test_args,
-        waves=bool(waves) and sim == "verilator",
-        log_file=build_dir / "test.log" if quiet else None,
-    )
-    total, failed = get_results(results)
-    if failed or not total:
-        log = build_dir / "test.log"
-        tail = log.read_text()[-4000:] if quiet and log.exists() else ""
-        raise RuntimeError(f"{failed} of {total} cocotb tests failed on {sim} ({toplevel})\n{tail}")
+    with _locked(build_dir):
+        runner = _IcarusVcd() if waves and sim == "icarus" else get_runner(sim)
+        runner.build(
+            sources=sources,
+            hdl_toplevel=toplevel,
+            parameters=parameters,
+            defines=defines,
+            build_args=build_args,
+            build_dir=build_dir,
+            always=sim == "icarus",   # the runner's staleness check sees only the top's file
+            waves=bool(waves) and sim == "verilator",
+            timescale=("1ns", "1ps") if sim == "icarus" else None,
+            log_file=build_dir / "build.log" if quiet else None,
+        )
+        results = runner.test(
+            hdl_toplevel=toplevel,
+            test_module=test_module,
+            testcase=testcase,
+            build_dir=build_dir,
+            test_dir=Path(test_dir or build_dir),
+            extra_env={k: str(v) for k, v in (env or {}).items()},
+            parameters=parameters,
+            plusargs=plusargs,
+            test_args=test_args,
+            waves=bool(waves) and sim == "verilator",
+            log_file=build_dir / "test.log" if quiet else None,
+        )
+        total, failed = get_results(results)
+        if failed or not total:
+            log = build_dir / "test.log"
+            tail = log.read_text()[-4000:] if quiet and log.exists() else ""
+            raise RuntimeError(f"{failed} of {total} cocotb tests failed on {sim} ({toplevel})\n{tail}")
+
+
+@contextlib.contextmanager
+def _locked(build_dir: Path):
+    """Parallel jobs (pytest -n, several CLI runs) may share a build folder."""
+    build_dir.mkdir(parents=True, exist_ok=True)
+    with open(build_dir / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        yield
 
 
 def _IcarusVcd():
