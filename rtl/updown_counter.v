@@ -29,11 +29,17 @@ module updown_counter #(
     wire signed [2:0]      delta = $signed({2'b00, inc}) - $signed({2'b00, dec}) - $signed({1'b0, dec2, 1'b0});
     wire [WIDTH-1:0]       addend = {{(WIDTH-3){delta[2]}}, delta};
     wire [WIDTH-1:0]       twos_sum = q_q + addend;
-    // Ones' complement: the addend is the ones' code of delta (two's minus one
-    // when negative), and the carry out of the top bit wraps into the LSB.
-    wire [WIDTH-1:0]       ones_addend = addend - {{(WIDTH-1){1'b0}}, delta[2]};
-    wire [WIDTH:0]         ones_raw = {1'b0, q_q} + {1'b0, ones_addend};
-    wire [WIDTH-1:0]       ones_sum = ones_raw[WIDTH-1:0] + {{(WIDTH-1){1'b0}}, ones_raw[WIDTH]};
+    // Ones' complement: counting up adds with the carry out of the top bit
+    // wrapped into the LSB; counting down subtracts |delta| with the borrow
+    // wrapped around, so that counting down to zero gives +0 (all outputs
+    // low), as a reversible counter does, not the -0 that adding the
+    // complement would give (SU1665343 Table 2: CT8 = 2 - 2 must read +0).
+    wire [WIDTH-1:0]       magnitude = delta[2] ? -addend : addend;
+    wire [WIDTH:0]         ones_raw = {1'b0, q_q} + {1'b0, magnitude};
+    wire [WIDTH-1:0]       ones_up = ones_raw[WIDTH-1:0] + {{(WIDTH-1){1'b0}}, ones_raw[WIDTH]};
+    wire [WIDTH:0]         ones_diff = {1'b0, q_q} - {1'b0, magnitude};
+    wire [WIDTH-1:0]       ones_down = ones_diff[WIDTH-1:0] - {{(WIDTH-1){1'b0}}, ones_diff[WIDTH]};
+    wire [WIDTH-1:0]       ones_sum = delta[2] ? ones_down : ones_up;
     wire [WIDTH-1:0]       next = ONES_COMPLEMENT != 0 ? ones_sum : twos_sum;
 
     always @(posedge clk) begin

@@ -69,6 +69,10 @@ class Core:
         """Points (x, y) of the programmed path, for plots; None if not drawn."""
         return None
 
+    def plot_options(self, args) -> dict:
+        """Extra plot_path arguments (start point, error band)."""
+        return {}
+
 
 def load_all() -> dict[str, Core]:
     for info in pkgutil.iter_modules(__path__):

@@ -45,7 +45,10 @@ class UpDownCounter(CycleModel):
             self.q = inputs["load_value"] & self.mask
         else:
             delta = inputs["inc"] - inputs["dec"] - 2 * inputs["dec2"]
-            if self.ones:
+            if self.ones and delta < 0:     # subtract with end-around borrow: 1 - 1 = +0
+                diff = self.q + delta
+                self.q = (diff - (diff < 0)) & self.mask
+            elif self.ones:
                 self.q = end_around_add(self.q, ones_code(delta, self.width), self.width)
             else:
                 self.q = (self.q + delta) & self.mask

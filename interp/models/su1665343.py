@@ -19,29 +19,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .base import MOTION_OUTPUTS, CycleModel
+from .blocks import AccumAddSub, UpDownCounter, ones_code, ones_value
 
 CORRECTION_CYCLES = 4       # pulse expander 25
-KINDS = {"y": (0, 1), "x": (-1, 0), "diagonal": (-1, 1)}
 
 
-# ---- ones' complement ----
-def oc_bits(value: int, width: int) -> int:
-    """The ones'-complement code of `value` (negative: the bits of |value| inverted)."""
-    mask = (1 << width) - 1
-    return value & mask if value >= 0 else ~(-value) & mask
-
-
-def oc_value(bits: int, width: int) -> int:
-    """The value of a ones'-complement code (both zeros read as 0)."""
-    mask = (1 << width) - 1
-    return -(~bits & mask) if bits >> (width - 1) & 1 else bits
-
-
-def oc_add(a: int, b: int, width: int) -> int:
-    """a + b with end-around carry (rtl/accum_addsub.v, rtl/updown_counter.v)."""
-    mask = (1 << width) - 1
-    s = a + b
-    return ((s & mask) + (s >> width)) & mask
+# Ones'-complement codes: the counters' and the adder's number system.
+oc_bits = ones_code
+oc_value = ones_value
 
 
 def r_max(width: int) -> int:
@@ -115,6 +100,61 @@ def radial_error(r: int, path: list[Step], x0: int | None = None, y0: int | None
     return max(abs((x * x + y * y) ** 0.5 - r) for x, y in points)
 
 
+class DelayLine(CycleModel):
+    """rtl/delay_line.v: taps[i] is d delayed by i + 1 cycles (delay elements 12 ... 26)."""
+
+    watch = {"taps": False}
+
+    def __init__(self, length: int):
+        self.q = [0] * length
+
+    @property
+    def taps(self) -> int:
+        return sum(bit << i for i, bit in enumerate(self.q))
+
+    def __getitem__(self, i: int) -> int:
+        return self.q[i]
+
+    def __bool__(self) -> bool:
+        return any(self.q)
+
+    def clock(self, inputs) -> None:
+        if inputs.get("rst") or inputs.get("clear"):
+            self.q = [0] * len(self.q)
+        else:
+            self.q = [int(bool(inputs["d"]))] + self.q[:-1]
+
+
+class PulseExpander(CycleModel):
+    """rtl/pulse_expander.v: `active` for LENGTH cycles after a trigger (expander 25)."""
+
+    watch = {"active": False}
+
+    def __init__(self, length: int):
+        self.length, self.count = length, 0
+
+    @property
+    def active(self) -> int:
+        return int(self.count != 0)
+
+    def clock(self, inputs) -> None:
+        if inputs.get("rst") or inputs.get("clear"):
+            self.count = 0
+        elif inputs["trigger"]:
+            self.count = self.length
+        elif self.count:
+            self.count -= 1
+
+
+def commutator(width: int, sel: tuple[int, int, int], channels) -> int:
+    """rtl/commutator.v (commutator 6): OR over k of sel_k AND {v_k, lsb_k}."""
+    out = 0
+    for s, (v, lsb) in zip(sel, channels):
+        if s:
+            out |= (v << 1 | lsb) & ((1 << (width + 1)) - 1)
+    return out
+
+
 class Su1665343(CycleModel):
     """Cycle model of rtl/circ_su1665343.v (names as the RTL's nets)."""
 
@@ -128,14 +168,21 @@ class Su1665343(CycleModel):
 
     def reset(self) -> None:
         self.run = self.t16 = 0
-        self.ct7 = self.ct8 = self.f = 0
-        self.d12, self.d13, self.d14, self.d26, self.d19 = [0, 0], [0, 0], [0, 0], [0, 0], [0] * 4
-        self.expander = 0
+        self.u_ct7 = UpDownCounter(self.width, True)
+        self.u_ct8 = UpDownCounter(self.width, True)
+        self.u_adder1 = AccumAddSub(self.fw, True)
+        self.d12, self.d13, self.d14, self.d26 = (DelayLine(2) for _ in range(4))
+        self.d19 = DelayLine(4)
+        self.expander = PulseExpander(CORRECTION_CYCLES)
         self.step_x = self.step_y = self.dir_x = self.dir_y = self.done = self.error = 0
 
     @property
     def busy(self) -> int:
         return self.run
+
+    ct7 = property(lambda self: self.u_ct7.q)
+    ct8 = property(lambda self: self.u_ct8.q)
+    f = property(lambda self: self.u_adder1.f)
 
     def _ct8_is(self, value: int) -> bool:
         return self.ct8 == oc_bits(value, self.width)
@@ -157,13 +204,8 @@ class Su1665343(CycleModel):
     def code(self) -> int:
         """Commutator 6: {~CT7, 0}, {CT8, ~T16} or {CT7, T16}."""
         mask = (1 << self.width) - 1
-        if self.d13[1]:
-            return (~self.ct7 & mask) << 1
-        if self.d12[1]:
-            return self.ct8 << 1 | (1 - self.t16)
-        if self.or15:
-            return self.ct7 << 1 | self.t16
-        return 0
+        return commutator(self.width, (self.d13[1], self.d12[1], self.or15),
+                          ((~self.ct7 & mask, 0), (self.ct8, 1 - self.t16), (self.ct7, self.t16)))
 
     @property
     def xfer_step(self) -> int:
@@ -177,9 +219,6 @@ class Su1665343(CycleModel):
     def corr_end(self) -> int:
         return int(self.d26[1] or self.d19[3])
 
-    def _count(self, q: int, delta: int) -> int:
-        return oc_add(q, oc_bits(delta, self.width), self.width)
-
     def clock(self, inputs) -> None:
         if inputs.get("rst"):
             self.reset()
@@ -191,7 +230,7 @@ class Su1665343(CycleModel):
         r, x0, y0 = (int(inputs.get(k, 0)) for k in ("r", "x0", "y0"))
         ok = start_error(r, x0, y0, w) is None
         load, refuse = idle_start and ok, idle_start and not ok
-        settle = any(self.d12) or any(self.d13) or any(self.d14) or self.expander
+        settle = self.d12 or self.d13 or self.d14 or self.expander.active
         enable = self.run and not ct7_negative and not settle and inputs.get("tick")
         f_negative = self.f >> (fw - 1) & 1
         and2 = enable and not self.t16 and f_negative
@@ -205,42 +244,35 @@ class Su1665343(CycleModel):
         sign = code >> w & 1
         operand = code << 2 | sign * 3 | (((1 << (fw - w - 3)) - 1) * sign) << (w + 3)
 
-        if load:
-            f4, ct7, ct8, sector2 = preload(r, x0, y0)
-            nxt = dict(f=oc_bits(f4, fw), ct7=oc_bits(ct7, w), ct8=oc_bits(ct8, w))
-        elif finish:
-            nxt = dict(f=0, ct7=0, ct8=0)
-        else:
-            corr_ct7 = self.d19[1] or self.d19[3] or self.d26[1]
-            or17 = or9 or and3 or and11 or corr_ct7
-            ct7_delta = (-1 if self.t16 else 1) if or17 else 0
-            ct8_delta = (1 if (and22 or and23) else 0) - (1 if (and3 or and11) else 0) - (2 if or9 else 0)
-            nxt = dict(ct7=self._count(self.ct7, ct7_delta), ct8=self._count(self.ct8, ct8_delta),
-                       f=oc_add(self.f, operand, fw) if add else self.f)
+        f4, ct7_0, ct8_0, sector2 = preload(r, x0, y0)
+        corr_ct7 = self.d19[1] or self.d19[3] or self.d26[1]
+        or17 = or9 or and3 or and11 or corr_ct7
+        reload = int(bool(load or finish))
+        self.u_ct7.clock(dict(rst=0, load=reload, load_value=oc_bits(ct7_0, w) if load else 0,
+                              inc=int(bool(or17 and not self.t16)), dec=int(bool(or17 and self.t16)),
+                              dec2=0))
+        self.u_ct8.clock(dict(rst=0, load=reload, load_value=oc_bits(ct8_0, w) if load else 0,
+                              inc=int(bool(and22 or and23)), dec=int(bool(and3 or and11)),
+                              dec2=int(bool(or9))))
+        self.u_adder1.clock(dict(rst=0, clear=int(bool(finish)), load=int(bool(load)),
+                                 load_value=oc_bits(f4, fw), add=int(bool(add)), operand=operand, cin=0))
         # triggers 4 and 16 (start_stop: set when clear, reset when set)
-        t16_set = (load and preload(r, x0, y0)[3]) or and22 or and23
+        t16_set = (load and sector2) or and22 or and23
         if t16_set and not self.t16:
             self.t16 = 1
         elif finish and self.t16:
             self.t16 = 0
         self.run = 1 if load else (0 if finish else self.run)
-        if finish:
-            self.d12, self.d13, self.d14, self.d26, self.d19 = [0, 0], [0, 0], [0, 0], [0, 0], [0] * 4
-            self.expander = 0
-        else:
-            self.d12 = [int(bool(or9)), self.d12[0]]
-            self.d13 = [int(bool(and3)), self.d13[0]]
-            self.d14 = [int(bool(and11)), self.d14[0]]
-            self.d26 = [and22, self.d26[0]]
-            self.d19 = [and23] + self.d19[:3]
-            self.expander = CORRECTION_CYCLES if (and22 or and23) else max(self.expander - 1, 0)
+        clear = int(bool(finish))
+        for line, d in ((self.d12, or9), (self.d13, and3), (self.d14, and11), (self.d26, and22),
+                        (self.d19, and23)):
+            line.clock({"clear": clear, "d": d})
+        self.expander.clock({"clear": clear, "trigger": and22 or and23})
         self.step_x = int(bool(or9 or and11))
         self.step_y = int(bool(or9 or and3))
         if load:
             self.dir_x, self.dir_y = 1, 0
         self.done, self.error = int(bool(finish)), int(refuse)
-        for name, value in nxt.items():
-            setattr(self, name, value)
 
 
 def trace(samples: list[dict], width: int) -> list[dict]:
@@ -275,3 +307,39 @@ def trace(samples: list[dict], width: int) -> list[dict]:
             letter += 1
             rows.append(row(label, "correction", samples[i + 1], s["code"] if s["xfer_corr"] else None))
     return rows
+
+
+def per_step(rows: list[dict]) -> list[tuple[str, float | None]]:
+    """(kind, F after the step and its correction) for each step of a trace."""
+    kinds: dict[int, str] = {}
+    f_after: dict[int, float | None] = {}
+    for row in rows:
+        n = int(row["step"].rstrip("abcd"))
+        if row["kind"] != "correction":
+            kinds[n] = row["kind"]
+        if row["f"] is not None or n not in f_after:
+            f_after[n] = row["f"]
+    return [(kinds[n], f_after[n]) for n in sorted(kinds)]
+
+
+def expected_per_step(path: list[Step]) -> list[tuple[str, float | None]]:
+    """The same from the step-level model (the last step makes no transfer,
+    unless it switched sectors: then the correction runs before CT7 is seen)."""
+    last = len(path) - 1
+    return [(s.kind, None if n == last and not s.switch else s.f4 / 4) for n, s in enumerate(path)]
+
+
+STEP_CYCLES = 3             # pulse, settle/check, transfer (delay elements 12, 13, 14)
+
+
+def move_cycles(path: list[Step]) -> int:
+    """Cycle of the `done` sample at full speed (`tick` high), cycle 0 = start.
+
+    The first pulse is in cycle 1; a step takes STEP_CYCLES, a sector switch
+    adds the expander's CORRECTION_CYCLES - 1; `done` follows the cycle in
+    which CT7 is negative.
+    """
+    if not path:
+        return 2
+    pulses = 1 + sum(STEP_CYCLES + (CORRECTION_CYCLES - 1 if s.switch else 0) for s in path[:-1])
+    return pulses + (2 if not path[-1].switch else 2 * STEP_CYCLES + 1)

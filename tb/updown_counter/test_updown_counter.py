@@ -42,6 +42,9 @@ async def counts_through_zero(dut):
     got = [value(s["q"]) for s in samples[1:]]
     assert got == [3, 2, 1, 0, -1, -2, -3, -4, -6, -5, -4, -3, -2, -3], got
     assert all(s["q_n"] == ~s["q"] & ((1 << width) - 1) for s in samples)
+    # A reversible counter counting down to zero shows +0 (all outputs low),
+    # also in ones' complement (SU1665343 Table 2: CT8 = 2 - 2 enters the adder as +1).
+    assert [s["q"] for s in samples[1:5]] == [code(3), code(2), code(1), 0]
 
 
 @pytest.mark.parametrize("ones_complement", [0, 1])

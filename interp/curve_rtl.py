@@ -1,0 +1,45 @@
+"""cocotb test module behind `interp curve-error`: many curve moves in one simulation.
+
+$INTERP_JOBS holds a JSON list of CLI argument dicts for the `curve` core; the
+visited nodes of each move go to $INTERP_OUT as JSON (one list per job).
+"""
+import json
+import os
+from argparse import Namespace
+
+import cocotb
+
+from .cores import load_all
+from .tbkit import TB
+
+
+@cocotb.test()
+async def run_jobs(dut):
+    core = load_all()["curve"]
+    tb = TB(dut)
+    results = []
+    first = True
+    for job in json.loads(os.environ["INTERP_JOBS"]):
+        args = Namespace(**job)
+        watch = core.model(args).watch
+        stimulus = core.stimulus(args)
+        inputs = next(stimulus)
+        if first:
+            await tb.reset({k: 0 for k in inputs})
+            first = False
+        prog = core.program(args)
+        x, y = prog.x0, prog.y0
+        points = [(x, y)]
+        while True:
+            await tb.tick(inputs)
+            s = tb.sample(watch)
+            if s["step_x"] or s["step_y"]:
+                x, y = s["x_q"], s["y_q"]
+                points.append((x, y))
+            try:
+                inputs = stimulus.send(s)
+            except StopIteration:
+                break
+        results.append(points)
+    with open(os.environ["INTERP_OUT"], "w") as f:
+        json.dump(results, f)
