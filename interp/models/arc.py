@@ -1,0 +1,145 @@
+"""Golden models of the production arc core rtl/circ_arc.v.
+
+Step-level model (`arc_steps`), relative to the centre, P = (u, v), F = u^2 + v^2 - R^2
+with R^2 = |start - centre|^2 (F = 0 at the start point, as in the lecture):
+
+  tangent t = (-v, u) for CCW, (v, -u) for CW; leading axis = its larger component
+  (on a diagonal |u| = |v|: the leading axis of the octant ahead);
+  a = unit step along the leading axis, sign of t;  b = unit step along the other
+  axis, sign of t (0 there: towards the centre);
+  midpoint M = P + a + b/2: pick the candidate (P + a or P + a + b) on the far side
+  of the circle from M: the outer one when F(M) < 0, the inner one otherwise.
+  End: when the next point would reach or pass the ray from the centre through the
+  end point, the last step goes to the end point.
+
+`CircArc` is the cycle model: the same registers as the RTL (E, cross, dot).
+"""
+from __future__ import annotations
+
+from .base import MOTION_OUTPUTS, CycleModel
+from .lecture import Step, sign, within_half_step, wrap
+
+
+def arc_error(cx: int, cy: int, x0: int, y0: int, x1: int, y1: int, width: int = 32) -> str | None:
+    """Why circ_arc rejects the command, or None."""
+    limit = 1 << (width - 3)
+    rel = (x0 - cx, y0 - cy, x1 - cx, y1 - cy)
+    if any(not -limit < r < limit for r in rel):
+        return f"a point is {limit} or more steps from the centre along an axis (WIDTH = {width} limit)"
+    u0, v0, u1, v1 = rel
+    if u0 == 0 and v0 == 0:
+        return "the start point is the centre (R = 0)"
+    if not within_half_step(u0 * u0 + v0 * v0, u1 * u1 + v1 * v1):
+        return "the end point is more than half a step off the circle through the start point"
+    return None
+
+
+def _octant(u: int, v: int, ccw: bool):
+    """(x_major, a, b): leading axis and the unit steps along it (a) and across (b)."""
+    tx, ty = (-v, u) if ccw else (v, -u)
+    x_major = abs(v) > abs(u) or (abs(v) == abs(u) and ((u * v > 0) == ccw))
+    if x_major:
+        return True, (sign(tx), 0), (0, sign(ty) or -sign(v))
+    return False, (0, sign(ty)), (sign(tx) or -sign(u), 0)
+
+
+def arc_steps(cx, cy, x0, y0, x1, y1, ccw: bool, full: bool = False) -> list[Step]:
+    """The step sequence of an arc; Step.f is F = u^2 + v^2 - R^2 after the step."""
+    u, v, u1, v1 = x0 - cx, y0 - cy, x1 - cx, y1 - cy
+    r2 = u * u + v * v
+    out: list[Step] = []
+    if (u, v) == (u1, v1) and not full:
+        return out
+    turn = 1 if ccw else -1
+    while True:
+        _, (ax, ay), (bx, by) = _octant(u, v, ccw)
+        mid = (u + ax + bx / 2) ** 2 + (v + ay + by / 2) ** 2 - r2          # F(M)
+        diag_is_outer = (u + ax + bx) ** 2 + (v + ay + by) ** 2 > (u + ax) ** 2 + (v + ay) ** 2
+        take_diagonal = (mid < 0) == diag_is_outer
+        dx, dy = (ax + bx, ay + by) if take_diagonal else (ax, ay)
+        ahead = turn * (u * v1 - v * u1) > 0                                 # end still ahead
+        reached = turn * ((u + dx) * v1 - (v + dy) * u1) <= 0
+        if ahead and reached and (u + dx) * u1 + (v + dy) * v1 > 0:
+            dx, dy = u1 - u, v1 - v                                          # last step: the end
+            if max(abs(dx), abs(dy)) > 1:
+                raise AssertionError(f"end point {(x1, y1)} is {dx, dy} away at the ray")
+        u, v = u + dx, v + dy
+        out.append(Step(dx, dy, u * u + v * v - r2))
+        if (u, v) == (u1, v1) and (ahead and reached):
+            return out
+
+
+class CircArc(CycleModel):
+    """Cycle model of rtl/circ_arc.v."""
+
+    IDLE, SQUARE, CHECK, RUN, LAST = range(5)
+    watch = {**MOTION_OUTPUTS, "error": False, "e_q": True, "u_q": True, "v_q": True}
+
+    def __init__(self, width: int = 32):
+        self.width = width
+        self.reset()
+
+    @property
+    def busy(self) -> int:
+        return int(self.state != self.IDLE)
+
+    def reset(self) -> None:
+        self.state = self.IDLE
+        self.u_q = self.v_q = self.u1 = self.v1 = self.ccw = self.full = 0
+        self.e_q = self.cross = self.dot = self.a = self.b = 0
+        self.step_x = self.step_y = self.dir_x = self.dir_y = self.done = self.error = 0
+
+    def clock(self, inputs) -> None:
+        if inputs.get("rst"):
+            self.reset()
+            return
+        act_x = act_y = neg_x = neg_y = error = 0
+        w = self.width
+        state = self.state
+        if state == self.IDLE and inputs.get("start"):
+            cx, cy = wrap(inputs["cx"], w), wrap(inputs["cy"], w)
+            self.u_q, self.v_q = wrap(inputs["x0"], w) - cx, wrap(inputs["y0"], w) - cy
+            self.u1, self.v1 = wrap(inputs["x1"], w) - cx, wrap(inputs["y1"], w) - cy
+            self.ccw, self.full = int(bool(inputs.get("ccw"))), int(bool(inputs.get("full")))
+            self.state = self.SQUARE
+        elif state == self.SQUARE:
+            mask = (1 << 2 * w) - 1
+            u, v, u1, v1 = self.u_q, self.v_q, self.u1, self.v1
+            self.a, self.b = (u * u + v * v) & mask, (u1 * u1 + v1 * v1) & mask
+            self.cross, self.dot, self.e_q = u * v1 - v * u1, u * u1 + v * v1, 0
+            self.state = self.CHECK
+        elif state == self.CHECK:
+            limit = 1 << (w - 3)
+            fits = all(-limit < r < limit for r in (self.u_q, self.v_q, self.u1, self.v1))
+            bad = not fits or self.a == 0 or not within_half_step(self.a, self.b)
+            error = int(bad)
+            at_start = (self.u_q, self.v_q) == (self.u1, self.v1)
+            self.state = self.IDLE if bad else self.LAST if at_start and not self.full else self.RUN
+        elif state == self.RUN and inputs.get("tick"):
+            u, v = self.u_q, self.v_q
+            x_major, (ax, ay), (bx, by) = _octant(u, v, self.ccw)
+            pa, pb = u * ax + v * ay, u * bx + v * by
+            axial_e = self.e_q + 2 * pa + 1
+            take_diagonal = (axial_e + pb < 0) == (pb >= 0)
+            sx, sy = (ax + bx, ay + by) if take_diagonal else (ax, ay)
+            cross = self.cross + sx * self.v1 - sy * self.u1
+            dot = self.dot + sx * self.u1 + sy * self.v1
+            ahead = self.cross > 0 if self.ccw else self.cross < 0
+            reached = cross <= 0 if self.ccw else cross >= 0
+            last = ahead and reached and dot > 0
+            if last:
+                sx, sy = sign(self.u1 - u), sign(self.v1 - v)
+            act_x, act_y, neg_x, neg_y = int(sx != 0), int(sy != 0), int(sx < 0), int(sy < 0)
+            self.u_q, self.v_q = u + sx if act_x else u, v + sy if act_y else v
+            self.e_q = axial_e + (2 * pb + 1 if take_diagonal else 0)
+            self.cross, self.dot = cross, dot
+            if last:
+                self.state = self.LAST
+        elif state == self.LAST:
+            self.state = self.IDLE
+        if act_x:
+            self.dir_x = neg_x
+        if act_y:
+            self.dir_y = neg_y
+        self.step_x, self.step_y = act_x, act_y
+        self.done, self.error = int(state == self.LAST), error

@@ -1,0 +1,14 @@
+"""The lecture's accel circular interpolator: RTL vs cycle model vs the lecture's equations.
+
+The cocotb tests are shared with the other first-quadrant core (interp/quadrant_bench.py).
+"""
+import pytest
+
+from interp.quadrant_bench import *  # noqa: F401,F403  (the cocotb tests)
+from interp.sim import run_cocotb
+
+
+@pytest.mark.parametrize("width", [32])   # circ_std covers WIDTH = 8 of the shared datapath
+def test_circ_accel(sim, width):
+    run_cocotb(toplevel="circ_accel", test_module="test_circ_accel", sim=sim,
+               parameters={"WIDTH": width}, name=f"circ_accel_w{width}")
