@@ -14,6 +14,7 @@ combinational outputs are properties of the current state and inputs.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Mapping
 
 from .base import CycleModel
@@ -270,6 +271,8 @@ class TimingMonitor:
 
     def sample(self, step: int, dirs: int) -> None:
         c = self.cycle
+        if c == 0:                          # the levels the run starts from
+            self.prev_step, self.prev_dir = step, dirs
         rising = 0
         for a in range(self.axes):
             s, d = step >> a & 1, dirs >> a & 1
@@ -293,3 +296,261 @@ class TimingMonitor:
             self.pulses.append((c, rising, dirs & rising))
         self.prev_step, self.prev_dir = step, dirs
         self.cycle += 1
+
+
+# ---------------- segment queue (rtl/motion_top.v), step level ----------------
+
+LINE, ARC_CW, ARC_CCW, CURVE, DWELL = range(5)
+E_KIND, E_FEED, E_RANGE, E_CORE, E_QUEUE, E_SYNC = range(1, 7)
+ERROR_TEXT = {E_KIND: "unknown command kind", E_FEED: "feed 0", E_RANGE: "coordinate out of range",
+              E_CORE: "the core refused the command", E_QUEUE: "queue overflow",
+              E_SYNC: "step buffer overflow"}
+FIELDS = ("x", "y", "z", "i", "j", "k", "l")
+
+
+@dataclass
+class Command:
+    """One entry of motion_top's queue (the ports cmd_kind, cmd_feed, cmd_x ... cmd_l)."""
+
+    kind: int
+    feed: int = 0
+    x: int = 0
+    y: int = 0
+    z: int = 0
+    i: int = 0
+    j: int = 0
+    k: int = 0
+    l: int = 0          # noqa: E741 (the port's name)
+    source: int = 0     # G-code line number, for messages
+
+    def ports(self) -> dict[str, int]:
+        return {"cmd_kind": self.kind, "cmd_feed": self.feed,
+                **{f"cmd_{f}": getattr(self, f) for f in FIELDS}}
+
+
+def command_steps(cmd: Command, width: int = 16) -> tuple[list[tuple[int, int, int]], int]:
+    """(steps, error code) of one command by the step-level models of its core."""
+    lo = -(1 << (width - 1))
+    if cmd.kind > DWELL:
+        return [], E_KIND
+    if cmd.kind != DWELL and cmd.feed == 0:
+        return [], E_FEED
+    if cmd.kind == LINE:
+        if lo in (cmd.x, cmd.y, cmd.z):
+            return [], E_RANGE
+        return line_steps(cmd.x, cmd.y, cmd.z), 0
+    if cmd.kind in (ARC_CW, ARC_CCW):
+        from .arc import arc_error, arc_steps     # the arc core's model (rtl/circ_arc.v)
+
+        # motion_top gives circ_arc the start (0, 0), the end (x, y), the centre (i, j)
+        if arc_error(cmd.i, cmd.j, 0, 0, cmd.x, cmd.y, width):
+            return [], E_CORE
+        path = arc_steps(cmd.i, cmd.j, 0, 0, cmd.x, cmd.y, cmd.kind == ARC_CCW, (cmd.x, cmd.y) == (0, 0))
+        return [(s.dx, s.dy, 0) for s in path], 0
+    if cmd.kind == CURVE:
+        from .curve import Program, steps as curve_steps
+
+        res = curve_steps(Program(0, 0, cmd.x, cmd.y, cmd.i, cmd.j, cmd.k, cmd.l,
+                                  cmd.z & ((1 << width) - 1)), width, width + 8)
+        return [(s.dx, s.dy, 0) for s in res.steps], E_CORE if res.error else 0
+    return [], 0
+
+
+def queue_steps(cmds, width: int = 16) -> tuple[list[tuple[int, int, int]], list[int]]:
+    """Every step the drive must see, in order, and the error codes, for a command list."""
+    out, errors = [], []
+    for cmd in cmds:
+        s, err = command_steps(cmd, width)
+        out += s
+        if err:
+            errors.append(err)
+    return out, errors
+
+
+# ---------------- motion_top, cycle level ----------------
+
+S_IDLE, S_LINE, S_ARC, S_CURVE, S_DRAIN, S_DWELL = range(6)
+
+
+def _signed(value: int, bits: int) -> int:
+    value &= (1 << bits) - 1
+    return value - (1 << bits) if value >> (bits - 1) else value
+
+
+class MotionTop(CycleModel):
+    """Cycle model of rtl/motion_top.v: the block models wired as the RTL wires them.
+
+    Every combinational net is computed from the registers before the edge,
+    then every block is clocked with it, as the RTL's always blocks are.
+    """
+
+    watch = {**{f"step_{a}": False for a in AXES}, **{f"dir_{a}": False for a in AXES},
+             **{f"pos_{a}": True for a in AXES}, "busy": False, "done": False, "error": False,
+             "error_code": False, "cmd_full": False, "queue_level": False}
+
+    def __init__(self, w: int = 16, feed_w: int = 16, frac: int = 16, qdepth: int = 4, qlw: int = 3,
+                 sdepth: int = 2, tw: int = 8, pos_w: int = 32):
+        from .arc import CircArc
+        from .curve import CurveTangent
+        from .su1571551 import Su1571551
+
+        self.w, self.feed_w, self.pos_w = w, feed_w, pos_w
+        self.queue = SyncFifo(3 + feed_w + 7 * w, qdepth, qlw)
+        self.line_a, self.line_b = Su1571551(w, True), Su1571551(w, True)
+        self.arc, self.curve = CircArc(w), CurveTangent(w, w + 8, w)
+        self.sync = StepSync(3, sdepth, 1, feed_w, 4)
+        self.feed, self.out = FeedRate(frac), StepDir(3, tw)
+        self.reset()
+
+    def reset(self) -> None:
+        for block in (self.queue, self.line_a, self.line_b, self.arc, self.curve, self.sync,
+                      self.feed, self.out):
+            block.reset()
+        self.state = S_IDLE
+        self.lead_q = self.lead_neg_q = self.feed_q = self.dwell_q = 0
+        self.pos = [0, 0, 0]
+        self.step_q = self.busy_q = self.done = self.error = self.error_code = self.sync_overflow_q = 0
+
+    # ---- outputs ----
+    def _bit(self, vector: int, axis: int) -> int:
+        return vector >> axis & 1
+
+    step_x = property(lambda self: self._bit(self.out.step, 0))
+    step_y = property(lambda self: self._bit(self.out.step, 1))
+    step_z = property(lambda self: self._bit(self.out.step, 2))
+    dir_x = property(lambda self: self._bit(self.out.dir, 0))
+    dir_y = property(lambda self: self._bit(self.out.dir, 1))
+    dir_z = property(lambda self: self._bit(self.out.dir, 2))
+    pos_x = property(lambda self: self.pos[0])
+    pos_y = property(lambda self: self.pos[1])
+    pos_z = property(lambda self: self.pos[2])
+    cmd_full = property(lambda self: self.queue.full)
+    queue_level = property(lambda self: self.queue.level)
+
+    @property
+    def busy(self) -> int:
+        return int(self.state != S_IDLE or bool(self.queue.valid) or bool(self.sync.out_valid)
+                   or not self.out.ready)
+
+    def pack(self, inputs) -> int:
+        value = inputs.get("cmd_kind", 0) & 7
+        value = value << self.feed_w | inputs.get("cmd_feed", 0) & ((1 << self.feed_w) - 1)
+        for f in FIELDS:
+            value = value << self.w | inputs.get(f"cmd_{f}", 0) & ((1 << self.w) - 1)
+        return value
+
+    def unpack(self, value: int) -> dict[str, int]:
+        fields = {}
+        for f in reversed(FIELDS):
+            fields[f] = _signed(value, self.w)
+            value >>= self.w
+        fields["feed"] = value & ((1 << self.feed_w) - 1)
+        fields["kind"] = value >> self.feed_w & 7
+        return fields
+
+    def clock(self, i) -> None:
+        if i.get("rst"):
+            self.reset()
+            return
+        w, lo = self.w, -(1 << (self.w - 1))
+        h = self.unpack(self.queue.dout)
+        kind = h["kind"]
+        idle = self.state == S_IDLE
+        is_move = kind in (LINE, ARC_CW, ARC_CCW, CURVE)
+        bad_kind = kind > DWELL
+        bad_feed = is_move and h["feed"] == 0
+        bad_range = kind == LINE and lo in (h["x"], h["y"], h["z"])
+        dispatch = idle and bool(self.queue.valid)
+        accept = dispatch and not (bad_kind or bad_feed or bad_range)
+        start_line = int(accept and kind == LINE)
+        start_arc = int(accept and kind in (ARC_CW, ARC_CCW))
+        start_curve = int(accept and kind == CURVE)
+        mags = [abs(h[a]) & ((1 << w) - 1) for a in AXES]     # -2^(W-1) wraps, as in the RTL
+        lead = 0 if mags[0] >= mags[1] and mags[0] >= mags[2] else 1 if mags[1] >= mags[2] else 2
+        minor1 = h["y"] if lead == 0 else h["x"]
+        minor2 = h["y"] if lead == 2 else h["z"]
+        core_tick = 1 - self.sync.stop
+
+        a, b = self.line_a, self.line_b
+        if self.lead_q == 0:
+            line_step = a.step_x | a.step_y << 1 | b.step_y << 2
+            line_dir = self.lead_neg_q | a.dir_y << 1 | b.dir_y << 2
+        elif self.lead_q == 1:
+            line_step = a.step_y | a.step_x << 1 | b.step_y << 2
+            line_dir = a.dir_y | self.lead_neg_q << 1 | b.dir_y << 2
+        else:
+            line_step = a.step_y | b.step_y << 1 | a.step_x << 2
+            line_dir = a.dir_y | b.dir_y << 1 | self.lead_neg_q << 2
+        core_step, core_dir = {
+            S_ARC: (self.arc.step_x | self.arc.step_y << 1, self.arc.dir_x | self.arc.dir_y << 1),
+            S_CURVE: (self.curve.step_x | self.curve.step_y << 1, self.curve.dir_x | self.curve.dir_y << 1),
+            S_LINE: (line_step, line_dir)}.get(self.state, (0, 0))
+
+        sync, out = self.sync, self.out
+        out_valid, out_step, out_dir, out_feed = sync.out_valid, sync.out_step, sync.out_dir, sync.out_data
+        release_ok = int(self.feed.tick and out.ready and not i.get("hold"))
+        fire = int(release_ok and out_valid)
+        out_axes = bin(out_step).count("1")
+        core_done = ((self.state == S_LINE and a.done) or
+                     (self.state == S_ARC and (self.arc.done or self.arc.error)) or
+                     (self.state == S_CURVE and (self.curve.done or self.curve.error)))
+        core_error = (self.state == S_ARC and self.arc.error) or (self.state == S_CURVE and self.curve.error)
+        drained = not out_valid and out.ready
+        q_overflow = i.get("cmd_valid", 0) and self.queue.full and not dispatch
+        sync_overflow = sync.overflow
+        busy = self.busy
+        drv_step, drv_dir = out.step, out.dir
+
+        # ---- the edge ----
+        self.queue.clock({"push": i.get("cmd_valid", 0), "pop": int(dispatch), "din": self.pack(i)})
+        lead_len = mags[lead]
+        self.line_a.clock({"start": start_line, "tick": core_tick, "x": lead_len, "y": minor1})
+        self.line_b.clock({"start": start_line, "tick": core_tick, "x": lead_len, "y": minor2})
+        self.arc.clock({"start": start_arc, "tick": core_tick, "cx": h["i"], "cy": h["j"], "x0": 0, "y0": 0,
+                        "x1": h["x"], "y1": h["y"], "ccw": int(kind == ARC_CCW),
+                        "full": int(h["x"] == 0 and h["y"] == 0)})
+        self.curve.clock({"start": start_curve, "tick": core_tick, "x0": 0, "y0": 0, "p0": h["x"], "q0": h["y"],
+                          "dp_dx": h["i"], "dp_dy": h["j"], "dq_dx": h["k"], "dq_dy": h["l"], "reverse": 0,
+                          "count": h["z"] & ((1 << w) - 1), "end_sel": 0, "end_coord": 0, "improved": 0,
+                          "e_load": 0, "e_init": 0})
+        sync.clock({"in_step": core_step, "in_dir": core_dir, "in_data": self.feed_q, "tick": release_ok})
+        self.feed.clock({"feed": out_feed, "axes": out_axes, "take": fire})
+        out.clock({"pulse_width": i["pulse_width"], "setup": i["setup"], "hold": i["hold_time"],
+                   "valid": fire, "step_in": out_step, "dir_in": out_dir})
+
+        if self.state == S_IDLE:
+            if accept:
+                self.feed_q = h["feed"]
+                if kind == LINE:
+                    self.state, self.lead_q = S_LINE, lead
+                    self.lead_neg_q = int(h[AXES[lead]] < 0)
+                elif kind == CURVE:
+                    self.state = S_CURVE
+                elif kind == DWELL:
+                    self.state, self.dwell_q = S_DRAIN, h["x"] & ((1 << w) - 1)
+                else:
+                    self.state = S_ARC
+        elif self.state in (S_LINE, S_ARC, S_CURVE):
+            if core_done:
+                self.state = S_IDLE
+        elif self.state == S_DRAIN:
+            if drained:
+                self.state = S_DWELL
+        elif self.state == S_DWELL:
+            if self.dwell_q == 0:
+                self.state = S_IDLE
+            else:
+                self.dwell_q -= 1
+        for k in range(3):
+            if drv_step >> k & 1 and not self.step_q >> k & 1:
+                self.pos[k] = _signed(self.pos[k] + (-1 if drv_dir >> k & 1 else 1), self.pos_w)
+        self.step_q = drv_step
+        self.busy_q, self.done = busy, int(self.busy_q and not busy)
+        code = (E_KIND if dispatch and bad_kind else E_FEED if dispatch and bad_feed
+                else E_RANGE if dispatch and bad_range else E_CORE if core_error
+                else E_QUEUE if q_overflow else E_SYNC if sync_overflow and not self.sync_overflow_q
+                else 0)
+        self.sync_overflow_q = sync_overflow
+        self.error = int(code != 0)
+        if code:
+            self.error_code = code

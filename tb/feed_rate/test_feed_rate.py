@@ -4,7 +4,6 @@ import os
 import random
 
 import cocotb
-import pytest
 
 from interp.models.motion import FeedRate, interval_costs
 from interp.sim import run_cocotb

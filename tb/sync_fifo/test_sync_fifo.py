@@ -3,7 +3,6 @@ import os
 import random
 
 import cocotb
-import pytest
 
 from interp.models.motion import SyncFifo
 from interp.sim import run_cocotb
