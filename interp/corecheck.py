@@ -7,22 +7,12 @@ any cycle, start while busy) are written once here.
 """
 from __future__ import annotations
 
-import os
-import random
 from typing import Callable, Mapping
 
 from cocotb.triggers import FallingEdge
 
-from .models.base import CycleModel
-from .models.lecture import command
+from .models.base import CycleModel, move
 from .tbkit import TB, scoreboard
-
-
-def seeded_rng(dut, name: str) -> random.Random:
-    """A random generator whose seed is logged and can be forced with SEED=..."""
-    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
-    dut._log.info("%s seed=%d (re-run with SEED=%d)", name, seed, seed)
-    return random.Random(seed)
 
 
 def moves(samples: list[dict]) -> list[tuple[int, int, dict]]:
@@ -49,7 +39,7 @@ class CoreTB(TB):
     async def run(self, load: Mapping[str, int], tick=lambda c: 1, context: str = "",
                   max_cycles: int = 1_000_000) -> list[dict]:
         """One command, compared with the model in every cycle; returns the samples."""
-        return await scoreboard(self, self.ref, command(load, tick, max_cycles), context=context or str(load))
+        return await scoreboard(self, self.ref, move(load, tick, max_cycles), context=context or str(load))
 
     async def run_cut(self, load, cycles: int, context: str = "") -> None:
         """The first `cycles` cycles of a command (scoreboarded), then a reset."""

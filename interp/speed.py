@@ -9,7 +9,6 @@ from __future__ import annotations
 import re
 import subprocess
 import time
-from pathlib import Path
 
 from .sim import RTL, ROOT, SIMULATORS, verilator_bin
 

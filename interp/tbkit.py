@@ -8,6 +8,8 @@ same inputs, and every watched signal must agree in every cycle.
 """
 from __future__ import annotations
 
+import os
+import random
 from typing import Generator, Mapping
 
 import cocotb
@@ -15,6 +17,13 @@ from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 
 from .models.base import CycleModel
+
+
+def seeded_rng(dut, name: str) -> random.Random:
+    """A random generator whose seed is logged and can be forced with SEED=..."""
+    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
+    dut._log.info("%s seed=%d (re-run with SEED=%d)", name, seed, seed)
+    return random.Random(seed)
 
 
 def read(dut, name: str, signed: bool = False) -> int:

@@ -1,6 +1,4 @@
 """pytest set-up shared by every bench: each bench runs on both simulators."""
-import pytest
-
 from interp.sim import SIMULATORS
 
 

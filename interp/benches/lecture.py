@@ -14,8 +14,8 @@ import random
 
 from ..models import su1571551 as su_lin
 from ..models.arc import CircArc, arc_steps
-from ..models.base import drive, steps_of
-from ..models.lecture import (CircQuadrant, LinAccel, LinStd, circ_steps, command, lin_accel_steps,
+from ..models.base import drive, move, steps_of
+from ..models.lecture import (CircQuadrant, LinAccel, LinStd, circ_steps, lin_accel_steps,
                               lin_std_steps, line_deviation, quadrant_error, radial_deviation)
 
 try:                                    # the circular patent core (another engineer's model)
@@ -35,7 +35,7 @@ def _dev(value: float) -> str:
 
 def _cycles(model, load) -> tuple[int, int]:
     """(steps, cycles from start to done) of one command through a cycle model."""
-    samples = drive(model, command(load, idle_after=0))
+    samples = drive(model, move(load, idle_after=0))
     return len(steps_of(samples)), len(samples) - 1
 
 

@@ -1,6 +1,5 @@
 """`interp run|model circ-arc --cx --cy --x0 --y0 --x1 --y1 --dir cw|ccw [--full]`."""
 from ..models.arc import CircArc, arc_error
-from ..models.lecture import command
 from . import Core, UsageError, register, signed_range
 from .lecture import arc_points
 
@@ -39,9 +38,6 @@ class CircArcCore(Core):
     def load(self, args):
         return {"cx": args.cx, "cy": args.cy, "x0": args.x0, "y0": args.y0, "x1": args.x1, "y1": args.y1,
                 "ccw": int(args.dir == "ccw"), "full": int(args.full)}
-
-    def stimulus(self, args):
-        return command(self.load(args), max_cycles=args.max_cycles)
 
     def ideal(self, args):
         return arc_points(args.cx, args.cy, args.x0, args.y0, args.x1, args.y1, args.dir == "ccw", args.full)

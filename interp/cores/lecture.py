@@ -2,7 +2,7 @@
 `interp run|model circ-std|circ-accel --x0 --y0 --x1 --y1 --dir cw|ccw` (lecture seed 004)."""
 import math
 
-from ..models.lecture import CircQuadrant, LinAccel, LinStd, command, quadrant_error
+from ..models.lecture import CircQuadrant, LinAccel, LinStd, quadrant_error
 from . import Core, UsageError, register, signed_range
 
 
@@ -83,9 +83,6 @@ class QuadrantCore(Core):
 
     def load(self, args):
         return {"x0": args.x0, "y0": args.y0, "x1": args.x1, "y1": args.y1, "ccw": int(args.dir == "ccw")}
-
-    def stimulus(self, args):
-        return command(self.load(args), max_cycles=args.max_cycles)
 
     def ideal(self, args):
         return arc_points(0, 0, args.x0, args.y0, args.x1, args.y1, args.dir == "ccw")

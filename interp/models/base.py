@@ -47,13 +47,14 @@ def move(load: Mapping[str, int], tick: Callable[[int], int] = lambda c: 1,
          end: str = "done") -> Stimulus:
     """Pulse `start` with the `load` inputs, tick by `tick(cycle)`, stop after `end`.
 
-    Cycle 0 is the cycle in which `start` is high.  After `end` (default:
-    `done`) is seen, `idle_after` more cycles run to show nothing else moves.
-    A move that never ends raises after `max_cycles`.
+    Cycle 0 is the cycle in which `start` is high.  The move ends when `end`
+    (default: `done`) or, for cores that have one, `error` is seen; then
+    `idle_after` more cycles run to show nothing else moves.  A move that
+    never ends raises after `max_cycles`.
     """
     sample = yield {**load, "start": 1, "tick": tick(0)}
     cycle = 1
-    while not sample[end]:
+    while not (sample[end] or sample.get("error")):
         if cycle > max_cycles:
             raise RuntimeError(f"no {end} after {max_cycles} cycles")
         sample = yield {**load, "start": 0, "tick": tick(cycle)}

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .base import MOTION_OUTPUTS, CycleModel, move
+from .base import MOTION_OUTPUTS, CycleModel
 
 
 @dataclass
@@ -320,15 +320,3 @@ class CircQuadrant(CycleModel):
                 self.state = self.IDLE
         self.step_x, self.step_y = act_x, act_y
         self.done, self.error = int(at_end), error
-
-
-def command(load, tick=lambda c: 1, max_cycles: int = 1_000_000, idle_after: int = 2):
-    """`base.move` for cores with an `error` strobe: the move ends on done or error."""
-    inner = move(load, tick, max_cycles=max_cycles, idle_after=idle_after)
-    inputs = next(inner)
-    while True:
-        sample = yield inputs
-        try:
-            inputs = inner.send({**sample, "done": sample["done"] | sample.get("error", 0)})
-        except StopIteration:
-            return

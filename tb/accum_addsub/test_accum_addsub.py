@@ -4,8 +4,7 @@ import pytest
 
 from interp.models.base import sequence
 from interp.models.blocks import AccumAddSub, ones_code, ones_value
-from interp.seed import rng_for
-from interp.tbkit import TB, scoreboard
+from interp.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"clear": 0, "load": 0, "load_value": 0, "add": 0, "operand": 0, "cin": 0}
 
@@ -21,7 +20,7 @@ async def setup(dut):
 async def random_operations(dut):
     """Random clear/load/add with carry-in, every cycle against the model."""
     tb, model, width, _ = await setup(dut)
-    rng = rng_for(dut._log, "random_operations")
+    rng = seeded_rng(dut, "random_operations")
     stim = [{"rst": int(rng.random() < 0.01), "clear": int(rng.random() < 0.02),
              "load": int(rng.random() < 0.05), "load_value": rng.randrange(1 << width),
              "add": int(rng.random() < 0.8), "operand": rng.randrange(1 << width),

@@ -9,7 +9,8 @@ import math
 import cocotb
 import pytest
 
-from interp.corecheck import CoreTB, moves, reset_at_any_cycle, seeded_rng, start_while_busy
+from interp.corecheck import CoreTB, moves, reset_at_any_cycle, start_while_busy
+from interp.tbkit import seeded_rng
 from interp.models.arc import CircArc, arc_error, arc_steps
 from interp.models.lecture import radial_deviation, within_half_step
 from interp.sim import run_cocotb

@@ -14,8 +14,7 @@ from cocotb.triggers import FallingEdge
 from interp.models.base import move, steps_of
 from interp.models.su1665343 import (Su1665343, expected_per_step, move_cycles, path_string,
                                      per_step, r_max, radial_error, start_error, steps, trace)
-from interp.seed import rng_for
-from interp.tbkit import TB, scoreboard
+from interp.tbkit import TB, scoreboard, seeded_rng
 
 # Patent Table 2 (R = 12), SPEC §4: (step, kind, CT7, CT8, commutator code, F after).
 TABLE2 = [
@@ -107,7 +106,7 @@ async def sector_switch_cases(dut):
 async def every_small_r_and_random_sample(dut):
     """Every R up to 40 (the whole range at small widths), then a random sample, random tick."""
     tb = await setup(dut)
-    rng = rng_for(dut._log, "every_small_r_and_random_sample")
+    rng = seeded_rng(dut, "every_small_r_and_random_sample")
     for r in range(1, min(40, tb.rmax) + 1):
         await tb.check_move(r)
     for _ in range(3):

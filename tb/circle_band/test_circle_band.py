@@ -6,7 +6,7 @@ import cocotb
 import pytest
 from cocotb.triggers import Timer
 
-from interp.corecheck import seeded_rng
+from interp.tbkit import seeded_rng
 from interp.models.lecture import within_half_step
 from interp.sim import run_cocotb
 

@@ -6,14 +6,14 @@ import pytest
 from cocotb.triggers import Timer
 
 from interp.models.su1665343 import commutator, oc_value
-from interp.seed import rng_for
+from interp.tbkit import seeded_rng
 
 
 @cocotb.test()
 async def channels(dut):
     """Every select pattern with random data; and the ones'-complement meaning 2v +- 1."""
     width = len(dut.v1)
-    rng = rng_for(dut._log, "channels")
+    rng = seeded_rng(dut, "channels")
     for sel in list(itertools.product((0, 1), repeat=3)) * 40:
         data = [(rng.randrange(1 << width), rng.randint(0, 1)) for _ in range(3)]
         dut.sel1.value, dut.sel2.value, dut.sel3.value = sel

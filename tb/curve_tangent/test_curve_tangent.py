@@ -6,9 +6,8 @@ from cocotb.triggers import FallingEdge
 from interp.models.base import move
 from interp.models.curve import (CURVES, END_COUNT, END_X, END_Y, PAPER_CURVES, PAPER_SCALES,
                                  CurveTangent, Program, anchored_e, program, steps)
-from interp.seed import rng_for
 from interp.sim import run_cocotb
-from interp.tbkit import TB, scoreboard
+from interp.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = dict(vars(Program(0, 0, 0, 0, 0, 0, 0, 0, 0)), start=0, tick=0)
 
@@ -84,7 +83,7 @@ async def conics_and_lines(dut):
 async def random_coefficients(dut):
     """Random projections and coefficients within the width, random tick, all end modes."""
     tb = await setup(dut)
-    rng = rng_for(dut._log, "random_coefficients")
+    rng = seeded_rng(dut, "random_coefficients")
     half_p, half_x = 1 << (tb.pw - 1), 1 << (tb.width - 1)
     for n in range(120):
         big = rng.random() < 0.3            # full-width values: overflows are defined stops

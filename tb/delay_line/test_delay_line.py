@@ -4,8 +4,7 @@ import pytest
 
 from interp.models.base import sequence
 from interp.models.su1665343 import DelayLine
-from interp.seed import rng_for
-from interp.tbkit import TB, scoreboard
+from interp.tbkit import TB, scoreboard, seeded_rng
 
 
 @cocotb.test()
@@ -17,7 +16,7 @@ async def taps_follow_input(dut):
     pulse = [{"rst": 0, "clear": 0, "d": 1}] + [{"rst": 0, "clear": 0, "d": 0}] * (length + 1)
     samples = await scoreboard(tb, DelayLine(length), sequence(pulse), context="pulse")
     assert [s["taps"] for s in samples[1:length + 2]] == [1 << i for i in range(length)] + [0]
-    rng = rng_for(dut._log, "taps_follow_input")
+    rng = seeded_rng(dut, "taps_follow_input")
     stim = [{"rst": int(rng.random() < 0.03), "clear": int(rng.random() < 0.05),
              "d": rng.randint(0, 1)} for _ in range(1000)]
     await scoreboard(tb, DelayLine(length), sequence([{"rst": 1, "clear": 0, "d": 0}] + stim),

@@ -1,21 +1,13 @@
 """feed_rate: RTL vs cycle model every cycle; constant path speed; glitch-free feed change."""
 import math
-import os
-import random
 
 import cocotb
 
 from interp.models.motion import FeedRate, interval_costs
 from interp.sim import run_cocotb
-from interp.tbkit import TB, scoreboard
+from interp.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"feed": 0, "axes": 0, "take": 0}
-
-
-def seeded(dut, name):
-    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
-    dut._log.info("%s seed=%d (re-run with SEED=%d)", name, seed, seed)
-    return random.Random(seed)
 
 
 class FeedTB(TB):
@@ -83,7 +75,7 @@ async def interval_after_diagonal(dut):
 @cocotb.test()
 async def feed_change_without_glitch(dut):
     """Feed changes between segments: every interval belongs to one feed, none is short or lost."""
-    rng = seeded(dut, "feed_change_without_glitch")
+    rng = seeded_rng(dut, "feed_change_without_glitch")
     tb = await FeedTB(dut).start()
     one = 1 << tb.frac
     segments = [(rng.choice([one // 4, one // 7, one // 2, 3000]), [rng.choice([1, 2, 3]) for _ in range(6)])
@@ -100,7 +92,7 @@ async def feed_change_without_glitch(dut):
 @cocotb.test()
 async def back_pressure_holds_phase(dut):
     """Steps waiting at random: tick stays up, no burst after a pause (one step per tick)."""
-    rng = seeded(dut, "back_pressure_holds_phase")
+    rng = seeded_rng(dut, "back_pressure_holds_phase")
     tb = await FeedTB(dut).start()
     one = 1 << tb.frac
     taken = await tb.run([(one // 3, [rng.choice([1, 2, 3]) for _ in range(80)])],

@@ -4,8 +4,7 @@ import pytest
 from cocotb.triggers import FallingEdge
 
 from interp.models.curve import fits, wrap
-from interp.seed import rng_for
-from interp.tbkit import TB
+from interp.tbkit import TB, seeded_rng
 from interp.sim import run_cocotb
 
 
@@ -13,7 +12,7 @@ from interp.sim import run_cocotb
 async def random_walks(dut):
     """Random walks from random loads: value, next_value and overflow every cycle."""
     w = int(dut.WIDTH.value)
-    rng = rng_for(dut._log, "random_walks")
+    rng = seeded_rng(dut, "random_walks")
     tb = TB(dut)
     idle = dict(load=0, load_value=0, coef_a_in=0, coef_b_in=0, step_a=0, neg_a=0, step_b=0,
                 neg_b=0, advance=0)

@@ -2,7 +2,8 @@
 import cocotb
 import pytest
 
-from interp.corecheck import CoreTB, moves, reset_at_any_cycle, seeded_rng, start_while_busy
+from interp.corecheck import CoreTB, moves, reset_at_any_cycle, start_while_busy
+from interp.tbkit import seeded_rng
 from interp.models.lecture import LinStd, lin_std_steps
 from interp.sim import run_cocotb
 

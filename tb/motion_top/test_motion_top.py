@@ -8,8 +8,6 @@ duplicated), the position counters must equal the programmed end point, and
 the error strobes must name exactly the bad commands.
 """
 import csv
-import os
-import random
 
 import cocotb
 from cocotb.triggers import FallingEdge
@@ -19,7 +17,7 @@ from interp.models.motion import (ARC_CCW, ARC_CW, CURVE, DWELL, E_CORE, E_FEED,
 from interp.cli import main
 from interp.commands import gcode
 from interp.sim import run_cocotb
-from interp.tbkit import TB, read, scoreboard
+from interp.tbkit import TB, read, scoreboard, seeded_rng
 
 ONE = 1 << 16                                  # FRAC = 16: feed ONE would be 1 step per clock
 TOP = ONE - 1                                  # the largest feed FEED_W = 16 holds
@@ -27,12 +25,6 @@ IDLE = {"rst": 0, "cmd_valid": 0, "hold": 0, "cmd_kind": 0, "cmd_feed": 0,
         **{f"cmd_{f}": 0 for f in "xyzijkl"}}
 FAST = {"pulse_width": 1, "setup": 0, "hold_time": 0}
 PARAMS = ("W", "FEED_W", "FRAC", "QDEPTH", "QLW", "SDEPTH", "TW", "POS_W")
-
-
-def seeded(dut, name):
-    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
-    dut._log.info("%s seed=%d (re-run with SEED=%d)", name, seed, seed)
-    return random.Random(seed)
 
 
 def bits(step):
@@ -151,7 +143,7 @@ async def bad_arc_and_curve(dut):
 @cocotb.test()
 async def back_pressure_fuzz(dut):
     """Random STOP (feed hold) patterns and random queue contents: 0 lost, 0 duplicated."""
-    rng = seeded(dut, "back_pressure_fuzz")
+    rng = seeded_rng(dut, "back_pressure_fuzz")
     tb = await MotionTB(dut).start()
     holds = [lambda c: 0, lambda c: rng.random() < 0.5, lambda c: rng.random() < 0.9,
              lambda c: (c // 17) % 3 == 0, lambda c: c % 5 != 0]

@@ -2,14 +2,14 @@
 import cocotb
 import pytest
 from cocotb.triggers import Timer
+from interp.tbkit import seeded_rng
 
-from interp.seed import rng_for
 
 
 @cocotb.test()
 async def selects(dut):
     width = len(dut.out)
-    rng = rng_for(dut._log, "selects")
+    rng = seeded_rng(dut, "selects")
     for _ in range(200):
         a, b, sel = rng.randrange(1 << width), rng.randrange(1 << width), rng.randint(0, 1)
         dut.in0.value, dut.in1.value, dut.sel.value = a, b, sel

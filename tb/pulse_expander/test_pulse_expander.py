@@ -4,8 +4,7 @@ import pytest
 
 from interp.models.base import sequence
 from interp.models.su1665343 import PulseExpander
-from interp.seed import rng_for
-from interp.tbkit import TB, scoreboard
+from interp.tbkit import TB, scoreboard, seeded_rng
 
 
 @cocotb.test()
@@ -18,7 +17,7 @@ async def holds_for_length(dut):
     stim = [{**idle, "trigger": 1}] + [idle] * (length + 3)
     samples = await scoreboard(tb, PulseExpander(length), sequence(stim), context="one trigger")
     assert [s["active"] for s in samples] == [0] + [1] * length + [0] * 4
-    rng = rng_for(dut._log, "holds_for_length")
+    rng = seeded_rng(dut, "holds_for_length")
     stim = [{"rst": int(rng.random() < 0.02), "clear": int(rng.random() < 0.03),
              "trigger": int(rng.random() < 0.15)} for _ in range(1000)]
     await scoreboard(tb, PulseExpander(length), sequence([{**idle, "rst": 1}] + stim), context="random")

@@ -5,8 +5,7 @@ import cocotb
 
 from interp.models.base import sequence
 from interp.models.blocks import StartStop
-from interp.seed import rng_for
-from interp.tbkit import TB, scoreboard
+from interp.tbkit import TB, scoreboard, seeded_rng
 
 
 @cocotb.test()
@@ -18,7 +17,7 @@ async def every_transition(dut):
     stim = []
     for c in combos:                       # from idle, and from running
         stim += [c, {"rst": 0, "start": 1, "stop": 0}, c, {"rst": 1, "start": 0, "stop": 0}]
-    rng = rng_for(dut._log, "every_transition")
+    rng = seeded_rng(dut, "every_transition")
     stim += [{"rst": int(rng.random() < 0.05), "start": rng.randint(0, 1), "stop": rng.randint(0, 1)}
              for _ in range(500)]
     samples = await scoreboard(tb, StartStop(), sequence(stim), context="start_stop")

@@ -1,20 +1,13 @@
 """step_dir: RTL vs cycle model every cycle; a monitor checks width/setup/hold in every cycle."""
-import os
 import random
 
 import cocotb
 
 from interp.models.motion import StepDir, TimingMonitor
 from interp.sim import run_cocotb
-from interp.tbkit import TB, scoreboard
+from interp.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"rst": 0, "valid": 0, "step_in": 0, "dir_in": 0, "pulse_width": 1, "setup": 0, "hold": 0}
-
-
-def seeded(dut, name):
-    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
-    dut._log.info("%s seed=%d (re-run with SEED=%d)", name, seed, seed)
-    return random.Random(seed)
 
 
 class DirTB(TB):
@@ -64,7 +57,7 @@ def random_steps(rng, axes, n, p_turn):
 @cocotb.test()
 async def timing_never_violated(dut):
     """Random timing registers, random steps and direction changes, random offer gaps."""
-    rng = seeded(dut, "timing_never_violated")
+    rng = seeded_rng(dut, "timing_never_violated")
     tb = await DirTB(dut).start()
     settings = [(1, 0, 0), (1, 1, 1), (2, 3, 4), (5, 0, 2), (3, 2, 0), (0, 0, 0)]
     settings += [(rng.randint(0, 9), rng.randint(0, 9), rng.randint(0, 9)) for _ in range(6)]

@@ -1,5 +1,4 @@
 """step_sync: RTL vs cycle model every cycle; every step leaves exactly once, in order."""
-import os
 import random
 
 import cocotb
@@ -7,15 +6,9 @@ import pytest
 
 from interp.models.motion import StepSync
 from interp.sim import run_cocotb
-from interp.tbkit import TB, scoreboard
+from interp.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"in_step": 0, "in_dir": 0, "in_data": 0, "tick": 0}
-
-
-def seeded(dut, name):
-    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
-    dut._log.info("%s seed=%d (re-run with SEED=%d)", name, seed, seed)
-    return random.Random(seed)
 
 
 class SyncTB(TB):
@@ -61,7 +54,7 @@ def core_and_drive(rng, p, cycles, p_step, tick_of, log, honour_stop=True, rst_a
 @cocotb.test()
 async def back_pressure_fuzz(dut):
     """Random tick (back-pressure) patterns and core step patterns: 0 lost, 0 duplicated, in order."""
-    rng = seeded(dut, "back_pressure_fuzz")
+    rng = seeded_rng(dut, "back_pressure_fuzz")
     tb = await SyncTB(dut).start()
     patterns = [lambda c: 1, lambda c: 0 if c < 40 else 1, lambda c: c % 7 == 0,
                 lambda c: rng.random() < 0.5, lambda c: rng.random() < 0.05,
@@ -101,7 +94,7 @@ async def core_ignoring_stop_sets_overflow(dut):
 @cocotb.test()
 async def reset_with_full_buffer(dut):
     """rst at any point, also with a full store: empty afterwards, stale steps never come out."""
-    rng = seeded(dut, "reset_with_full_buffer")
+    rng = seeded_rng(dut, "reset_with_full_buffer")
     tb = await SyncTB(dut).start()
     for at in (5, 17, 40):
         log = {"in": [], "out": []}

@@ -1,20 +1,12 @@
 """sync_fifo: RTL vs cycle model every cycle; order, no loss, overflow refused."""
-import os
-import random
 
 import cocotb
 
 from interp.models.motion import SyncFifo
 from interp.sim import run_cocotb
-from interp.tbkit import TB, scoreboard
+from interp.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"push": 0, "pop": 0, "din": 0}
-
-
-def seeded(dut, name):
-    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
-    dut._log.info("%s seed=%d (re-run with SEED=%d)", name, seed, seed)
-    return random.Random(seed)
 
 
 async def setup(dut):
@@ -49,7 +41,7 @@ def traffic(rng, width, cycles, p_push, p_pop, log, rst_at=()):
 @cocotb.test()
 async def random_traffic(dut):
     """Every push/pop mix, overflow attempts included: order kept, refused pushes counted."""
-    rng = seeded(dut, "random_traffic")
+    rng = seeded_rng(dut, "random_traffic")
     tb = await setup(dut)
     for p_push, p_pop in [(0.5, 0.5), (0.9, 0.2), (0.2, 0.9), (1.0, 1.0), (1.0, 0.0)]:
         log = {"want": [], "got": [], "refused": 0}
@@ -85,7 +77,7 @@ async def overflow_keeps_contents(dut):
 @cocotb.test()
 async def reset_with_full_queue(dut):
     """rst with a full queue empties it; nothing stale comes out afterwards."""
-    rng = seeded(dut, "reset_with_full_queue")
+    rng = seeded_rng(dut, "reset_with_full_queue")
     tb = await setup(dut)
     log = {"want": [], "got": [], "refused": 0}
     await scoreboard(tb, tb.ref, traffic(rng, tb.p["WIDTH"], 300, 0.8, 0.3, log, rst_at={50, 120, 121, 200}),

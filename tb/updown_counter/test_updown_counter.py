@@ -4,8 +4,7 @@ import pytest
 
 from interp.models.base import sequence
 from interp.models.blocks import UpDownCounter, ones_code, ones_value
-from interp.seed import rng_for
-from interp.tbkit import TB, scoreboard
+from interp.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"load": 0, "load_value": 0, "inc": 0, "dec": 0, "dec2": 0}
 
@@ -21,7 +20,7 @@ async def setup(dut):
 async def random_operations(dut):
     """Random load/inc/dec/dec2 (also simultaneous), wrapping through both ends."""
     tb, model, width, _ = await setup(dut)
-    rng = rng_for(dut._log, "random_operations")
+    rng = seeded_rng(dut, "random_operations")
     stim = [{"rst": int(rng.random() < 0.01), "load": int(rng.random() < 0.05),
              "load_value": rng.randrange(1 << width), "inc": rng.randint(0, 1),
              "dec": rng.randint(0, 1), "dec2": rng.randint(0, 1)} for _ in range(3000)]
