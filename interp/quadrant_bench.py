@@ -1,4 +1,4 @@
-"""cocotb tests shared by tb/circ_std and tb/circ_accel (the two circ_quadrant cores).
+"""cocotb tests shared by tb/circ_std, tb/circ_accel and tb/circ_quadrant (their datapath).
 
 Each bench module imports these tests; the DUT's ACCEL parameter (read from the
 inner circ_quadrant) selects the standard or accelerated equations.
@@ -15,9 +15,17 @@ IDLE = {"start": 0, "tick": 0, "x0": 0, "y0": 0, "x1": 0, "y1": 0, "ccw": 0}
 
 
 async def setup(dut):
-    width, accel = int(dut.WIDTH.value), bool(int(dut.u_core.ACCEL.value))
-    tb = CoreTB(dut, IDLE, lambda: CircQuadrant(width, accel))
-    tb.width, tb.accel = width, accel
+    core = getattr(dut, "u_core", dut)          # a wrapper, or the datapath itself
+    prefix = "" if core is dut else "u_core."
+    width, accel = int(dut.WIDTH.value), bool(int(core.ACCEL.value))
+
+    def model():
+        m = CircQuadrant(width, accel)
+        m.watch = {k.replace("u_core.", prefix): v for k, v in CircQuadrant.watch.items()}
+        return m
+
+    tb = CoreTB(dut, IDLE, model)
+    tb.width, tb.accel, tb.f = width, accel, prefix + "f"
     await tb.reset()
     return tb
 
@@ -33,7 +41,7 @@ async def check_arc(tb, x0, y0, x1, y1, ccw, tick=lambda c: 1):
             f"{load}: {reason}"
         return samples
     want = circ_steps(x0, y0, x1, y1, ccw, tb.accel)
-    assert [(dx, dy, s["u_core.f"]) for dx, dy, s in got] == [(w.dx, w.dy, w.f) for w in want], str(load)
+    assert [(dx, dy, s[tb.f]) for dx, dy, s in got] == [(w.dx, w.dy, w.f) for w in want], str(load)
     assert sum(s["done"] for s in samples) == 1 and not any(s["error"] for s in samples)
     if not tb.accel:
         assert all(not (dx and dy) for dx, dy, _ in got)
@@ -49,7 +57,7 @@ async def lecture_example(dut):
         x, y = x0, y0
         for dx, dy, s in moves(samples):
             x, y = x + dx, y + dy
-            assert s["u_core.f"] == x * x + y * y - (x0 * x0 + y0 * y0)
+            assert s[tb.f] == x * x + y * y - (x0 * x0 + y0 * y0)
         assert (x, y) == (x1, y1)
 
 
