@@ -5,9 +5,11 @@
                     [--setup N] [--hold N]
 
 Understood: G00/G01 (lines), G02/G03 with I/J (centre relative to the start),
-G04 P<clock cycles> (dwell), G90/G91, G17 and G21 (accepted, no effect), F,
-X/Y/Z, N (ignored), comments in ( ) or after ;.  F is the path speed in
-units per 1000 clock cycles.  Anything else is an error naming its line.
+G04 P (dwell), G90/G91, G17 and G21 (accepted, no effect), F, X/Y/Z, N
+(ignored), comments in ( ) or after ;.  With --clock-hz HZ, F is the path
+speed in units per minute and G04 P is in seconds, as on a machine; without
+it (simulation-sized numbers), F is in units per 1000 clock cycles and P in
+clock cycles.  Anything else is an error naming its line.
 """
 from __future__ import annotations
 
@@ -62,9 +64,14 @@ class Program:
     z_moves: bool = False
 
 
-def feed_word(f: float, scale: float) -> int:
-    """F (units per 1000 clocks) -> motion_top's feed (steps per clock x 2^FRAC)."""
-    return round(f * scale / 1000 * (1 << FRAC))
+def clocks_per_f_unit(clock_hz: float | None) -> float:
+    """Clock cycles in F's time unit: a minute at clock_hz, else 1000 cycles."""
+    return 60 * clock_hz if clock_hz else 1000
+
+
+def feed_word(f: float, scale: float, clock_hz: float | None = None) -> int:
+    """F (units per minute, or per 1000 clocks) -> motion_top's feed (steps per clock x 2^FRAC)."""
+    return round(f * scale / clocks_per_f_unit(clock_hz) * (1 << FRAC))
 
 
 def words(line: str, number: int) -> list[tuple[str, float]]:
@@ -76,7 +83,7 @@ def words(line: str, number: int) -> list[tuple[str, float]]:
     return [(letter, float(value)) for letter, value in found]
 
 
-def parse(text: str, scale: float = 1.0, rapid: int = FEED_MAX) -> Program:
+def parse(text: str, scale: float = 1.0, rapid: int = FEED_MAX, clock_hz: float | None = None) -> Program:
     """G-code -> motion_top commands (relative, in steps) and the programmed path."""
     prog = Program()
     units = [0.0, 0.0, 0.0]             # programmed position in units
@@ -106,16 +113,17 @@ def parse(text: str, scale: float = 1.0, rapid: int = FEED_MAX) -> Program:
             else:
                 raise GcodeError(number, f"unsupported word {letter}{value:g}")
         if "F" in values:
-            if values["F"] <= 0 or feed_word(values["F"], scale) == 0:
+            if values["F"] <= 0 or feed_word(values["F"], scale, clock_hz) == 0:
                 raise GcodeError(number, f"feed F{values['F']:g} is 0 at this scale (feed 0)")
-            if feed_word(values["F"], scale) > FEED_MAX:
-                raise GcodeError(number, f"feed F{values['F']:g} is above the maximum "
-                                 f"F{FEED_MAX * 1000 / scale / (1 << FRAC):.6g} (1 step per clock)")
-            feed = feed_word(values["F"], scale)
+            if feed_word(values["F"], scale, clock_hz) > FEED_MAX:
+                top = FEED_MAX * clocks_per_f_unit(clock_hz) / scale / (1 << FRAC)
+                raise GcodeError(number, f"feed F{values['F']:g} is above the maximum F{top:.6g} (1 step per clock)")
+            feed = feed_word(values["F"], scale, clock_hz)
         if dwell:
-            cycles = values.get("P", 0)
+            p = values.get("P", 0)
+            cycles = round(p * clock_hz) if clock_hz else p
             if cycles < 0 or cycles != int(cycles) or cycles > LINE_MAX:
-                raise GcodeError(number, f"dwell P{cycles:g}: want whole clock cycles 0 .. {LINE_MAX}")
+                raise GcodeError(number, f"dwell P{p:g}: want 0 .. {LINE_MAX} whole clock cycles")
             prog.commands.append(Command(DWELL, 0, int(cycles), source=number))
             continue
         if "P" in values:
@@ -206,7 +214,7 @@ def step_rows(result: dict, axes: str) -> list[tuple[int, ...]]:
 
 
 def run_program(text: str, args) -> int:
-    prog = parse(text, args.scale, args.rapid)
+    prog = parse(text, args.scale, args.rapid, args.clock_hz)
     timing = {"pulse_width": args.pulse_width, "setup": args.setup, "hold_time": args.hold}
     result = simulate(prog.commands, args.sim, timing, args.vcd)
     axes = "xyz" if prog.z_moves else "xy"
@@ -248,6 +256,8 @@ def add_parser(sub) -> None:
     p.add_argument("file", help="G-code file")
     p.add_argument("--sim", choices=SIMULATORS, default="icarus", help="simulator (default icarus)")
     p.add_argument("--scale", type=float, default=1.0, help="steps per unit (default 1: coordinates in steps)")
+    p.add_argument("--clock-hz", type=float, help="clock frequency: F in units/minute, G04 P in seconds "
+                   "(default: F in units per 1000 clocks, P in clocks)")
     p.add_argument("--steps", required=True, metavar="FILE", help="CSV of steps: cycle,dx,dy[,dz]")
     p.add_argument("--vcd", metavar="FILE", help="waveform file")
     p.add_argument("--plot", metavar="FILE", help="PNG of the stepped path over the programmed one")

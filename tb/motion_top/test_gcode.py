@@ -5,7 +5,7 @@ These run the parser only; the RTL run of a program is in test_motion_top.py.
 import pytest
 
 from interp.cli import main
-from interp.commands.gcode import FEED_MAX, LINE_MAX, GcodeError, parse
+from interp.commands.gcode import FEED_MAX, LINE_MAX, GcodeError, feed_word, parse
 from interp.models.motion import ARC_CCW, ARC_CW, DWELL, LINE, queue_steps
 
 
@@ -75,3 +75,12 @@ def test_cli_reports_bad_line(tmp_path, capsys):
     assert "line 3: unsupported G-code G42" in capsys.readouterr().err
     assert main(["gcode", str(tmp_path / "missing.nc"), "--steps", str(tmp_path / "s.csv")]) == 2
     assert main(["gcode", str(src), "--steps", str(tmp_path / "s.csv"), "--setup", "99"]) == 2
+
+
+def test_clock_hz_gives_machine_units():
+    """With a clock, F is units per minute and G04 P seconds, as on a machine."""
+    prog = parse("G21 G01 X10 F600\nG04 P0.2\n", scale=100, clock_hz=100_000)
+    line, dwell = prog.commands[0], prog.commands[-1]
+    # 600 mm/min * 100 steps/mm = 1000 steps/s = 0.01 steps per clock at 100 kHz
+    assert line.feed == feed_word(0.01 * 1000, 1)
+    assert dwell.kind == DWELL and dwell.x == 20_000
