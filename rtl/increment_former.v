@@ -14,5 +14,13 @@ module increment_former (
     wire short_pulse = diagonal;
     assign inc_x = x_is_long ? long_pulse : short_pulse;   // AND 7 / AND 8
     assign inc_y = x_is_long ? short_pulse : long_pulse;
+`ifdef FORMAL
+    // The long axis steps on every pulse, the short one on diagonals only.
+    always @(*) if (!(axial && diagonal)) begin
+        assert ((inc_x | inc_y) == (axial | diagonal));
+        assert ((inc_x & inc_y) == diagonal);
+        if (axial) assert (x_is_long ? inc_x : inc_y);
+    end
+`endif
 endmodule
 `default_nettype wire

@@ -11,5 +11,8 @@ module mux2 #(
 );
     initial if (WIDTH < 1) $error("%m: WIDTH must be at least 1");
     assign out = sel ? in1 : in0;
+`ifdef FORMAL
+    always @(*) assert (out == (sel ? in1 : in0));
+`endif
 endmodule
 `default_nettype wire

@@ -12,5 +12,14 @@ module sign_analysis (
 );
     assign pulse_pos = tick & enable & ~negative;
     assign pulse_neg = tick & enable & negative;
+`ifdef FORMAL
+    // At most one pulse, only with tick and enable, chosen by the sign.
+    always @(*) begin
+        assert (!(pulse_pos && pulse_neg));
+        assert ((pulse_pos | pulse_neg) == (tick & enable));
+        if (pulse_neg) assert (negative);
+        if (pulse_pos) assert (!negative);
+    end
+`endif
 endmodule
 `default_nettype wire

@@ -26,5 +26,14 @@ module start_stop (
     end
 
     assign run = run_q;
+`ifdef FORMAL
+    // The trigger is set only by an accepted start and cleared only by a
+    // taken stop; start and stop are never both taken (formal/blocks.sby).
+    reg f_past_valid = 1'b0;
+    always @(posedge clk) f_past_valid <= 1'b1;
+    always @(*) assert (!(accept && finish));
+    always @(posedge clk) if (f_past_valid && !$past(rst))
+        assert (run_q == ($past(accept) | ($past(run_q) & ~$past(finish))));
+`endif
 endmodule
 `default_nettype wire

@@ -1,7 +1,8 @@
 `default_nettype none
 // Linear interpolator after USSR patent SU 1571551 (diagonal + axial steps).
 //   counters 1, 2 ......... updown_counter u_ctr1, u_ctr2
-//   node 19 (adder 3, mux 12) accum_addsub u_adder + mux2 u_mux
+//   node 19 (adder 3, mux 12) accum_addsub u_adder + mux2 u_mux (faithful);
+//                             exact: two adders, then mux2 u_mux
 //   node 18 (AND 5, 6) .... sign_analysis u_sign; generator 4 is `tick`
 //   node 20 (AND 7, 8, OR 10, 11) increment_former u_route; trigger 15 is x_is_long_q
 //   node 21 (AND 9, OR 13, trigger 14) start_stop u_run; AND 9 is `at_end`
@@ -13,6 +14,14 @@
 // on every cycle with `tick` high makes one step, shown on the registered
 // step_x/step_y strobes one cycle later.  `done` is a one-cycle strobe after
 // the last step.  `start` while busy is ignored.
+//
+// Speed (counters, F and outputs hold the same values in every cycle as the
+// plain circuit; two flag registers are added):
+// AND 9 reads two registered flags (counter 1 = 0, counter 2 = -1) kept up
+// to date from one-cycle-early compares, so the sign decision no longer waits
+// for a 2x33-bit AND; in exact mode both candidate sums F + (L - S) and F - S
+// are formed straight from registers and mux 12 picks one by the sign after
+// the adders (the sign decision is retimed past the carry chains).
 module su1571551 #(
     parameter integer WIDTH = 32,   // width of the signed X, Y inputs (>= 2)
     parameter integer EXACT = 1     // 0: faithful (the patent's live counters, expression (5))
@@ -76,15 +85,34 @@ module su1571551 #(
         .clk(clk), .rst(rst), .load(load | finish), .load_value(load ? short_len : {CW{1'b0}}),
         .inc(1'b0), .dec(diagonal | frame_q), .dec2(1'b0), .q(ctr2), .q_n(ctr2_n)   // OR 13
     );
-    // AND 9: counter 1 all zeros (inverted outputs all ones), counter 2 all ones.
-    assign at_end = run & (&ctr1_n) & (&ctr2);
+    // AND 9: counter 1 all zeros (inverted outputs all ones), counter 2 all
+    // ones.  The two wide ANDs are registered flags, set one cycle early from
+    // the counters' values before the count that reaches them.
+    reg ctr1_zero_q, ctr2_end_q;
+    always @(posedge clk) begin
+        if (rst | finish) begin
+            ctr1_zero_q <= 1'b1;
+            ctr2_end_q  <= 1'b0;
+        end else if (load) begin
+            ctr1_zero_q <= axial_count == {CW{1'b0}};
+            ctr2_end_q  <= 1'b0;                       // short_len < 2^(CW-1): never -1
+        end else begin
+            if (axial)
+                ctr1_zero_q <= ctr1 == {{(CW-1){1'b0}}, 1'b1};
+            if (diagonal | frame_q)
+                ctr2_end_q <= ctr2 == {CW{1'b0}};
+        end
+    end
+    assign at_end = run & ctr1_zero_q & ctr2_end_q;
 
     // ---- node 19: mux 12 + adder 3 ----
-    wire [CW-1:0] op_diagonal, op_axial, operand;
+    wire [FW-1:0] f;
     generate
         if (EXACT != 0) begin : g_exact
-            // Expression (1): |L - S| and -S held for the whole move.
+            // Expression (1): |L - S| and -S held for the whole move.  Both
+            // sums come straight from registers; mux 12 follows the adders.
             reg [CW-1:0] diagonal_q, axial_q;
+            reg [FW-1:0] f_q;
             always @(posedge clk) begin
                 if (rst) begin
                     diagonal_q <= {CW{1'b0}};
@@ -94,24 +122,33 @@ module su1571551 #(
                     axial_q    <= -short_len;
                 end
             end
-            assign op_diagonal = diagonal_q;
-            assign op_axial    = axial_q;
+            wire [FW-1:0] f_diagonal = f_q + {diagonal_q, 1'b0};
+            wire [FW-1:0] f_axial    = f_q + {axial_q, 1'b0};
+            wire [FW-1:0] f_next;
+            mux2 #(.WIDTH(FW)) u_mux (.sel(f_q[FW-1]), .in0(f_axial), .in1(f_diagonal), .out(f_next));
+            always @(posedge clk) begin
+                if (rst | finish)
+                    f_q <= {FW{1'b0}};
+                else if (load)
+                    f_q <= f_initial;
+                else if (axial | diagonal)
+                    f_q <= f_next;
+            end
+            assign f              = f_q;
+            assign f_negative     = f_q[FW-1];
+            assign f_non_negative = ~f_q[FW-1];
         end else begin : g_faithful
             // Expression (5): counter 1 direct, counter 2 inverted (= -S while
             // counter 2 holds S - 1), live as they count down.
-            assign op_diagonal = ctr1;
-            assign op_axial    = ctr2_n;
+            wire [CW-1:0] operand;
+            mux2 #(.WIDTH(CW)) u_mux (.sel(diagonal), .in0(ctr2_n), .in1(ctr1), .out(operand));
+            accum_addsub #(.WIDTH(FW)) u_adder (
+                .clk(clk), .rst(rst), .clear(finish), .load(load), .load_value(f_initial),
+                .add(axial | diagonal), .operand({operand, 1'b0}), .cin(1'b0),
+                .f(f), .negative(f_negative), .non_negative(f_non_negative)
+            );
         end
     endgenerate
-
-    mux2 #(.WIDTH(CW)) u_mux (.sel(diagonal), .in0(op_axial), .in1(op_diagonal), .out(operand));
-
-    wire [FW-1:0] f;
-    accum_addsub #(.WIDTH(FW)) u_adder (
-        .clk(clk), .rst(rst), .clear(finish), .load(load), .load_value(f_initial),
-        .add(axial | diagonal), .operand({operand, 1'b0}), .cin(1'b0),
-        .f(f), .negative(f_negative), .non_negative(f_non_negative)
-    );
 
     // ---- node 20: increment former and registered outputs ----
     wire inc_x, inc_y;
@@ -145,6 +182,71 @@ module su1571551 #(
     end
 
     // Not every output is used in both modes; f is kept for benches and waves.
-    wire unused = &{1'b0, accept, f_non_negative, ctr1, ctr2_n, f};
+    wire unused = &{1'b0, accept, f_non_negative, ctr1, ctr1_n, ctr2_n, f};
+
+`ifdef FORMAL
+    // Properties for SymbiYosys (formal/su1571551.sby).  After a start the
+    // core emits exactly |X| steps on X and |Y| on Y, then `done`; no step
+    // while idle; every step is caused by a tick.  The invariants below tie
+    // the counters and F to the steps already emitted, so k-induction closes.
+    reg f_past_valid = 1'b0;
+    always @(posedge clk) f_past_valid <= 1'b1;
+    always @(*) if (!f_past_valid) assume (rst);
+
+    reg  [CW-1:0] f_len_x, f_len_y, f_cnt_x, f_cnt_y;  // |X|, |Y| of the move; steps seen
+    always @(posedge clk) begin
+        if (rst) begin
+            f_len_x <= {CW{1'b0}}; f_len_y <= {CW{1'b0}};
+            f_cnt_x <= {CW{1'b0}}; f_cnt_y <= {CW{1'b0}};
+        end else if (load) begin
+            f_len_x <= {1'b0, abs_x}; f_len_y <= {1'b0, abs_y};
+            f_cnt_x <= {CW{1'b0}};    f_cnt_y <= {CW{1'b0}};
+        end else begin
+            f_cnt_x <= f_cnt_x + {{(CW-1){1'b0}}, step_x};
+            f_cnt_y <= f_cnt_y + {{(CW-1){1'b0}}, step_y};
+        end
+    end
+    // Steps taken so far, counting the strobes on the outputs right now.
+    wire [CW-1:0] f_done_x = f_cnt_x + {{(CW-1){1'b0}}, step_x};
+    wire [CW-1:0] f_done_y = f_cnt_y + {{(CW-1){1'b0}}, step_y};
+    wire [CW-1:0] f_l = x_is_long_q ? f_len_x : f_len_y;
+    wire [CW-1:0] f_s = x_is_long_q ? f_len_y : f_len_x;
+    wire [CW-1:0] f_diag = x_is_long_q ? f_done_y : f_done_x;    // diagonal steps
+    wire [CW-1:0] f_axial = (x_is_long_q ? f_done_x : f_done_y) - f_diag;
+    always @(posedge clk) if (f_past_valid && !rst && !$past(rst)) begin
+        // the step count: never beyond |X|, |Y|; exactly |X|, |Y| at done
+        assert (f_cnt_x <= f_len_x && f_cnt_y <= f_len_y);
+        assert (f_len_x <= {2'b01, {(CW-2){1'b0}}} && f_len_y <= {2'b01, {(CW-2){1'b0}}});
+        if (done) assert (f_cnt_x == f_len_x && f_cnt_y == f_len_y);
+        // no step while idle, so none after done; a step needs a tick
+        if (step_x || step_y) assert (busy && $past(tick));
+        if (!busy) assert (ctr1 == {CW{1'b0}} && ctr2 == {CW{1'b0}} && f == {FW{1'b0}}
+                           && ctr1_zero_q && !ctr2_end_q && !x_is_long_q && !step_x && !step_y);
+        // invariants of a move
+        assert (!(frame_q && run));
+        if (busy) assert (x_is_long_q == (f_len_x >= f_len_y) && f_s <= f_l);
+        if (frame_q) assert (ctr1 == f_l - f_s && ctr2 == f_s && !step_x && !step_y
+                             && f == {1'b0, f_l} - {f_s, 1'b0});
+        if (run) assert (ctr1 == f_l - f_s - f_axial && ctr2 == f_s - f_diag - 1'b1
+                         && f_diag <= f_s && f_axial <= f_l - f_s);
+        if (busy) assert (ctr1_zero_q == (ctr1 == {CW{1'b0}}) && ctr2_end_q == (&ctr2));
+    end
+    generate
+        if (EXACT != 0) begin : g_formal_exact
+            // Expression (1) in closed form, wide enough not to wrap:
+            // 2F = L - 2S - 2aS + 2d(L - S) for a axial and d diagonal steps.
+            localparam integer PW = 2 * CW + 4;
+            wire [PW-1:0] f_l_w = {{(PW-CW){1'b0}}, f_l};
+            wire [PW-1:0] f_s_w = {{(PW-CW){1'b0}}, f_s};
+            wire [PW-1:0] f_expect = f_l_w - 2 * f_s_w - 2 * {{(PW-CW){1'b0}}, f_axial} * f_s_w
+                                   + 2 * {{(PW-CW){1'b0}}, f_diag} * (f_l_w - f_s_w);
+            always @(posedge clk) if (f_past_valid && !rst && !$past(rst) && run)
+                assert ({{(PW-FW){f[FW-1]}}, f} == f_expect && g_exact.diagonal_q == f_l - f_s && g_exact.axial_q == -f_s
+                        // the midpoint bounds: -2S <= 2F < 2(L - S) (or L = 0)
+                        && $signed(f) >= -$signed({1'b0, f_s, 1'b0})
+                        && ($signed(f) < $signed({1'b0, f_l - f_s, 1'b0}) || f_l == {CW{1'b0}}));
+        end
+    endgenerate
+`endif
 endmodule
 `default_nettype wire

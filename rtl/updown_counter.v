@@ -53,5 +53,18 @@ module updown_counter #(
 
     assign q   = q_q;
     assign q_n = ~q_q;
+`ifdef FORMAL
+    // Two's complement: q moves by inc - dec - 2 dec2 (modulo 2^WIDTH) and
+    // no count request is dropped.
+    reg f_past_valid = 1'b0;
+    always @(posedge clk) f_past_valid <= 1'b1;
+    always @(posedge clk) if (f_past_valid && ONES_COMPLEMENT == 0) begin
+        if ($past(rst)) assert (q_q == {WIDTH{1'b0}});
+        else if ($past(load)) assert (q_q == $past(load_value));
+        else assert (q_q == $past(q_q) + {{(WIDTH-1){1'b0}}, $past(inc)} - {{(WIDTH-1){1'b0}}, $past(dec)}
+                             - {{(WIDTH-2){1'b0}}, $past(dec2), 1'b0});
+    end
+    always @(*) assert (q_n == ~q);
+`endif
 endmodule
 `default_nettype wire
