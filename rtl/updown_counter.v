@@ -28,7 +28,19 @@ module updown_counter #(
     // Net change in {-3 .. +1}, as a WIDTH-bit two's complement addend.
     wire signed [2:0]      delta = $signed({2'b00, inc}) - $signed({2'b00, dec}) - $signed({1'b0, dec2, 1'b0});
     wire [WIDTH-1:0]       addend = {{(WIDTH-3){delta[2]}}, delta};
-    wire [WIDTH-1:0]       twos_sum = q_q + addend;
+    // Two's complement: the count requests come late in the cycle (from the
+    // sign decision), so every candidate is formed from the register alone
+    // and the requests only select one (they stay off the carry chains).
+    reg  [WIDTH-1:0]       twos_sum;
+    always @(*) begin
+        case (delta)
+            3'sd1:   twos_sum = q_q + {{(WIDTH-1){1'b0}}, 1'b1};
+            -3'sd1:  twos_sum = q_q - {{(WIDTH-1){1'b0}}, 1'b1};
+            -3'sd2:  twos_sum = q_q - {{(WIDTH-2){1'b0}}, 2'd2};
+            -3'sd3:  twos_sum = q_q - {{(WIDTH-2){1'b0}}, 2'd3};
+            default: twos_sum = q_q;
+        endcase
+    end
     // Ones' complement: counting up adds with the carry out of the top bit
     // wrapped into the LSB; counting down subtracts |delta| with the borrow
     // wrapped around, so that counting down to zero gives +0 (all outputs
