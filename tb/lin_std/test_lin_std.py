@@ -1,36 +1,27 @@
-"""Lecture's standard linear interpolator: RTL vs cycle model vs the lecture's equations."""
+"""Lecture's standard linear interpolator: RTL vs cycle model vs the lecture's equations.
+
+The generic line tests are shared with lin_accel (interp/linear_bench.py).
+"""
 import cocotb
 import pytest
 
-from interp.corecheck import CoreTB, moves, reset_at_any_cycle, start_while_busy
-from interp.tbkit import seeded_rng
+from interp import linear_bench
+from interp.corecheck import moves
+from interp.linear_bench import *  # noqa: F401,F403  (the shared cocotb tests)
+from interp.linear_bench import check_move, setup
 from interp.models.lecture import LinStd, lin_std_steps
 from interp.sim import run_cocotb
 
-IDLE = {"start": 0, "tick": 0, "x": 0, "y": 0}
 
-
-async def setup(dut):
-    width = int(dut.WIDTH.value)
-    tb = CoreTB(dut, IDLE, lambda: LinStd(width))
-    tb.width = width
-    await tb.reset()
-    return tb
-
-
-async def check_move(tb, x, y, tick=lambda c: 1):
-    """Scoreboard one move; steps, F and registers 3, 4 against the equations."""
-    before = tb.ref.pos_x, tb.ref.pos_y
-    samples = await tb.run({"x": x, "y": y}, tick, context=f"({x}, {y})")
-    got = moves(samples)
-    want = lin_std_steps(x, y)
-    assert [(dx, dy, s["f"]) for dx, dy, s in got] == [(w.dx, w.dy, w.f) for w in want], f"({x}, {y})"
+def one_axis_and_registers(tb, x, y, samples, got):
+    """One axis per tick; registers 3, 4 move by exactly (x, y)."""
     assert all(not (dx and dy) for dx, dy, _ in got), "the standard algorithm steps one axis at a time"
-    assert sum(s["done"] for s in samples) == 1
     mask = (1 << tb.width) - 1
-    end = samples[-1]
-    assert ((end["pos_x"] - before[0] - x) & mask, (end["pos_y"] - before[1] - y) & mask) == (0, 0)
-    return samples
+    before, end = samples[0], samples[-1]
+    assert ((end["pos_x"] - before["pos_x"] - x) & mask, (end["pos_y"] - before["pos_y"] - y) & mask) == (0, 0)
+
+
+linear_bench.configure(LinStd, lin_std_steps, one_axis_and_registers, reset_cycles=14)
 
 
 @cocotb.test()
@@ -40,51 +31,6 @@ async def lecture_example(dut):
     samples = await check_move(tb, 5, 3)
     assert [(dx, dy) for dx, dy, _ in moves(samples)] == [(1, 0), (0, 1), (1, 0), (0, 1), (1, 0), (1, 0), (0, 1), (1, 0)]
     assert [s["f"] for _, _, s in moves(samples)] == [-3, 2, -1, 4, 1, -2, 3, 0]
-
-
-@cocotb.test()
-async def exhaustive_small(dut):
-    """Every |X|, |Y| <= 10 (5 at full width) in all four quadrants, one simulation."""
-    tb = await setup(dut)
-    span = 10 if tb.width <= 16 else 5          # full width: the random test's job
-    for x in range(-span, span + 1):
-        for y in range(-span, span + 1):
-            await check_move(tb, x, y)
-
-
-@cocotb.test()
-async def random_moves(dut):
-    """Random full-width commands (cut short) and random whole moves with tick gaps."""
-    rng = seeded_rng(dut, "random_moves")
-    tb = await setup(dut)
-    lo, hi = -(1 << (tb.width - 1)), (1 << (tb.width - 1)) - 1
-    edges = [lo, lo + 1, -1, 0, 1, hi]
-    for x, y in [(a, b) for a in edges for b in edges] + [(rng.randint(lo, hi), rng.randint(lo, hi)) for _ in range(20)]:
-        await tb.run_cut({"x": x, "y": y}, 60, context=f"full width ({x}, {y})")
-    span = min(hi, 200)
-    for _ in range(25):
-        await check_move(tb, rng.randint(-span, span), rng.randint(-span, span), tick=lambda c: rng.random() < 0.7)
-
-
-@cocotb.test()
-async def zero_length(dut):
-    """X = Y = 0: done with no step."""
-    tb = await setup(dut)
-    samples = await check_move(tb, 0, 0)
-    assert not moves(samples)
-
-
-@cocotb.test()
-async def start_while_busy_is_ignored(dut):
-    tb = await setup(dut)
-    samples = await start_while_busy(tb, {"x": 9, "y": -4}, {"x": -20, "y": 20})
-    assert [(dx, dy) for dx, dy, _ in moves(samples)] == [(w.dx, w.dy) for w in lin_std_steps(9, -4)]
-
-
-@cocotb.test()
-async def reset_any_cycle(dut):
-    tb = await setup(dut)
-    await reset_at_any_cycle(tb, {"x": 7, "y": -5}, 14)
 
 
 @pytest.mark.parametrize("width", [8, 32])
