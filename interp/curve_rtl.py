@@ -10,7 +10,7 @@ from argparse import Namespace
 import cocotb
 
 from .cores import load_all
-from .tbkit import TB
+from .tbkit import TB, run_stimulus
 
 
 @cocotb.test()
@@ -28,18 +28,11 @@ async def run_jobs(dut):
             await tb.reset({k: 0 for k in inputs})
             first = False
         prog = core.program(args)
-        x, y = prog.x0, prog.y0
-        points = [(x, y)]
-        while True:
-            await tb.tick(inputs)
-            s = tb.sample(watch)
+        points = [(prog.x0, prog.y0)]
+        samples = await run_stimulus(tb, stimulus, lambda: tb.sample(watch), first=inputs)
+        for s in samples[1:]:
             if s["step_x"] or s["step_y"]:
-                x, y = s["x_q"], s["y_q"]
-                points.append((x, y))
-            try:
-                inputs = stimulus.send(s)
-            except StopIteration:
-                break
+                points.append((s["x_q"], s["y_q"]))
         results.append(points)
     with open(os.environ["INTERP_OUT"], "w") as f:
         json.dump(results, f)

@@ -10,7 +10,7 @@ from argparse import Namespace
 import cocotb
 
 from .cores import load_all
-from .tbkit import TB
+from .tbkit import TB, run_stimulus
 
 
 @cocotb.test()
@@ -21,20 +21,8 @@ async def run_job(dut):
     watch = core.model(args).watch
     tb = TB(dut)
     stimulus = core.stimulus(args)
-    await tb.reset({name: 0 for name in next_inputs_names(core, args)})
-    samples = [tb.sample(watch)]
-    inputs = next(stimulus)
-    while True:
-        await tb.tick(inputs)
-        samples.append(tb.sample(watch))
-        try:
-            inputs = stimulus.send(samples[-1])
-        except StopIteration:
-            break
+    first = next(stimulus)
+    await tb.reset({name: 0 for name in first})     # the inputs the stimulus drives, held low
+    samples = await run_stimulus(tb, stimulus, lambda: tb.sample(watch), first=first)
     with open(job["out"], "w") as f:
         json.dump(samples, f)
-
-
-def next_inputs_names(core, args):
-    """Input names to hold at 0 during reset: those the stimulus drives."""
-    return list(core.stimulus(args).__next__().keys())

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import os
 import random
-from typing import Generator, Mapping
+from typing import Callable, Generator, Mapping
 
 import cocotb
 from cocotb.clock import Clock
@@ -74,6 +74,32 @@ class TB:
         self.cycle += 1
 
 
+async def run_stimulus(
+    tb: TB,
+    stimulus: Generator[Mapping[str, int], dict, None],
+    sample: Callable[[], dict[str, int]],
+    on_edge: Callable[[Mapping[str, int]], None] = lambda inputs: None,
+    first: Mapping[str, int] | None = None,
+) -> list[dict[str, int]]:
+    """Drive `stimulus` cycle by cycle (protocol of interp.models.base.drive).
+
+    `sample()` is taken before the first edge and after every edge and is sent
+    to the stimulus; `on_edge(inputs)` runs with each edge (a model's clock).
+    `first`: the stimulus's first inputs, if the caller already took them.
+    Returns the samples.
+    """
+    samples = [sample()]
+    inputs = next(stimulus) if first is None else first
+    while True:
+        on_edge(inputs)
+        await tb.tick(inputs)
+        samples.append(sample())
+        try:
+            inputs = stimulus.send(samples[-1])
+        except StopIteration:
+            return samples
+
+
 async def scoreboard(
     tb: TB,
     model: CycleModel,
@@ -100,13 +126,4 @@ async def scoreboard(
             )
         return got
 
-    samples = [compare()]
-    inputs = next(stimulus)
-    while True:
-        model.clock(inputs)
-        await tb.tick(inputs)
-        samples.append(compare())
-        try:
-            inputs = stimulus.send(samples[-1])
-        except StopIteration:
-            return samples
+    return await run_stimulus(tb, stimulus, compare, model.clock)
