@@ -58,85 +58,178 @@ module su1571551 #(
     wire [FW-1:0]    f_initial = {1'b0, long_len} - {short_len, 1'b0};  // 2 * (L/2 - S)
 
     // ---- node 21: start-stop ----
-    wire run, accept, finish, at_end;
+    // AND 9 (`at_end_q`), `busy_q` and `active_q` (= run & ~AND 9, the
+    // enable of node 18) are registers formed a cycle ahead from the next
+    // values of the counters' end flags, so the step enable and the loads
+    // are one gate from a register.
+    wire run, accept, finish;   // finish = at_end_q (AND 9 is only set while running)
     reg  frame_q;           // "start of frame" pulse, the cycle after the load
     reg  x_is_long_q;       // trigger 15
-    wire load = start & ~busy;
+    reg  busy_q, active_q, at_end_q;
+    wire load = start & ~busy_q;
     start_stop u_run (
-        .clk(clk), .rst(rst), .start(frame_q), .stop(at_end),
+        .clk(clk), .rst(rst), .start(frame_q), .stop(at_end_q),
         .run(run), .accept(accept), .finish(finish)
     );
-    assign busy = frame_q | run;
+    assign busy = busy_q;
 
     // ---- node 18: sign analysis ----
     wire f_negative, f_non_negative, axial, diagonal;
     sign_analysis u_sign (
-        .tick(tick), .enable(run & ~at_end), .negative(f_negative),
+        .tick(tick), .enable(active_q), .negative(f_negative),
         .pulse_pos(axial), .pulse_neg(diagonal)
     );
 
     // ---- counters 1, 2 ----
     wire [CW-1:0] ctr1, ctr1_n, ctr2, ctr2_n;
+    wire          ctr2_dec = diagonal | frame_q;   // OR 13
     updown_counter #(.WIDTH(CW)) u_ctr1 (
-        .clk(clk), .rst(rst), .load(load | finish), .load_value(load ? axial_count : {CW{1'b0}}),
+        .clk(clk), .rst(rst), .load(load), .load_value(axial_count),     // 0 again at the end
         .inc(1'b0), .dec(axial), .dec2(1'b0), .q(ctr1), .q_n(ctr1_n)
     );
     updown_counter #(.WIDTH(CW)) u_ctr2 (
         .clk(clk), .rst(rst), .load(load | finish), .load_value(load ? short_len : {CW{1'b0}}),
-        .inc(1'b0), .dec(diagonal | frame_q), .dec2(1'b0), .q(ctr2), .q_n(ctr2_n)   // OR 13
+        .inc(1'b0), .dec(ctr2_dec), .dec2(1'b0), .q(ctr2), .q_n(ctr2_n)
     );
-    // AND 9: counter 1 all zeros (inverted outputs all ones), counter 2 all
-    // ones.  The two wide ANDs are registered flags, set one cycle early from
-    // the counters' values before the count that reaches them.
-    reg ctr1_zero_q, ctr2_end_q;
+    // AND 9's inputs, counter 1 all zeros (inverted outputs all ones) and
+    // counter 2 all ones, are flags; so are counter 1 = 1 and counter 2 = 0,
+    // which say what a count makes of them.  Each compare feeds only its
+    // flag's input, so the end test reads registers.
+    reg  ctr1_zero_q, ctr2_end_q, ctr1_one_q, ctr2_zero_q;
+    wire ctr1_zero_next  = axial ? ctr1_one_q : ctr1_zero_q;
+    wire ctr2_end_next   = ctr2_dec ? ctr2_zero_q : ctr2_end_q;
+    wire run_next        = frame_q | active_q;     // trigger 14 after this edge
     always @(posedge clk) begin
         if (rst | finish) begin
             ctr1_zero_q <= 1'b1;
+            ctr1_one_q  <= 1'b0;
             ctr2_end_q  <= 1'b0;
+            ctr2_zero_q <= 1'b1;
         end else if (load) begin
             ctr1_zero_q <= axial_count == {CW{1'b0}};
+            ctr1_one_q  <= axial_count == {{(CW-1){1'b0}}, 1'b1};
             ctr2_end_q  <= 1'b0;                       // short_len < 2^(CW-1): never -1
+            ctr2_zero_q <= short_len == {CW{1'b0}};
         end else begin
-            if (axial)
-                ctr1_zero_q <= ctr1 == {{(CW-1){1'b0}}, 1'b1};
-            if (diagonal | frame_q)
-                ctr2_end_q <= ctr2 == {CW{1'b0}};
+            if (axial) begin
+                ctr1_zero_q <= ctr1_one_q;
+                ctr1_one_q  <= ctr1 == {{(CW-2){1'b0}}, 2'd2};
+            end
+            if (ctr2_dec) begin
+                ctr2_end_q  <= ctr2_zero_q;
+                ctr2_zero_q <= ctr2 == {{(CW-1){1'b0}}, 1'b1};
+            end
         end
     end
-    assign at_end = run & ctr1_zero_q & ctr2_end_q;
+    always @(posedge clk) begin
+        if (rst) begin
+            busy_q   <= 1'b0;
+            active_q <= 1'b0;
+            at_end_q <= 1'b0;
+        end else begin
+            busy_q   <= load | run_next;
+            active_q <= run_next & ~(ctr1_zero_next & ctr2_end_next);
+            at_end_q <= run_next & ctr1_zero_next & ctr2_end_next;
+        end
+    end
 
     // ---- node 19: mux 12 + adder 3 ----
     wire [FW-1:0] f;
     generate
         if (EXACT != 0) begin : g_exact
-            // Expression (1): |L - S| and -S held for the whole move.  Both
-            // sums come straight from registers; mux 12 follows the adders.
-            reg [CW-1:0] diagonal_q, axial_q;
-            reg [FW-1:0] f_q;
+            // Expression (1): L - S and -S held for the whole move (doubled:
+            // d2 and a2).  The sign decision is retimed.  Besides F (adder
+            // 3's register, kept for the benches and traces; nothing reads
+            // it, so synthesis drops it) the core keeps in registers the two
+            // values the next step can give F, F + a2 and F + d2, and the
+            // operand of the coming step (mux 12's output).  A step adds that
+            // operand to all of them, so every adder is register + register
+            // (carry select) straight into a register, and the sign of the
+            // new F is a 2:1 choice between the two look-ahead signs.
+            // Load: the look-ahead sums are 0 while idle; the load puts their
+            // start values into the operand registers, the frame cycle adds
+            // them, and mux 12 then selects the first step's operand.
+            localparam integer LO = FW / 2, HI = FW - LO;
+            reg  [CW-1:0] diagonal_q, axial_q;          // L - S, -S
+            reg  [HI-1:0] diagonal_hi1_q, axial_hi1_q;  // high halves of d2, a2, plus one
+            reg  [FW-1:0] f_q;
+            reg  [FW-1:0] f_axial_q, f_diagonal_q;      // F + a2, F + d2
+            reg  [FW-1:0] op_axial_q, op_diagonal_q;    // what the next update adds to each
+            reg  [HI-1:0] op_axial_hi1_q, op_diagonal_hi1_q;
+            reg           negative_q;                   // sign of F
+            wire [FW-1:0] a2 = {axial_q, 1'b0};
+            wire [FW-1:0] d2 = {diagonal_q, 1'b0};
+
+            // start values, from the inputs
+            wire [CW-1:0] axial_init      = -short_len;
+            wire [FW-1:0] f_axial_init    = f_initial + {axial_init, 1'b0};
+            wire [FW-1:0] f_diagonal_init = f_initial + {axial_count, 1'b0};
             always @(posedge clk) begin
                 if (rst) begin
-                    diagonal_q <= {CW{1'b0}};
-                    axial_q    <= {CW{1'b0}};
+                    diagonal_q     <= {CW{1'b0}};
+                    axial_q        <= {CW{1'b0}};
+                    diagonal_hi1_q <= {{(HI-1){1'b0}}, 1'b1};
+                    axial_hi1_q    <= {{(HI-1){1'b0}}, 1'b1};
                 end else if (load) begin
-                    diagonal_q <= axial_count;
-                    axial_q    <= -short_len;
+                    diagonal_q     <= axial_count;
+                    axial_q        <= axial_init;
+                    diagonal_hi1_q <= axial_count[CW-1:LO-1] + {{(HI-1){1'b0}}, 1'b1};
+                    axial_hi1_q    <= axial_init[CW-1:LO-1] + {{(HI-1){1'b0}}, 1'b1};
                 end
             end
-            wire [FW-1:0] f_diagonal = f_q + {diagonal_q, 1'b0};
-            wire [FW-1:0] f_axial    = f_q + {axial_q, 1'b0};
-            wire [FW-1:0] f_next;
-            mux2 #(.WIDTH(FW)) u_mux (.sel(f_q[FW-1]), .in0(f_axial), .in1(f_diagonal), .out(f_next));
+
+            // mux 12: the operand of the coming step, by the sign of the F
+            // that step will see (the frame cycle makes no step: F stays)
+            wire update = axial | diagonal | frame_q;
+            wire negative_next = frame_q ? negative_q
+                               : negative_q ? f_diagonal_q[FW-1] : f_axial_q[FW-1];
+            wire [FW+HI-1:0] op_next;
+            mux2 #(.WIDTH(FW + HI)) u_mux (
+                .sel(negative_next), .in0({a2, axial_hi1_q}), .in1({d2, diagonal_hi1_q}), .out(op_next));
+
+            // adder 3 and its two look-ahead copies
+            wire [FW-1:0] f_axial_sum, f_diagonal_sum;
+            carry_select_add #(.WIDTH(FW)) u_add_axial (
+                .a(f_axial_q), .b(op_axial_q), .b_high_plus1(op_axial_hi1_q), .sum(f_axial_sum));
+            carry_select_add #(.WIDTH(FW)) u_add_diagonal (
+                .a(f_diagonal_q), .b(op_diagonal_q), .b_high_plus1(op_diagonal_hi1_q), .sum(f_diagonal_sum));
+            // F: the patent's register, cleared at the end of a move.
             always @(posedge clk) begin
                 if (rst | finish)
                     f_q <= {FW{1'b0}};
                 else if (load)
                     f_q <= f_initial;
                 else if (axial | diagonal)
-                    f_q <= f_next;
+                    f_q <= f_q + op_axial_q;
+            end
+            // The look-ahead registers are cleared by the load, not by the end
+            // of a move, and are not read while idle: fewer terms in their
+            // enables.
+            always @(posedge clk) begin
+                if (rst | load) begin
+                    f_axial_q    <= {FW{1'b0}};
+                    f_diagonal_q <= {FW{1'b0}};
+                end else if (update) begin
+                    f_axial_q    <= f_axial_sum;
+                    f_diagonal_q <= f_diagonal_sum;
+                end
+            end
+            always @(posedge clk) begin
+                if (load) begin
+                    op_axial_q        <= f_axial_init;
+                    op_diagonal_q     <= f_diagonal_init;
+                    op_axial_hi1_q    <= f_axial_init[FW-1:LO] + {{(HI-1){1'b0}}, 1'b1};
+                    op_diagonal_hi1_q <= f_diagonal_init[FW-1:LO] + {{(HI-1){1'b0}}, 1'b1};
+                    negative_q        <= f_initial[FW-1];
+                end else if (update) begin
+                    {op_axial_q, op_axial_hi1_q}       <= op_next;
+                    {op_diagonal_q, op_diagonal_hi1_q} <= op_next;
+                    negative_q        <= negative_next;
+                end
             end
             assign f              = f_q;
-            assign f_negative     = f_q[FW-1];
-            assign f_non_negative = ~f_q[FW-1];
+            assign f_negative     = negative_q;
+            assign f_non_negative = ~negative_q;
         end else begin : g_faithful
             // Expression (5): counter 1 direct, counter 2 inverted (= -S while
             // counter 2 holds S - 1), live as they count down.
@@ -182,7 +275,7 @@ module su1571551 #(
     end
 
     // Not every output is used in both modes; f is kept for benches and waves.
-    wire unused = &{1'b0, accept, f_non_negative, ctr1, ctr1_n, ctr2_n, f};
+    wire unused = &{1'b0, run, accept, f_non_negative, ctr1, ctr1_n, ctr2_n, f};
 
 `ifdef FORMAL
     // Properties for SymbiYosys (formal/su1571551.sby).  After a start the
@@ -230,6 +323,10 @@ module su1571551 #(
         if (run) assert (ctr1 == f_l - f_s - f_axial && ctr2 == f_s - f_diag - 1'b1
                          && f_diag <= f_s && f_axial <= f_l - f_s);
         if (busy) assert (ctr1_zero_q == (ctr1 == {CW{1'b0}}) && ctr2_end_q == (&ctr2));
+        // the flags formed a cycle ahead
+        assert (ctr1_one_q == (ctr1 == {{(CW-1){1'b0}}, 1'b1}) && ctr2_zero_q == (ctr2 == {CW{1'b0}}));
+        assert (busy_q == (frame_q | run) && at_end_q == (run & ctr1_zero_q & ctr2_end_q)
+                && active_q == (run & ~(ctr1_zero_q & ctr2_end_q)) && finish == at_end_q);
     end
     generate
         if (EXACT != 0) begin : g_formal_exact
@@ -245,6 +342,23 @@ module su1571551 #(
                         // the midpoint bounds: -2S <= 2F < 2(L - S) (or L = 0)
                         && $signed(f) >= -$signed({1'b0, f_s, 1'b0})
                         && ($signed(f) < $signed({1'b0, f_l - f_s, 1'b0}) || f_l == {CW{1'b0}}));
+            // the retimed decision: look-ahead sums, operands and sign
+            localparam integer LO = FW / 2;
+            wire [FW-1:0] f_a2 = {g_exact.axial_q, 1'b0}, f_d2 = {g_exact.diagonal_q, 1'b0};
+            wire [FW-1:0] f_op = g_exact.negative_q ? f_d2 : f_a2;
+            always @(posedge clk) if (f_past_valid && !rst && !$past(rst) && busy) begin
+                assert (g_exact.axial_hi1_q == f_a2[FW-1:LO] + 1'b1
+                        && g_exact.diagonal_hi1_q == f_d2[FW-1:LO] + 1'b1
+                        && g_exact.negative_q == f[FW-1]);
+                if (frame_q)
+                    assert (g_exact.f_axial_q == {FW{1'b0}} && g_exact.f_diagonal_q == {FW{1'b0}}
+                            && g_exact.op_axial_q == f + f_a2 && g_exact.op_diagonal_q == f + f_d2);
+                else
+                    assert (g_exact.f_axial_q == f + f_a2 && g_exact.f_diagonal_q == f + f_d2
+                            && g_exact.op_axial_q == f_op && g_exact.op_diagonal_q == f_op);
+                assert (g_exact.op_axial_hi1_q == g_exact.op_axial_q[FW-1:LO] + 1'b1
+                        && g_exact.op_diagonal_hi1_q == g_exact.op_diagonal_q[FW-1:LO] + 1'b1);
+            end
         end
     endgenerate
 `endif

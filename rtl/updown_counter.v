@@ -33,12 +33,12 @@ module updown_counter #(
     // and the requests only select one (they stay off the carry chains).
     reg  [WIDTH-1:0]       twos_sum;
     always @(*) begin
-        case (delta)
-            3'sd1:   twos_sum = q_q + {{(WIDTH-1){1'b0}}, 1'b1};
-            -3'sd1:  twos_sum = q_q - {{(WIDTH-1){1'b0}}, 1'b1};
-            -3'sd2:  twos_sum = q_q - {{(WIDTH-2){1'b0}}, 2'd2};
-            -3'sd3:  twos_sum = q_q - {{(WIDTH-2){1'b0}}, 2'd3};
-            default: twos_sum = q_q;
+        case ({inc, dec, dec2})     // constant-folds when a core ties a request low
+            3'b100:         twos_sum = q_q + {{(WIDTH-1){1'b0}}, 1'b1};
+            3'b010, 3'b101: twos_sum = q_q - {{(WIDTH-1){1'b0}}, 1'b1};
+            3'b001, 3'b111: twos_sum = q_q - {{(WIDTH-2){1'b0}}, 2'd2};
+            3'b011:         twos_sum = q_q - {{(WIDTH-2){1'b0}}, 2'd3};
+            default:        twos_sum = q_q;                     // none, or +1 - 1
         endcase
     end
     // Ones' complement: counting up adds with the carry out of the top bit

@@ -1,0 +1,29 @@
+`default_nettype none
+// Carry-select adder: sum = a + b (mod 2^WIDTH) with the carry chain cut in
+// two.  The low half and both versions of the high half (carry in 0 and 1)
+// are added at the same time; the low half's carry picks one.  The caller
+// supplies b's high half plus one (usually a register loaded with b), so the
+// two high adders are separate and Yosys does not merge them into one chain
+// with a late carry-in.  Longest chain: WIDTH - WIDTH/2 bits plus a 2:1 mux.
+module carry_select_add #(
+    parameter integer WIDTH = 34    // operand width in bits (>= 2)
+) (
+    input  wire [WIDTH-1:0]             a,
+    input  wire [WIDTH-1:0]             b,
+    input  wire [WIDTH-WIDTH/2-1:0]     b_high_plus1,   // b[WIDTH-1:WIDTH/2] + 1
+    output wire [WIDTH-1:0]             sum
+);
+    initial if (WIDTH < 2) $error("%m: WIDTH must be at least 2");
+
+    localparam integer LO = WIDTH / 2;
+    localparam integer HI = WIDTH - LO;
+
+    wire [LO:0]   low    = {1'b0, a[LO-1:0]} + {1'b0, b[LO-1:0]};
+    wire [HI-1:0] high_0 = a[WIDTH-1:LO] + b[WIDTH-1:LO];
+    wire [HI-1:0] high_1 = a[WIDTH-1:LO] + b_high_plus1;
+    assign sum = {low[LO] ? high_1 : high_0, low[LO-1:0]};
+`ifdef FORMAL
+    always @(*) if (b_high_plus1 == b[WIDTH-1:LO] + 1'b1) assert (sum == a + b);
+`endif
+endmodule
+`default_nettype wire
