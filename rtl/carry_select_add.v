@@ -4,18 +4,23 @@
 // are added at the same time; the low half's carry picks one.  The caller
 // supplies b's high half plus one (usually a register loaded with b), so the
 // two high adders are separate and Yosys does not merge them into one chain
-// with a late carry-in.  Longest chain: WIDTH - WIDTH/2 bits plus a 2:1 mux.
+// with a late carry-in.  The low half is the shorter one by default: its
+// carry still has to fan out to every high-half mux.
 module carry_select_add #(
-    parameter integer WIDTH = 34    // operand width in bits (>= 2)
+    parameter integer WIDTH = 34,               // operand width in bits (>= 2)
+    parameter integer LOW   = WIDTH < 5 ? 1 : WIDTH * 2 / 5  // bits in the low half (1 .. WIDTH-1)
 ) (
-    input  wire [WIDTH-1:0]             a,
-    input  wire [WIDTH-1:0]             b,
-    input  wire [WIDTH-WIDTH/2-1:0]     b_high_plus1,   // b[WIDTH-1:WIDTH/2] + 1
-    output wire [WIDTH-1:0]             sum
+    input  wire [WIDTH-1:0]     a,
+    input  wire [WIDTH-1:0]     b,
+    input  wire [WIDTH-LOW-1:0] b_high_plus1,   // b[WIDTH-1:LOW] + 1
+    output wire [WIDTH-1:0]     sum
 );
-    initial if (WIDTH < 2) $error("%m: WIDTH must be at least 2");
+    initial begin
+        if (WIDTH < 2) $error("%m: WIDTH must be at least 2");
+        if (LOW < 1 || LOW > WIDTH - 1) $error("%m: LOW must be 1 .. WIDTH-1");
+    end
 
-    localparam integer LO = WIDTH / 2;
+    localparam integer LO = LOW;
     localparam integer HI = WIDTH - LO;
 
     wire [LO:0]   low    = {1'b0, a[LO-1:0]} + {1'b0, b[LO-1:0]};

@@ -6,6 +6,7 @@
 //   AND 3 (every tick), AND 4 (F < 0), AND 5, NOT .... sign_analysis u_sign
 //   counter KOX of the leading axis + SR trigger ..... updown_counter u_kol, start_stop u_run
 //   routing of leading/other pulses to X/Y ........... increment_former u_route
+//   |L|, |S| and |L| - |S| from dX, dY ................ axis_order u_order
 // F >= 0: axial step, F -= |S|;  F < 0: diagonal step, F += |L| - |S|, with
 // L the leading (longer) increment and S the other one; "mirrored when dY > dX"
 // (SPEC §5) is done by routing, as in SU 1571551's trigger 15.  F starts at 0
@@ -37,11 +38,12 @@ module lin_accel #(
     localparam integer CW = WIDTH + 1;  // counter and operands: 0 .. 2^(WIDTH-1), signed
     localparam integer FW = WIDTH + 2;  // F stays within -|S| .. |L| - |S|
 
-    wire [WIDTH-1:0] abs_x = x[WIDTH-1] ? -x : x;
-    wire [WIDTH-1:0] abs_y = y[WIDTH-1] ? -y : y;
-    wire             x_leads = abs_x >= abs_y;
-    wire [CW-1:0]    long_len  = {1'b0, x_leads ? abs_x : abs_y};
-    wire [CW-1:0]    short_len = {1'b0, x_leads ? abs_y : abs_x};
+    wire             x_leads;
+    wire [CW-1:0]    long_len, short_len, difference;
+    axis_order #(.WIDTH(WIDTH)) u_order (
+        .x(x), .y(y), .x_is_long(x_leads), .long_len(long_len), .short_len(short_len),
+        .difference(difference)
+    );
     wire             equal = long_len == short_len;
     wire [FW-1:0]    f_initial = {FW{equal & |long_len}};      // -1 or 0
 
@@ -98,7 +100,7 @@ module lin_accel #(
             done      <= 1'b0;
         end else begin
             if (load) begin
-                reg1_q    <= long_len - short_len;
+                reg1_q    <= difference;
                 reg2_q    <= -short_len;
                 x_leads_q <= x_leads;
                 dir_x     <= x[WIDTH-1];

@@ -1,11 +1,13 @@
 `default_nettype none
 // Linear interpolator after USSR patent SU 1571551 (diagonal + axial steps).
+//   inputs 22-26 (|X|, |Y|, L, S, L - S) ... axis_order u_order; trigger 15's input x_is_long
 //   counters 1, 2 ......... updown_counter u_ctr1, u_ctr2
-//   node 19 (adder 3, mux 12) accum_addsub u_adder + mux2 u_mux (faithful);
-//                             exact: two adders, then mux2 u_mux
+//   node 19 (adder 3, mux 12) faithful: accum_addsub u_adder + mux2 u_mux;
+//                             exact: adder 3 as f_q plus look-ahead copies
+//                             (carry_select_add u_add_axial/u_add_diagonal), mux2 u_mux
 //   node 18 (AND 5, 6) .... sign_analysis u_sign; generator 4 is `tick`
 //   node 20 (AND 7, 8, OR 10, 11) increment_former u_route; trigger 15 is x_is_long_q
-//   node 21 (AND 9, OR 13, trigger 14) start_stop u_run; AND 9 is `at_end`
+//   node 21 (AND 9, OR 13, trigger 14) start_stop u_run; AND 9 is `at_end_q`
 // F is held doubled (one extra LSB carries the patent's 0.5).
 //
 // Timing: `start` in an idle cycle loads the counters, F and trigger 15 from
@@ -15,13 +17,23 @@
 // step_x/step_y strobes one cycle later.  `done` is a one-cycle strobe after
 // the last step.  `start` while busy is ignored.
 //
-// Speed (counters, F and outputs hold the same values in every cycle as the
-// plain circuit; two flag registers are added):
-// AND 9 reads two registered flags (counter 1 = 0, counter 2 = -1) kept up
-// to date from one-cycle-early compares, so the sign decision no longer waits
-// for a 2x33-bit AND; in exact mode both candidate sums F + (L - S) and F - S
-// are formed straight from registers and mux 12 picks one by the sign after
-// the adders (the sign decision is retimed past the carry chains).
+// Speed.  Counters, F and the outputs hold the same values in every cycle as
+// the plain circuit (the cycle model is the patent's); what is added are
+// registers formed a cycle ahead:
+// - AND 9, `busy` and the run enable of node 18 are registers; AND 9 comes
+//   from two counters of the steps left (less 1, less 2), whose sign bits
+//   say "none left" / "at most one left" after this edge, so no wide compare
+//   is in the loop.  The patent's counters then feed only benches and traces
+//   and synthesis drops them.
+// - Exact mode: the sign decision is retimed onto look-ahead registers,
+//   F + A and F + D (the two values the next step can give F), with the
+//   operand of the coming step (mux 12) in a register; every adder is
+//   register + register (carry select) into a register.  F itself is kept
+//   for benches and traces (synthesis drops it).
+// - Registers only the running core reads take their start values in every
+//   idle cycle (the last one is the load), so their enables skip `start`;
+//   they have no reset.
+// The formal block proves the added registers equal to what they stand for.
 module su1571551 #(
     parameter integer WIDTH = 32,   // width of the signed X, Y inputs (>= 2)
     parameter integer EXACT = 1     // 0: faithful (the patent's live counters, expression (5))
@@ -49,24 +61,27 @@ module su1571551 #(
     localparam integer FW = WIDTH + 2;  // doubled F: |2F| <= 2^WIDTH
 
     // ---- load values (the patent's external constants) ----
-    wire [WIDTH-1:0] abs_x = x[WIDTH-1] ? -x : x;
-    wire [WIDTH-1:0] abs_y = y[WIDTH-1] ? -y : y;
-    wire             x_is_long = abs_x >= abs_y;
-    wire [CW-1:0]    long_len  = {1'b0, x_is_long ? abs_x : abs_y};
-    wire [CW-1:0]    short_len = {1'b0, x_is_long ? abs_y : abs_x};
-    wire [CW-1:0]    axial_count = long_len - short_len;            // counter 1: |L - S|
+    wire             x_is_long;
+    wire [CW-1:0]    long_len, short_len, axial_count;                // L, S, counter 1: L - S
+    axis_order #(.WIDTH(WIDTH)) u_order (
+        .x(x), .y(y), .x_is_long(x_is_long), .long_len(long_len), .short_len(short_len),
+        .difference(axial_count)
+    );
     wire [FW-1:0]    f_initial = {1'b0, long_len} - {short_len, 1'b0};  // 2 * (L/2 - S)
 
     // ---- node 21: start-stop ----
     // AND 9 (`at_end_q`), `busy_q` and `active_q` (= run & ~AND 9, the
-    // enable of node 18) are registers formed a cycle ahead from the next
-    // values of the counters' end flags, so the step enable and the loads
-    // are one gate from a register.
+    // enable of node 18) are registers formed a cycle ahead, so the step
+    // enable and the loads are one gate from a register.
     wire run, accept, finish;   // finish = at_end_q (AND 9 is only set while running)
     reg  frame_q;           // "start of frame" pulse, the cycle after the load
     reg  x_is_long_q;       // trigger 15
     reg  busy_q, active_q, at_end_q;
     wire load = start & ~busy_q;
+    // Registers that only the running core reads take their start values in
+    // every idle cycle (the last one is the load), so their enables do not
+    // depend on `start`.
+    wire idle = ~busy_q;
     start_stop u_run (
         .clk(clk), .rst(rst), .start(frame_q), .stop(at_end_q),
         .run(run), .accept(accept), .finish(finish)
@@ -91,36 +106,32 @@ module su1571551 #(
         .clk(clk), .rst(rst), .load(load | finish), .load_value(load ? short_len : {CW{1'b0}}),
         .inc(1'b0), .dec(ctr2_dec), .dec2(1'b0), .q(ctr2), .q_n(ctr2_n)
     );
-    // AND 9's inputs, counter 1 all zeros (inverted outputs all ones) and
-    // counter 2 all ones, are flags; so are counter 1 = 1 and counter 2 = 0,
-    // which say what a count makes of them.  Each compare feeds only its
-    // flag's input, so the end test reads registers.
-    reg  ctr1_zero_q, ctr2_end_q, ctr1_one_q, ctr2_zero_q;
-    wire ctr1_zero_next  = axial ? ctr1_one_q : ctr1_zero_q;
-    wire ctr2_end_next   = ctr2_dec ? ctr2_zero_q : ctr2_end_q;
-    wire run_next        = frame_q | active_q;     // trigger 14 after this edge
-    always @(posedge clk) begin
-        if (rst | finish) begin
-            ctr1_zero_q <= 1'b1;
-            ctr1_one_q  <= 1'b0;
-            ctr2_end_q  <= 1'b0;
-            ctr2_zero_q <= 1'b1;
-        end else if (load) begin
-            ctr1_zero_q <= axial_count == {CW{1'b0}};
-            ctr1_one_q  <= axial_count == {{(CW-1){1'b0}}, 1'b1};
-            ctr2_end_q  <= 1'b0;                       // short_len < 2^(CW-1): never -1
-            ctr2_zero_q <= short_len == {CW{1'b0}};
-        end else begin
-            if (axial) begin
-                ctr1_zero_q <= ctr1_one_q;
-                ctr1_one_q  <= ctr1 == {{(CW-2){1'b0}}, 2'd2};
-            end
-            if (ctr2_dec) begin
-                ctr2_end_q  <= ctr2_zero_q;
-                ctr2_zero_q <= ctr2 == {{(CW-1){1'b0}}, 1'b1};
-            end
+    // AND 9 (counter 1 = 0 and counter 2 = -1: the L steps are made) is
+    // formed a cycle ahead from two down-counters of the steps left, less 1
+    // and less 2, whose sign bits say "none left" and "at most one left"; so
+    // the end test reads two register bits, not a wide compare.  During a
+    // move, steps left = counter 1 + counter 2 + 1 (the formal block proves
+    // the flags equal to AND 9).  The patent's counters then feed nothing but
+    // the benches and traces, and synthesis drops them.
+    localparam integer CLO = CW * 2 / 5, CHI = CW - CLO;
+    reg  [CW-1:0] left1, left2;                         // steps left - 1, - 2
+    wire [CW-1:0] left1_dec, left2_dec;
+    wire          step = axial | diagonal;
+    carry_select_add #(.WIDTH(CW), .LOW(CLO)) u_left1_dec (
+        .a(left1), .b({CW{1'b1}}), .b_high_plus1({CHI{1'b0}}), .sum(left1_dec));
+    carry_select_add #(.WIDTH(CW), .LOW(CLO)) u_left2_dec (
+        .a(left2), .b({CW{1'b1}}), .b_high_plus1({CHI{1'b0}}), .sum(left2_dec));
+    always @(posedge clk) begin     // no reset: loaded while idle, read only while running
+        if (idle) begin
+            left1 <= long_len - {{(CW-1){1'b0}}, 1'b1};
+            left2 <= long_len - {{(CW-2){1'b0}}, 2'd2};
+        end else if (step) begin
+            left1 <= left1_dec;
+            left2 <= left2_dec;
         end
     end
+    wire run_next  = frame_q | active_q;                 // trigger 14 after this edge
+    wire none_left = step ? left2[CW-1] : left1[CW-1];   // after this edge
     always @(posedge clk) begin
         if (rst) begin
             busy_q   <= 1'b0;
@@ -128,8 +139,8 @@ module su1571551 #(
             at_end_q <= 1'b0;
         end else begin
             busy_q   <= load | run_next;
-            active_q <= run_next & ~(ctr1_zero_next & ctr2_end_next);
-            at_end_q <= run_next & ctr1_zero_next & ctr2_end_next;
+            active_q <= run_next & ~none_left;
+            at_end_q <= run_next & none_left;
         end
     end
 
@@ -146,10 +157,11 @@ module su1571551 #(
             // operand to all of them, so every adder is register + register
             // (carry select) straight into a register, and the sign of the
             // new F is a 2:1 choice between the two look-ahead signs.
-            // Load: the look-ahead sums are 0 while idle; the load puts their
-            // start values into the operand registers, the frame cycle adds
-            // them, and mux 12 then selects the first step's operand.
-            localparam integer LO = FW / 2, HI = FW - LO;
+            // Load: the look-ahead sums are 0 while idle; the operand
+            // registers hold their start values (taken in every idle cycle,
+            // so at the load too), the frame cycle adds them, and mux 12
+            // then selects the first step's operand.
+            localparam integer LO = FW * 2 / 5, HI = FW - LO;
             reg  [CW-1:0] diagonal_q, axial_q;          // L - S, -S
             reg  [HI-1:0] diagonal_hi1_q, axial_hi1_q;  // high halves of d2, a2, plus one
             reg  [FW-1:0] f_q;
@@ -165,12 +177,7 @@ module su1571551 #(
             wire [FW-1:0] f_axial_init    = f_initial + {axial_init, 1'b0};
             wire [FW-1:0] f_diagonal_init = f_initial + {axial_count, 1'b0};
             always @(posedge clk) begin
-                if (rst) begin
-                    diagonal_q     <= {CW{1'b0}};
-                    axial_q        <= {CW{1'b0}};
-                    diagonal_hi1_q <= {{(HI-1){1'b0}}, 1'b1};
-                    axial_hi1_q    <= {{(HI-1){1'b0}}, 1'b1};
-                end else if (load) begin
+                if (idle) begin
                     diagonal_q     <= axial_count;
                     axial_q        <= axial_init;
                     diagonal_hi1_q <= axial_count[CW-1:LO-1] + {{(HI-1){1'b0}}, 1'b1};
@@ -189,9 +196,9 @@ module su1571551 #(
 
             // adder 3 and its two look-ahead copies
             wire [FW-1:0] f_axial_sum, f_diagonal_sum;
-            carry_select_add #(.WIDTH(FW)) u_add_axial (
+            carry_select_add #(.WIDTH(FW), .LOW(LO)) u_add_axial (
                 .a(f_axial_q), .b(op_axial_q), .b_high_plus1(op_axial_hi1_q), .sum(f_axial_sum));
-            carry_select_add #(.WIDTH(FW)) u_add_diagonal (
+            carry_select_add #(.WIDTH(FW), .LOW(LO)) u_add_diagonal (
                 .a(f_diagonal_q), .b(op_diagonal_q), .b_high_plus1(op_diagonal_hi1_q), .sum(f_diagonal_sum));
             // F: the patent's register, cleared at the end of a move.
             always @(posedge clk) begin
@@ -202,11 +209,10 @@ module su1571551 #(
                 else if (axial | diagonal)
                     f_q <= f_q + op_axial_q;
             end
-            // The look-ahead registers are cleared by the load, not by the end
-            // of a move, and are not read while idle: fewer terms in their
-            // enables.
+            // The look-ahead registers are cleared while idle (not by rst or
+            // the end of a move): fewer terms in their enables.
             always @(posedge clk) begin
-                if (rst | load) begin
+                if (idle) begin
                     f_axial_q    <= {FW{1'b0}};
                     f_diagonal_q <= {FW{1'b0}};
                 end else if (update) begin
@@ -215,7 +221,7 @@ module su1571551 #(
                 end
             end
             always @(posedge clk) begin
-                if (load) begin
+                if (idle) begin
                     op_axial_q        <= f_axial_init;
                     op_diagonal_q     <= f_diagonal_init;
                     op_axial_hi1_q    <= f_axial_init[FW-1:LO] + {{(HI-1){1'b0}}, 1'b1};
@@ -275,7 +281,7 @@ module su1571551 #(
     end
 
     // Not every output is used in both modes; f is kept for benches and waves.
-    wire unused = &{1'b0, run, accept, f_non_negative, ctr1, ctr1_n, ctr2_n, f};
+    wire unused = &{1'b0, run, accept, f_non_negative, ctr1, ctr1_n, ctr2, ctr2_n, f};
 
 `ifdef FORMAL
     // Properties for SymbiYosys (formal/su1571551.sby).  After a start the
@@ -287,6 +293,8 @@ module su1571551 #(
     always @(*) if (!f_past_valid) assume (rst);
 
     reg  [CW-1:0] f_len_x, f_len_y, f_cnt_x, f_cnt_y;  // |X|, |Y| of the move; steps seen
+    wire [WIDTH-1:0] abs_x = x[WIDTH-1] ? -x : x;
+    wire [WIDTH-1:0] abs_y = y[WIDTH-1] ? -y : y;
     always @(posedge clk) begin
         if (rst) begin
             f_len_x <= {CW{1'b0}}; f_len_y <= {CW{1'b0}};
@@ -314,7 +322,7 @@ module su1571551 #(
         // no step while idle, so none after done; a step needs a tick
         if (step_x || step_y) assert (busy && $past(tick));
         if (!busy) assert (ctr1 == {CW{1'b0}} && ctr2 == {CW{1'b0}} && f == {FW{1'b0}}
-                           && ctr1_zero_q && !ctr2_end_q && !x_is_long_q && !step_x && !step_y);
+                           && !x_is_long_q && !step_x && !step_y);
         // invariants of a move
         assert (!(frame_q && run));
         if (busy) assert (x_is_long_q == (f_len_x >= f_len_y) && f_s <= f_l);
@@ -322,11 +330,13 @@ module su1571551 #(
                              && f == {1'b0, f_l} - {f_s, 1'b0});
         if (run) assert (ctr1 == f_l - f_s - f_axial && ctr2 == f_s - f_diag - 1'b1
                          && f_diag <= f_s && f_axial <= f_l - f_s);
-        if (busy) assert (ctr1_zero_q == (ctr1 == {CW{1'b0}}) && ctr2_end_q == (&ctr2));
-        // the flags formed a cycle ahead
-        assert (ctr1_one_q == (ctr1 == {{(CW-1){1'b0}}, 1'b1}) && ctr2_zero_q == (ctr2 == {CW{1'b0}}));
-        assert (busy_q == (frame_q | run) && at_end_q == (run & ctr1_zero_q & ctr2_end_q)
-                && active_q == (run & ~(ctr1_zero_q & ctr2_end_q)) && finish == at_end_q);
+        // AND 9 and the run enable, formed a cycle ahead from the steps left
+        if (busy) assert (left2 == left1 - 1'b1);
+        if (frame_q) assert (left1 == ctr1 + ctr2 - 1'b1);
+        if (run) assert (left1 == ctr1 + ctr2);
+        assert (busy_q == (frame_q | run) && finish == at_end_q
+                && at_end_q == (run && ctr1 == {CW{1'b0}} && &ctr2)
+                && active_q == (run && !(ctr1 == {CW{1'b0}} && &ctr2)));
     end
     generate
         if (EXACT != 0) begin : g_formal_exact
@@ -343,7 +353,7 @@ module su1571551 #(
                         && $signed(f) >= -$signed({1'b0, f_s, 1'b0})
                         && ($signed(f) < $signed({1'b0, f_l - f_s, 1'b0}) || f_l == {CW{1'b0}}));
             // the retimed decision: look-ahead sums, operands and sign
-            localparam integer LO = FW / 2;
+            localparam integer LO = FW * 2 / 5;
             wire [FW-1:0] f_a2 = {g_exact.axial_q, 1'b0}, f_d2 = {g_exact.diagonal_q, 1'b0};
             wire [FW-1:0] f_op = g_exact.negative_q ? f_d2 : f_a2;
             always @(posedge clk) if (f_past_valid && !rst && !$past(rst) && busy) begin

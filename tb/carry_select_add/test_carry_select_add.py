@@ -8,7 +8,7 @@ from interp.tbkit import seeded_rng
 @cocotb.test()
 async def adds(dut):
     """Random and carry-edge operands; the sum must equal a + b modulo 2^WIDTH."""
-    width, lo = len(dut.sum), len(dut.sum) // 2
+    width, lo = len(dut.sum), int(dut.LOW.value)
     mask, rng = (1 << width) - 1, seeded_rng(dut, "adds")
     edges = [0, 1, mask, mask - 1, (1 << lo) - 1, 1 << lo, (1 << (width - 1)) - 1, 1 << (width - 1)]
     pairs = [(a, b) for a in edges for b in edges]
@@ -20,8 +20,9 @@ async def adds(dut):
         assert int(dut.sum.value) == (a + b) & mask, (a, b)
 
 
-@pytest.mark.parametrize("width", [2, 7, 34])
-def test_carry_select_add(sim, width):
+@pytest.mark.parametrize("width, low", [(2, None), (7, None), (34, None), (34, 17)])
+def test_carry_select_add(sim, width, low):
     from interp.sim import run_cocotb
     run_cocotb(toplevel="carry_select_add", test_module="test_carry_select_add", sim=sim,
-               parameters={"WIDTH": width}, name=f"carry_select_add_w{width}")
+               parameters={"WIDTH": width, **({"LOW": low} if low else {})},
+               name=f"carry_select_add_w{width}_l{low or 'default'}")
