@@ -17,6 +17,12 @@
 //   inputs 29, 30, 31, 34 .. the load former below computes F0 (formulas (3)/(4)),
 //                            CT7, CT8 and T16 from r, x0, y0
 //
+// Set-up: `start` (when idle) captures r, x0, y0; the load former (adders only)
+// then takes SETUP = 3 WIDTH + 8 cycles with `busy` high and, in cycle SETUP
+// after `start`, either loads CT7, CT8, F and T16 and sets trigger 4 (the
+// patent's input 33; the first step pulse follows in the next cycle) or gives
+// the `error` strobe (in the cycle after).  `tick` does not gate the set-up.
+//
 // Timing (cycle 0 = the cycle a step pulse leaves AND 2/3/10/11, `tick` high):
 //   cycle 0  counters count; step_x/step_y show the step in cycle 1
 //   cycle 1  AND 22/23 look at CT8 (sector 1); CT7 negative ends the work
@@ -28,7 +34,7 @@
 //   case B (AND 23): c1 CT8 += 1, T16 := 1; c2 transfer; c3 CT7 -= 1;
 //                    c4 F += {CT7, T16}; c5 CT7 -= 1
 // Bad input (R = 0, R > 2^(WIDTH-1) - 2, start point not within one step of
-// the circle) gives a one-cycle `error` strobe instead of a move.
+// the circle) gives a one-cycle `error` strobe after the set-up instead of a move.
 module circ_su1665343 #(
     parameter integer WIDTH = 12    // CT7/CT8 width, ones' complement (4 .. 30); R <= 2^(WIDTH-1) - 2
 ) (
@@ -51,35 +57,128 @@ module circ_su1665343 #(
 
     localparam integer CW = WIDTH;          // counters
     localparam integer FW = WIDTH + 5;      // F: WIDTH + 3 integer bits, 2 fraction bits
-    localparam integer PW = 2 * WIDTH + 6;  // load former arithmetic
-    localparam [PW-1:0] ONE  = {{(PW-1){1'b0}}, 1'b1};
-    localparam [PW-1:0] RMAX = (ONE << (WIDTH - 1)) - ONE - ONE;
+    localparam integer PW = 2 * WIDTH + 4;  // load former accumulator: |E| < 2^(2 WIDTH + 1)
+    localparam [CW-1:0] RMAX = {1'b0, {(CW-1){1'b1}}} - {{(CW-1){1'b0}}, 1'b1};   // 2^(W-1) - 2
 
     // ---- load former: inputs 29 (F0), 30 (CT7), 31 (CT8), 34 (Y >= X) ----
-    wire [PW-1:0] rr = {{(PW-WIDTH){1'b0}}, r};
-    wire [PW-1:0] xx = {{(PW-WIDTH){1'b0}}, x0};
-    wire [PW-1:0] yy = {{(PW-WIDTH){1'b0}}, y0};
-    wire [PW-1:0] dist2 = xx * xx + yy * yy;
-    wire          r_ok = rr != {PW{1'b0}} && rr <= RMAX;
-    wire          in_reach = dist2 >= (rr - ONE) * (rr - ONE) && dist2 <= (rr + ONE) * (rr + ONE);
-    wire          ok = r_ok & in_reach;
-    wire          y_ge_x = y0 >= x0;                                  // input 34
-    // 4 F0 = 4 k - 1, (3): k = R^2 - X^2 - Y^2 + X - 2Y - 1 (X > Y)
-    //                 (4): k = R^2 - X^2 - Y^2 + 2X - Y - 1 (Y >= X)
-    wire [PW-1:0] excess = rr * rr - dist2;
-    wire [PW-1:0] k = y_ge_x ? excess + (xx << 1) - yy - ONE : excess + xx - (yy << 1) - ONE;
-    wire [PW-1:0] f0_twos = (k << 2) - ONE;
-    wire [FW-1:0] f0 = f0_twos[FW-1:0] - {{(FW-1){1'b0}}, f0_twos[PW-1]};    // to ones' complement
+    // Sequential, adders only (no multiplier): `start` captures r, x0, y0; one
+    // PW-bit accumulator ACC <= (ACC << s) + (op ^ inv) + cin then runs
+    //   Horner, MSB first, bit i = WIDTH-1 .. 0, three micro-steps per bit:
+    //     SU_R: ACC = 2 ACC + r_i R;  SU_X: ACC -= x_i X;  SU_Y: ACC -= y_i Y
+    //   -> ACC = E = R^2 - X^2 - Y^2, and the tail:
+    //     SU_A: ACC = E - 2R            (start point check: (R-1)^2 <= X^2 + Y^2 <=> E - 2R < 0)
+    //     SU_B: ACC = E + 2R + 1        (X^2 + Y^2 <= (R+1)^2 <=> E + 2R + 1 >= 0)
+    //     SU_C: ACC = E
+    //     SU_D: ACC += 2X (Y >= X) or X
+    //     SU_E: ACC += -Y - 1 or -2Y - 1: k of formula (4) or (3)
+    //     SU_F: ACC = 4 k - 1           (4 F0 in two's complement)
+    //     SU_G: ACC -= 1 if negative    (to ones' complement)
+    //     SU_END: load (or refuse) in this cycle, SETUP cycles after `start`.
+    localparam integer TOP_BIT = WIDTH - 1;   // set-up: SETUP = 3 WIDTH + 8 cycles
+    localparam [3:0] SU_IDLE = 4'd0, SU_R = 4'd1, SU_X = 4'd2, SU_Y = 4'd3, SU_A = 4'd4, SU_B = 4'd5,
+                     SU_C = 4'd6, SU_D = 4'd7, SU_E = 4'd8, SU_F = 4'd9, SU_G = 4'd10, SU_END = 4'd11;
+    reg  [3:0]    su_state;
+    reg  [4:0]    su_bit;                   // Horner's bit index
+    reg  [CW-1:0] rq, xq, yq;               // captured r, x0, y0
+    reg  [CW-1:0] rs, xs, ys;               // their copies shifted left once per bit: MSB = bit i
+    reg  [PW-1:0] acc;
+    reg           below, above, su_ok;      // E - 2R < 0, E + 2R + 1 >= 0, all checks passed
+    reg           y_ge_x;                   // input 34
+    reg  [CW-1:0] ct7_0, ct8_0;             // inputs 30, 31 (ones' complement)
+    wire          setting_up = su_state != SU_IDLE;
+    wire [PW-1:0] rr = {{(PW-CW){1'b0}}, rq};
+    wire [PW-1:0] xx = {{(PW-CW){1'b0}}, xq};
+    wire [PW-1:0] yy = {{(PW-CW){1'b0}}, yq};
+    wire          acc_negative = acc[PW-1];
+    reg  [PW-1:0] su_op;
+    reg           su_inv, su_cin;
+    reg  [1:0]    su_shift;
+    always @(*) begin
+        su_op = {PW{1'b0}};
+        su_inv = 1'b0;
+        su_cin = 1'b0;
+        su_shift = 2'd0;
+        case (su_state)
+            SU_R: begin su_shift = 2'd1; su_op = rs[CW-1] ? rr : {PW{1'b0}}; end
+            SU_X: begin su_op = xs[CW-1] ? xx : {PW{1'b0}}; su_inv = 1'b1; su_cin = 1'b1; end
+            SU_Y: begin su_op = ys[CW-1] ? yy : {PW{1'b0}}; su_inv = 1'b1; su_cin = 1'b1; end
+            SU_A: begin su_op = rr << 1; su_inv = 1'b1; su_cin = 1'b1; end
+            SU_B: begin su_op = rr << 2; su_cin = 1'b1; end
+            SU_C: begin su_op = rr << 1; su_inv = 1'b1; end
+            SU_D: su_op = y_ge_x ? xx << 1 : xx;
+            SU_E: begin su_op = y_ge_x ? yy : yy << 1; su_inv = 1'b1; end
+            SU_F: begin su_shift = 2'd2; su_inv = 1'b1; end
+            SU_G: su_inv = acc_negative;
+            default: ;
+        endcase
+    end
+    wire [PW-1:0] acc_next = (acc << su_shift) + (su_op ^ {PW{su_inv}}) + {{(PW-1){1'b0}}, su_cin};
+    wire          r_ok = rq != {CW{1'b0}} && rq <= RMAX;
+    wire [FW-1:0] f0 = acc[FW-1:0];
     // CT7 = Y, CT8 = X - Y - 1 in sector 1; CT7 = X - 1, CT8 = X - Y in sector 2.
-    wire [CW-1:0] ct7_twos = y_ge_x ? x0 - {{(CW-1){1'b0}}, 1'b1} : y0;
-    wire [CW-1:0] ct8_twos = y_ge_x ? x0 - y0 : x0 - y0 - {{(CW-1){1'b0}}, 1'b1};
-    wire [CW-1:0] ct7_0 = ct7_twos - {{(CW-1){1'b0}}, ct7_twos[CW-1]};
-    wire [CW-1:0] ct8_0 = ct8_twos - {{(CW-1){1'b0}}, ct8_twos[CW-1]};
+    wire [CW-1:0] ct7_twos = y_ge_x ? xq - {{(CW-1){1'b0}}, 1'b1} : yq;
+    wire [CW-1:0] ct8_twos = y_ge_x ? xq - yq : xq - yq - {{(CW-1){1'b0}}, 1'b1};
+
+    wire idle_start = start & ~busy;
+    wire su_end = su_state == SU_END;
+    wire load = su_end & su_ok;
+    wire refuse = su_end & ~su_ok;
+    always @(posedge clk) begin
+        if (rst) begin
+            su_state <= SU_IDLE;
+            su_bit <= 5'd0;
+            rq <= {CW{1'b0}};
+            xq <= {CW{1'b0}};
+            yq <= {CW{1'b0}};
+            rs <= {CW{1'b0}};
+            xs <= {CW{1'b0}};
+            ys <= {CW{1'b0}};
+            acc <= {PW{1'b0}};
+            below <= 1'b0;
+            above <= 1'b0;
+            su_ok <= 1'b0;
+            y_ge_x <= 1'b0;
+            ct7_0 <= {CW{1'b0}};
+            ct8_0 <= {CW{1'b0}};
+        end else begin
+            y_ge_x <= yq >= xq;                 // r, x0, y0 are held from SU_R to SU_END
+            ct7_0 <= ct7_twos - {{(CW-1){1'b0}}, ct7_twos[CW-1]};
+            ct8_0 <= ct8_twos - {{(CW-1){1'b0}}, ct8_twos[CW-1]};
+            if (su_state == SU_IDLE) begin
+                if (idle_start) begin
+                    rq <= r;
+                    xq <= x0;
+                    yq <= y0;
+                    rs <= r;
+                    xs <= x0;
+                    ys <= y0;
+                    acc <= {PW{1'b0}};
+                    su_bit <= TOP_BIT[4:0];
+                    su_state <= SU_R;
+                end
+            end else begin
+                acc <= acc_next;
+                case (su_state)
+                    SU_R: su_state <= SU_X;
+                    SU_X: su_state <= SU_Y;
+                    SU_Y: begin
+                        rs <= rs << 1;
+                        xs <= xs << 1;
+                        ys <= ys << 1;
+                        su_bit <= su_bit - 5'd1;
+                        su_state <= su_bit == 5'd0 ? SU_A : SU_R;
+                    end
+                    SU_END: su_state <= SU_IDLE;
+                    default: su_state <= su_state + 4'd1;
+                endcase
+                if (su_state == SU_B) below <= acc_negative;
+                if (su_state == SU_C) above <= ~acc_negative;
+                if (su_state == SU_G) su_ok <= r_ok & below & above;
+            end
+        end
+    end
 
     // ---- trigger 4 (mode) ----
-    wire idle_start = start & ~busy;
-    wire load = idle_start & ok;
-    wire refuse = idle_start & ~ok;
     wire run, finish, t4_accept;
     wire [CW-1:0] ct7, ct7_n, ct8, ct8_n;
     wire ct7_negative = ct7[CW-1];
@@ -87,7 +186,7 @@ module circ_su1665343 #(
         .clk(clk), .rst(rst), .start(load), .stop(ct7_negative),
         .run(run), .accept(t4_accept), .finish(finish)
     );
-    assign busy = run;
+    assign busy = run | setting_up;
 
     // ---- trigger 16 (sector): OR 18 ----
     wire t16, t16_set, t16_clear, and22, and23;

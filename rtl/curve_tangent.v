@@ -90,25 +90,23 @@ module curve_tangent #(
     assign busy = run_q;
 
     // ---- point 4: the projections, kept by two gradient units ----
-    wire [PW-1:0] p, q, p_next, q_next;
+    wire [PW-1:0] p, q, p_next, q_next;            // p, q: ΔX, ΔY (for benches and waves)
+    wire [PW-1:0] abs_p, abs_q, abs_p2, abs_q2;     // |ΔX|, |ΔY| now and after the step
     wire          p_ovf, q_ovf;
-    wire          move_x, move_y, neg_x, neg_y, do_step;
+    reg           move_x, move_y, neg_x, neg_y;
+    wire          do_step;
     gradient_unit #(.WIDTH(PW)) u_dx (
         .clk(clk), .rst(rst), .load(load), .load_value(p0), .coef_a_in(dp_dx), .coef_b_in(dp_dy),
         .step_a(move_x), .neg_a(neg_x), .step_b(move_y), .neg_b(neg_y), .advance(do_step),
-        .value(p), .next_value(p_next), .overflow(p_ovf)
+        .value(p), .next_value(p_next), .overflow(p_ovf), .magnitude(abs_p), .next_magnitude(abs_p2)
     );
     gradient_unit #(.WIDTH(PW)) u_dy (
         .clk(clk), .rst(rst), .load(load), .load_value(q0), .coef_a_in(dq_dx), .coef_b_in(dq_dy),
         .step_a(move_x), .neg_a(neg_x), .step_b(move_y), .neg_b(neg_y), .advance(do_step),
-        .value(q), .next_value(q_next), .overflow(q_ovf)
+        .value(q), .next_value(q_next), .overflow(q_ovf), .magnitude(abs_q), .next_magnitude(abs_q2)
     );
 
     // Magnitudes as PW-bit unsigned (|-2^(PW-1)| = 2^(PW-1) still fits).
-    wire [PW-1:0] abs_p  = p[PW-1] ? -p : p;
-    wire [PW-1:0] abs_q  = q[PW-1] ? -q : q;
-    wire [PW-1:0] abs_p2 = p_next[PW-1] ? -p_next : p_next;
-    wire [PW-1:0] abs_q2 = q_next[PW-1] ? -q_next : q_next;
     wire [PW-1:0] abs_p0 = p0[PW-1] ? -p0 : p0;
     wire [PW-1:0] abs_q0 = q0[PW-1] ? -q0 : q0;
 
@@ -117,14 +115,16 @@ module curve_tangent #(
     wire [EW-1:0] l0 = {4'b0, x_major0 ? abs_p0 : abs_q0};
     wire [EW-1:0] s0 = {4'b0, x_major0 ? abs_q0 : abs_p0};
     wire [EW-1:0] e0 = l0 - {s0[EW-2:0], 1'b0};
+    wire [EW-1:0] e_start = e_load ? e_init : e0;
 
     // ---- point 2: the step ----
-    wire x_major = abs_p >= abs_q;
+    // For speed the step choice is kept in registers, set with ΔX, ΔY and E
+    // (at `load` and with every step) from their new values:
+    //   x_major = |ΔX| >= |ΔY|,  p_nz = ΔX != 0,  q_nz = ΔY != 0,
+    //   move_x = p_nz & (x_major | E < 0),  move_y = q_nz & (~x_major | E < 0),
+    //   neg_x = (ΔX < 0) ^ reverse,  neg_y = (ΔY < 0) ^ reverse.
+    reg  x_major, p_nz, q_nz;
     wire e_neg   = e_q[EW-1];
-    assign neg_x  = p[PW-1] ^ reverse_q;
-    assign neg_y  = q[PW-1] ^ reverse_q;
-    assign move_x = (p != {PW{1'b0}}) & (x_major | e_neg);
-    assign move_y = (q != {PW{1'b0}}) & (~x_major | e_neg);
 
     // ---- points 5-8 merged ----
     wire [TW-1:0] l  = {7'b0, x_major ? abs_p  : abs_q};
@@ -134,20 +134,37 @@ module curve_tangent #(
     wire          x_major2 = abs_p2 >= abs_q2;
     wire          axis_change = x_major2 ^ x_major;
     wire [TW-1:0] e_ext = {{(TW-EW){e_q[EW-1]}}, e_q};
-    wire [TW-1:0] diag  = e_neg ? {l2[TW-2:0], 1'b0} : {TW{1'b0}};
+    // literal:  E' = E + L' - 4S' - L + 2S + 2L'd,  axis change: + 3S' - 3L'
+    // improved: E' = E + L' - 3S' - L +  S + 2L'd,  axis change: -E' - L' - S'
+    // For speed the register-only part K = E - L + 2S (literal) or E - L + S
+    // (improved) is formed alongside the new projections, and each case is
+    // K plus small multiples of L', S' (d = E < 0 and the mode are registers):
+    //   no change: K + (1 + 2d) L' - (4 or 3) S'
+    //   change:    literal  K - 2(1 - d) L' - S';  improved -K - 2(1 + d) L' + 2S'
+    wire [TW-1:0] k_reg = e_ext - l + (improved_q ? s : {s[TW-2:0], 1'b0});
+    wire [TW-1:0] l2x2  = {l2[TW-2:0], 1'b0};
     wire [TW-1:0] s2x2  = {s2[TW-2:0], 1'b0};
     wire [TW-1:0] s2x4  = {s2[TW-3:0], 2'b0};
-    wire [TW-1:0] l2x2  = {l2[TW-2:0], 1'b0};
-    wire [TW-1:0] sx2   = {s[TW-2:0], 1'b0};
-    // literal: E + L' - 4S' - L + 2S + 2L'd, then + 3S' - 3L' on an axis change
-    wire [TW-1:0] e_lit  = e_ext + l2 - s2x4 - l + sx2 + diag;
-    wire [TW-1:0] e_lit8 = e_lit + s2x2 + s2 - l2x2 - l2;
-    // improved: E + L' - 3S' - L + S + 2L'd, then -E' - L' - S' on an axis change
-    wire [TW-1:0] e_imp  = e_ext + l2 - s2x2 - s2 - l + s + diag;
-    wire [TW-1:0] e_imp8 = -e_imp - l2 - s2;
-    wire [TW-1:0] e_next = improved_q ? (axis_change ? e_imp8 : e_imp)
-                                      : (axis_change ? e_lit8 : e_lit);
-    wire          e_ovf = e_next[TW-1:EW-1] != {(TW-EW+1){e_next[EW-1]}};
+    wire [TW-1:0] l2_term = e_neg ? l2 + l2x2 : l2;                // (1 + 2d) L'
+    wire [TW-1:0] s2_term = ~(improved_q ? s2x4 - s2 : s2x4);      // ~(3S' or 4S') = -(..) - 1
+    // Each case: three operands to two by one carry-save row, then one adder.
+    wire [TW-1:0] kp_s = k_reg ^ l2_term ^ s2_term;
+    wire [TW-1:0] kp_c = {(k_reg[TW-2:0] & l2_term[TW-2:0]) | (k_reg[TW-2:0] & s2_term[TW-2:0])
+                          | (l2_term[TW-2:0] & s2_term[TW-2:0]), 1'b0};
+    wire [TW-1:0] e_keep = kp_s + kp_c + {{(TW-1){1'b0}}, 1'b1};
+    wire [TW-1:0] kn_reg  = ~e_ext + l + ~s + {{(TW-2){1'b0}}, 2'b10};   // -(E - L + S)
+    wire [TW-1:0] k_sw    = improved_q ? kn_reg : k_reg;
+    // change: literal K + ~X2 + ~S' + 2, improved -K + ~X2 + 2S' + 1, X2 = 2(1 -+ d) L'
+    wire [TW-1:0] sw_x2 = ~(improved_q ? (e_neg ? {l2[TW-3:0], 2'b0} : l2x2) : (e_neg ? {TW{1'b0}} : l2x2));
+    wire [TW-1:0] sw_x3 = improved_q ? s2x2 : ~s2;
+    wire [TW-1:0] sw_s = k_sw ^ sw_x2 ^ sw_x3;
+    wire [TW-1:0] sw_c = {(k_sw[TW-2:0] & sw_x2[TW-2:0]) | (k_sw[TW-2:0] & sw_x3[TW-2:0])
+                          | (sw_x2[TW-2:0] & sw_x3[TW-2:0]), ~improved_q};
+    wire [TW-1:0] e_switch = sw_s + sw_c + {{(TW-1){1'b0}}, 1'b1};
+    wire [TW-1:0] e_next = axis_change ? e_switch : e_keep;
+    wire          e_ovf_keep   = e_keep[TW-1:EW-1] != {(TW-EW+1){e_keep[EW-1]}};
+    wire          e_ovf_switch = e_switch[TW-1:EW-1] != {(TW-EW+1){e_switch[EW-1]}};
+    wire          e_ovf = axis_change ? e_ovf_switch : e_ovf_keep;
 
     // ---- point 3: the new node, with range check ----
     localparam [WIDTH-1:0] XMAX = {1'b0, {(WIDTH-1){1'b1}}};
@@ -158,7 +175,7 @@ module curve_tangent #(
     wire [WIDTH-1:0] y_next = move_y ? (neg_y ? y_q - 1'b1 : y_q + 1'b1) : y_q;
 
     // ---- point 9 and the defined stops ----
-    wire stall  = (p == {PW{1'b0}}) & (q == {PW{1'b0}});
+    wire stall  = ~p_nz & ~q_nz;
     wire fault  = stall | x_ovf | y_ovf | p_ovf | q_ovf | e_ovf;
     wire bad_sel = end_sel_q == 2'd3;
     wire at_end = (cnt_q == {CW{1'b0}}) | (end_sel_q == 2'd1 && x_q == end_coord_q)
@@ -171,6 +188,13 @@ module curve_tangent #(
     always @(posedge clk) begin
         if (rst) begin
             run_q       <= 1'b0;
+            x_major     <= 1'b1;                    // |0| >= |0|
+            p_nz        <= 1'b0;
+            q_nz        <= 1'b0;
+            move_x      <= 1'b0;
+            move_y      <= 1'b0;
+            neg_x       <= 1'b0;
+            neg_y       <= 1'b0;
             x_q         <= {WIDTH{1'b0}};
             y_q         <= {WIDTH{1'b0}};
             e_q         <= {EW{1'b0}};
@@ -188,9 +212,16 @@ module curve_tangent #(
         end else begin
             if (load) begin
                 run_q       <= 1'b1;
+                x_major     <= x_major0;
+                p_nz        <= p0 != {PW{1'b0}};
+                q_nz        <= q0 != {PW{1'b0}};
+                move_x      <= (p0 != {PW{1'b0}}) & (x_major0 | e_start[EW-1]);
+                move_y      <= (q0 != {PW{1'b0}}) & (~x_major0 | e_start[EW-1]);
+                neg_x       <= p0[PW-1] ^ reverse;
+                neg_y       <= q0[PW-1] ^ reverse;
                 x_q         <= x0;
                 y_q         <= y0;
-                e_q         <= e_load ? e_init : e0;
+                e_q         <= e_start;
                 cnt_q       <= count;
                 end_sel_q   <= end_sel;
                 end_coord_q <= end_coord;
@@ -203,6 +234,13 @@ module curve_tangent #(
                 y_q   <= y_next;
                 e_q   <= e_next[EW-1:0];
                 cnt_q <= cnt_q - 1'b1;
+                x_major <= x_major2;
+                p_nz  <= p_next != {PW{1'b0}};
+                q_nz  <= q_next != {PW{1'b0}};
+                move_x <= (p_next != {PW{1'b0}}) & (x_major2 | e_next[EW-1]);
+                move_y <= (q_next != {PW{1'b0}}) & (~x_major2 | e_next[EW-1]);
+                neg_x <= p_next[PW-1] ^ reverse_q;
+                neg_y <= q_next[PW-1] ^ reverse_q;
             end
             step_x <= do_step & move_x;
             step_y <= do_step & move_y;
@@ -213,6 +251,7 @@ module curve_tangent #(
         end
     end
 
-    wire unused = &{1'b0, l0[EW-1:PW], s0[EW-1], l[TW-1:PW], s[TW-1:PW], l2[TW-1], s2[TW-1:TW-2]};
+    wire unused = &{1'b0, p, q, l0[EW-1:PW], s0[EW-1], l[TW-1:PW], s[TW-1:PW], l2[TW-1], s2[TW-1:TW-2],
+                   e_next[TW-1:EW]};
 endmodule
 `default_nettype wire

@@ -5,7 +5,7 @@ import tempfile
 from pathlib import Path
 
 from ..models.su1665343 import (CORRECTION_CYCLES, STEP_CYCLES, move_cycles, path_string,
-                                radial_error, steps)
+                                radial_error, setup_cycles, steps)
 from ..speed import run_harness
 
 WIDTH = 12          # the sweep harness's counters: R <= 2046
@@ -17,7 +17,7 @@ def tables(quick: bool):
     for r in (1, 12, 100, 1000, 2000):
         path = steps(r)
         s = path_string(path)
-        cycles = move_cycles(path)
+        cycles = move_cycles(path, WIDTH)
         rows_quadrant.append([r, len(path), s.count("Y"), s.count("D"), s.count("X"),
                               f"{len(path) / r:.4f}", cycles, f"{cycles / len(path):.3f}",
                               next(p.switch for p in path if p.switch)])
@@ -42,8 +42,9 @@ def tables(quick: bool):
          ["step", "cycles"],
          [["Y, X or diagonal step (pulse, check, transfer)", STEP_CYCLES],
           ["step with the sector switch (expander 25)", STEP_CYCLES + CORRECTION_CYCLES - 1],
-          ["start -> first step pulse", 1]]),
-        ("SU 1665343 circular: one quadrant from (R, 0) to (0, R)",
+          [f"start -> first step pulse (load former's set-up, 3 WIDTH + 8 at WIDTH {WIDTH}, + 1)",
+           setup_cycles(WIDTH) + 1]]),
+        (f"SU 1665343 circular: one quadrant from (R, 0) to (0, R), WIDTH {WIDTH}",
          ["R", "steps", "Y", "diagonal", "X", "steps / R", "cycles (start to done)", "cycles / step",
           "switch case"],
          rows_quadrant),

@@ -11,7 +11,9 @@ written out (F is kept as 4F so it stays an integer; it is always n + 0.75):
 
 `Su1665343` is the cycle model of rtl/circ_su1665343.v: the same registers
 (counters and adder as ones'-complement bit patterns), the same
-micro-operations in the same cycles.  `trace()` turns its (or the RTL's)
+micro-operations in the same cycles.  The RTL's load former forms F0 with
+adders only, over `setup_cycles(width)` cycles after `start`; the model holds
+the captured inputs for as long and then loads the values of `preload()`.  `trace()` turns its (or the RTL's)
 per-cycle samples into the patent's Table 2 rows.
 """
 from __future__ import annotations
@@ -22,6 +24,13 @@ from .base import MOTION_OUTPUTS, CycleModel
 from .blocks import AccumAddSub, UpDownCounter, ones_code, ones_value
 
 CORRECTION_CYCLES = 4       # pulse expander 25
+
+
+def setup_cycles(width: int) -> int:
+    """Cycles from `start` to the load (or refusal): the RTL's load former runs
+    Horner's rule for E = R^2 - X^2 - Y^2 (three micro-steps per bit), then
+    seven steps for the checks and F0, then the load cycle."""
+    return 3 * width + 8
 
 
 # Ones'-complement codes: the counters' and the adder's number system.
@@ -168,6 +177,7 @@ class Su1665343(CycleModel):
 
     def reset(self) -> None:
         self.run = self.t16 = 0
+        self.setup_left, self.captured = 0, (0, 0, 0)     # load former: cycles to go, (r, x0, y0)
         self.u_ct7 = UpDownCounter(self.width, True)
         self.u_ct8 = UpDownCounter(self.width, True)
         self.u_adder1 = AccumAddSub(self.fw, True)
@@ -178,7 +188,7 @@ class Su1665343(CycleModel):
 
     @property
     def busy(self) -> int:
-        return self.run
+        return int(bool(self.run or self.setup_left))
 
     ct7 = property(lambda self: self.u_ct7.q)
     ct8 = property(lambda self: self.u_ct8.q)
@@ -226,10 +236,17 @@ class Su1665343(CycleModel):
         w, fw = self.width, self.fw
         ct7_negative = self.ct7 >> (w - 1) & 1
         finish = self.run and ct7_negative
-        idle_start = bool(inputs.get("start")) and not self.run
-        r, x0, y0 = (int(inputs.get(k, 0)) for k in ("r", "x0", "y0"))
+        idle_start = bool(inputs.get("start")) and not self.busy
+        # load former: start captures r, x0, y0; the last set-up cycle loads or refuses
+        set_up = self.setup_left == 1
+        r, x0, y0 = self.captured
         ok = start_error(r, x0, y0, w) is None
-        load, refuse = idle_start and ok, idle_start and not ok
+        load, refuse = set_up and ok, set_up and not ok
+        if self.setup_left:
+            self.setup_left -= 1
+        elif idle_start:
+            self.captured = tuple(int(inputs.get(k, 0)) for k in ("r", "x0", "y0"))
+            self.setup_left = setup_cycles(w)
         settle = self.d12 or self.d13 or self.d14 or self.expander.active
         enable = self.run and not ct7_negative and not settle and inputs.get("tick")
         f_negative = self.f >> (fw - 1) & 1
@@ -332,14 +349,16 @@ def expected_per_step(path: list[Step]) -> list[tuple[str, float | None]]:
 STEP_CYCLES = 3             # pulse, settle/check, transfer (delay elements 12, 13, 14)
 
 
-def move_cycles(path: list[Step]) -> int:
+def move_cycles(path: list[Step], width: int = 12) -> int:
     """Cycle of the `done` sample at full speed (`tick` high), cycle 0 = start.
 
-    The first pulse is in cycle 1; a step takes STEP_CYCLES, a sector switch
+    The load is in cycle setup_cycles(width) (the RTL's default WIDTH is 12),
+    the first pulse in the next; a step takes STEP_CYCLES, a sector switch
     adds the expander's CORRECTION_CYCLES - 1; `done` follows the cycle in
     which CT7 is negative.
     """
+    load = setup_cycles(width)
     if not path:
-        return 2
-    pulses = 1 + sum(STEP_CYCLES + (CORRECTION_CYCLES - 1 if s.switch else 0) for s in path[:-1])
+        return load + 2
+    pulses = load + 1 + sum(STEP_CYCLES + (CORRECTION_CYCLES - 1 if s.switch else 0) for s in path[:-1])
     return pulses + (2 if not path[-1].switch else 2 * STEP_CYCLES + 1)

@@ -5,6 +5,7 @@ points, bad input, reset, a random sample of R); `test_sweep` runs every R of
 the range through a native harness (sim/sweep_su1665343.v) and compares the
 step sequences with the step-level model.
 """
+import math
 import subprocess
 
 import cocotb
@@ -13,7 +14,8 @@ from cocotb.triggers import FallingEdge
 
 from interp.models.base import move, steps_of
 from interp.models.su1665343 import (Su1665343, expected_per_step, move_cycles, path_string,
-                                     per_step, r_max, radial_error, start_error, steps, trace)
+                                     per_step, r_max, radial_error, setup_cycles, start_error, steps,
+                                     trace)
 from interp.tbkit import TB, scoreboard, seeded_rng
 
 # Patent Table 2 (R = 12), SPEC §4: (step, kind, CT7, CT8, commutator code, F after).
@@ -86,7 +88,9 @@ async def table2(dut):
                    for s in samples if s["step_x"] or s["step_y"])
     assert path == TABLE2_PATH, path
     done = [i for i, s in enumerate(samples) if s["done"]]
-    assert done == [move_cycles(steps(12))], done
+    assert done == [move_cycles(steps(12), tb.width)], done
+    pulses = [i for i, s in enumerate(samples) if s["step_x"] or s["step_y"]]
+    assert pulses[0] == setup_cycles(tb.width) + 2, pulses[0]     # load, pulse, strobe
     dut._log.info("R=12: Table 2 matched, %d cycles for %d steps", done[0], len(TABLE2_PATH))
 
 
@@ -147,7 +151,8 @@ def on_path(r):
 
 @cocotb.test()
 async def bad_input(dut):
-    """R = 0, R too large, start point off the circle: `error`, no step, no busy; then a good move."""
+    """R = 0, R too large, start point off the circle: `error` after the set-up (busy only
+    during it), no step, no `done`; then a good move."""
     tb = await setup(dut)
     mask = (1 << tb.width) - 1
     bad = [(0, 0, 0), (0, 5, 0), (tb.rmax + 1, tb.rmax + 1, 0), (mask, mask, 0),
@@ -155,10 +160,42 @@ async def bad_input(dut):
     for r, x0, y0 in bad:
         samples = await scoreboard(tb, tb.ref, move({"r": r, "x0": x0, "y0": y0}, end="error",
                                                     idle_after=10), context=f"bad R={r} ({x0}, {y0})")
-        assert sum(s["error"] for s in samples) == 1
-        assert not any(s["step_x"] or s["step_y"] or s["busy"] or s["done"] for s in samples), \
+        set_up = setup_cycles(tb.width)
+        assert [i for i, s in enumerate(samples) if s["error"]] == [set_up + 1]
+        assert [i for i, s in enumerate(samples) if s["busy"]] == list(range(1, set_up + 1))
+        assert not any(s["step_x"] or s["step_y"] or s["done"] for s in samples), \
             f"bad R={r} ({x0}, {y0}) moved"
     await tb.check_move(5)
+
+
+@cocotb.test()
+async def refused_starts(dut):
+    """The load former's checks (E = R^2 - X^2 - Y^2 against 2R - 1 and -2R - 1) against
+    start_error(): every point just outside the band (R-1)^2 .. (R+1)^2, R = 0 .. 2^WIDTH - 1
+    at WIDTH 5 (a sample of R and X at WIDTH 12), and random inputs over the whole range."""
+    tb = await setup(dut)
+    rng = seeded_rng(dut, "refused_starts")
+    mask = (1 << tb.width) - 1
+    radii = range(mask + 1) if tb.width <= 5 else [0, 1, 2, 12, 1000, tb.rmax, tb.rmax + 1, mask]
+    triples = []
+    for r in radii:
+        xs = range(0, min(r + 3, mask + 1))
+        for x0 in xs if len(xs) <= 40 else sorted(rng.sample(xs, 12)) + [0, r, min(r + 1, mask)]:
+            inner = (r - 1) ** 2 - x0 * x0          # y0^2 >= inner and <= outer are accepted
+            outer = (r + 1) ** 2 - x0 * x0
+            lo = math.isqrt(inner - 1) if inner > 0 else None
+            hi = math.isqrt(outer) + 1 if outer >= 0 else 0
+            triples += [(r, x0, y) for y in (lo, hi) if y is not None and y <= mask]
+    triples += [(rng.randint(0, mask), rng.randint(0, mask), rng.randint(0, mask)) for _ in range(40)]
+    refused = 0
+    for r, x0, y0 in triples:
+        if start_error(r, x0, y0, tb.width) is None:
+            continue
+        refused += 1
+        samples = await scoreboard(tb, tb.ref, move({"r": r, "x0": x0, "y0": y0}, end="error",
+                                                    idle_after=0), context=f"bad R={r} ({x0}, {y0})")
+        assert samples[-1]["error"], f"R={r} ({x0}, {y0}) accepted"
+    dut._log.info("%d refused starts checked", refused)
 
 
 @cocotb.test()
@@ -185,7 +222,7 @@ async def reset_at_any_cycle(dut):
     """rst in any cycle of a move (both switch cases) returns to idle; no step after it."""
     tb = await setup(dut)
     for r in (4, 5):
-        for k in range(move_cycles(steps(r)) + 2):
+        for k in range(move_cycles(steps(r), tb.width) + 2):
             await tb.reset()
             try:
                 await scoreboard(tb, tb.ref, move({"r": r, "x0": r, "y0": 0}, max_cycles=k),
@@ -233,7 +270,7 @@ def test_sweep(sim, tmp_path):
         want = steps(r)
         assert path == path_string(want), f"R={r}: RTL {path}\n model {path_string(want)}"
         assert (int(x), int(y)) == (0, r), f"R={r} ends at ({x}, {y})"
-        assert int(cycles) == move_cycles(want), f"R={r}: {cycles} cycles"
+        assert int(cycles) == move_cycles(want, 12), f"R={r}: {cycles} cycles"
         worst = max(worst, radial_error(r, want))
     assert worst < 0.5
     print(f"R = 1 .. {rhi} on {sim}: every step sequence matches; max radial error {worst:.4f}")

@@ -21,7 +21,7 @@ def test_cycle_model_equals_equations(rs):
         samples, rows = run_cycle_model(r, r, 0)
         path = steps(r)
         assert per_step(rows) == expected_per_step(path), r
-        assert [i for i, s in enumerate(samples) if s["done"]] == [move_cycles(path)], r
+        assert [i for i, s in enumerate(samples) if s["done"]] == [move_cycles(path, 12)], r
 
 
 def valid_starts(r):

@@ -1,4 +1,5 @@
-"""Gradient unit: value = c + a·x + b·y tracked by adders, checked against the product form."""
+"""Gradient unit: value = c + a·x + b·y tracked by adders, checked against the product form
+(value, next value, their magnitudes, overflow)."""
 import cocotb
 import pytest
 from cocotb.triggers import FallingEdge
@@ -32,13 +33,42 @@ async def random_walks(dut):
             tb.drive({**idle, "step_a": sa, "neg_a": na, "step_b": sb, "neg_b": nb, "advance": 0})
             await FallingEdge(dut.clk)   # settle the combinational outputs
             assert dut.value.value.to_signed() == c + a * x + b * y
+            assert int(dut.magnitude.value) == abs(c + a * x + b * y)
             assert int(dut.overflow.value) == int(not fits(want, w)), (c, a, b, x, y, dx, dy)
             assert dut.next_value.value.to_signed() == wrap(want, w)
+            if fits(want, w):
+                assert int(dut.next_magnitude.value) == abs(want), (c, a, b, x, y, dx, dy)
             if not fits(want, w):
                 break
             tb.drive({"advance": 1})
             await FallingEdge(dut.clk)
             x, y = x + dx, y + dy
+        tb.drive({"advance": 0})
+
+
+@cocotb.test()
+async def advance_past_overflow(dut):
+    """`advance` on an overflowing step stores the wrapped value; -v follows it."""
+    w = int(dut.WIDTH.value)
+    rng = seeded_rng(dut, "advance_past_overflow")
+    tb = TB(dut)
+    idle = dict(load=0, load_value=0, coef_a_in=0, coef_b_in=0, step_a=0, neg_a=0, step_b=0,
+                neg_b=0, advance=0)
+    await tb.reset(idle)
+    lo, hi = -(1 << (w - 1)), (1 << (w - 1)) - 1
+    for _ in range(100):
+        v, a, b = (rng.randint(lo, hi) for _ in range(3))
+        tb.drive({**idle, "load": 1, "load_value": wrap(v, w), "coef_a_in": wrap(a, w),
+                  "coef_b_in": wrap(b, w)})
+        await FallingEdge(dut.clk)
+        for _ in range(6):
+            sa, sb, na, nb = (rng.randint(0, 1) for _ in range(4))
+            want = v + sa * (-a if na else a) + sb * (-b if nb else b)
+            tb.drive({**idle, "step_a": sa, "neg_a": na, "step_b": sb, "neg_b": nb, "advance": 1})
+            await FallingEdge(dut.clk)
+            v = wrap(want, w)
+            assert dut.value.value.to_signed() == v
+            assert int(dut.magnitude.value) == abs(v)
         tb.drive({"advance": 0})
 
 
