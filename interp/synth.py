@@ -40,6 +40,7 @@ class Target:
     toplevel: str               # Verilog module = rtl/<toplevel>.v
     parameters: dict = field(default_factory=dict)
     seeds: int = 1              # placement seeds tried (1 .. seeds); the best Fmax is reported
+    per_family: dict = field(default_factory=dict)   # family -> parameters set for it only
 
 
 @dataclass(frozen=True)
@@ -58,7 +59,9 @@ class Family:
 CORES = [
     # Cores with an Fmax goal get a placement-seed sweep, as timing closure
     # would: the row reports the best seed, result.json every seed's figure.
-    Target("su1571551", "su1571551", {"WIDTH": WIDTH, "EXACT": 1}, seeds=8),
+    # ECP5's carry chains are fast, so the linear core's adders stay whole there.
+    Target("su1571551", "su1571551", {"WIDTH": WIDTH, "EXACT": 1}, seeds=8,
+           per_family={"ecp5": {"CARRY_SELECT": 0}}),
     Target("su1571551/faithful", "su1571551", {"WIDTH": WIDTH, "EXACT": 0}),
     Target("circ_su1665343", "circ_su1665343", {"WIDTH": 30}),    # its widest (ones' complement)
     Target("lin_std", "lin_std", {"WIDTH": WIDTH}),
@@ -129,7 +132,8 @@ def resolved(target: Target) -> Target:
     """The target with only the parameters its module declares."""
     declared = declared_parameters(RTL / f"{target.toplevel}.v")
     return Target(target.name, target.toplevel,
-                  {k: v for k, v in target.parameters.items() if k in declared}, target.seeds)
+                  {k: v for k, v in target.parameters.items() if k in declared}, target.seeds,
+                  {f: {k: v for k, v in p.items() if k in declared} for f, p in target.per_family.items()})
 
 
 def lints(toplevel: str) -> bool:
@@ -141,7 +145,7 @@ def lints(toplevel: str) -> bool:
 def targets(names: list[str] | None = None) -> tuple[list[Target], list[str]]:
     """(targets that exist and lint, notes on the skipped ones)."""
     names_of = cli_names()
-    table = [Target(display_name(t.name), t.toplevel, t.parameters, t.seeds) for t in CORES]
+    table = [Target(display_name(t.name), t.toplevel, t.parameters, t.seeds, t.per_family) for t in CORES]
     known = {t.toplevel for t in table}
     table += [Target(name, top, {"WIDTH": WIDTH}) for top, name in names_of.items() if top not in known]
     chosen, notes = [], []
@@ -248,6 +252,8 @@ def fmax(report: dict) -> float | None:
 
 def implement(target: Target, family: Family, force: bool = False, log=print) -> dict:
     """Synthesize and place-and-route one target; return (and cache) its row."""
+    extra = target.per_family.get(family.name, {})
+    target = Target(target.name, target.toplevel, {**target.parameters, **extra}, target.seeds)
     files = sources(target.toplevel)
     work = run_dir(target, family)
     key = _key(target, family, files)
@@ -290,6 +296,9 @@ def implement(target: Target, family: Family, force: bool = False, log=print) ->
            "fmax_mhz": None if short else max(by_seed.values()),
            "luts": luts, "ffs": ffs, "key": key,
            "note": f"does not fit: not enough {short}" if short else note}
+    if extra:
+        row["note"] = (row["note"] + "; " if row["note"] else "") + \
+            " ".join(f"{k}={v}" for k, v in extra.items())
     if len(by_seed) > 1:
         best = max(by_seed, key=by_seed.get)
         row["fmax_by_seed"] = by_seed

@@ -3,8 +3,10 @@
 // a = squared radius of the circle (start point), b = squared radius of the end point.
 // Exact integer form, no square root:  with d = |b - a|, s = min(a, b),
 //   sqrt(max) <= sqrt(s) + 1/2  <=>  d == 0  or  (4d - 1)^2 <= 16 s.
-// Used by the command checks of circ_std, circ_accel and circ_arc (lecture seed 004,
-// "start or end point not on the circle").  Combinational.
+// The command check of the circular cores (lecture seed 004, "start or end point not
+// on the circle") as one combinational block.  circ_quadrant and circ_arc evaluate
+// the same test without a combinational multiplier, with m = |d|:
+// d == 0 or m^2 <= s + (m - 1) div 2 (seq_mult).  Combinational.
 module circle_band #(
     parameter integer AW = 16   // width of the unsigned squared radii a, b (>= 4)
 ) (

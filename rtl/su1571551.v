@@ -36,8 +36,10 @@
 // The formal block proves the added registers equal to what they stand for.
 module su1571551 #(
     parameter integer WIDTH = 32,   // width of the signed X, Y inputs (>= 2)
-    parameter integer EXACT = 1     // 0: faithful (the patent's live counters, expression (5))
+    parameter integer EXACT = 1,    // 0: faithful (the patent's live counters, expression (5))
                                     // 1: exact (operands held in registers, expression (1))
+    parameter integer CARRY_SELECT = 1  // 1: adders in the step loop cut in two (carry select,
+                                    // for slow carry chains: iCE40); 0: one chain each (ECP5)
 ) (
     input  wire             clk,
     input  wire             rst,
@@ -55,6 +57,7 @@ module su1571551 #(
     initial begin
         if (WIDTH < 2) $error("%m: WIDTH must be at least 2");
         if (EXACT != 0 && EXACT != 1) $error("%m: EXACT must be 0 or 1");
+        if (CARRY_SELECT != 0 && CARRY_SELECT != 1) $error("%m: CARRY_SELECT must be 0 or 1");
     end
 
     localparam integer CW = WIDTH + 1;  // counters: 0 .. 2^(WIDTH-1), and -1 for counter 2
@@ -117,9 +120,9 @@ module su1571551 #(
     reg  [CW-1:0] left1, left2;                         // steps left - 1, - 2
     wire [CW-1:0] left1_dec, left2_dec;
     wire          step = axial | diagonal;
-    carry_select_add #(.WIDTH(CW), .LOW(CLO)) u_left1_dec (
+    carry_select_add #(.WIDTH(CW), .LOW(CLO), .SPLIT(CARRY_SELECT)) u_left1_dec (
         .a(left1), .b({CW{1'b1}}), .b_high_plus1({CHI{1'b0}}), .sum(left1_dec));
-    carry_select_add #(.WIDTH(CW), .LOW(CLO)) u_left2_dec (
+    carry_select_add #(.WIDTH(CW), .LOW(CLO), .SPLIT(CARRY_SELECT)) u_left2_dec (
         .a(left2), .b({CW{1'b1}}), .b_high_plus1({CHI{1'b0}}), .sum(left2_dec));
     always @(posedge clk) begin     // no reset: loaded while idle, read only while running
         if (idle) begin
@@ -196,9 +199,9 @@ module su1571551 #(
 
             // adder 3 and its two look-ahead copies
             wire [FW-1:0] f_axial_sum, f_diagonal_sum;
-            carry_select_add #(.WIDTH(FW), .LOW(LO)) u_add_axial (
+            carry_select_add #(.WIDTH(FW), .LOW(LO), .SPLIT(CARRY_SELECT)) u_add_axial (
                 .a(f_axial_q), .b(op_axial_q), .b_high_plus1(op_axial_hi1_q), .sum(f_axial_sum));
-            carry_select_add #(.WIDTH(FW), .LOW(LO)) u_add_diagonal (
+            carry_select_add #(.WIDTH(FW), .LOW(LO), .SPLIT(CARRY_SELECT)) u_add_diagonal (
                 .a(f_diagonal_q), .b(op_diagonal_q), .b_high_plus1(op_diagonal_hi1_q), .sum(f_diagonal_sum));
             // F: the patent's register, cleared at the end of a move.
             always @(posedge clk) begin

@@ -6,13 +6,19 @@ Fmax and area come from the synthesis flow (interp/synth.py, `make synth`):
 results when the YoWASP tools are not installed (`make bench` does not
 install them).  Cycles per step: one of the core's `interp demo` moves
 through its cycle model (equal to the RTL cycle by cycle), `tick` high,
-start to `done`.
+start to `done`.  Simulation speed: a harness generated from the core
+registry (interp/harness.py: the table's parameters, the cycles/step move,
+`tick` high, `start` pulsed whenever the core is idle) runs a fixed number of
+cycles natively on Icarus and on Verilator (`--binary -O3`), no cocotb;
+cycles per CPU second of the run (user + system: other load on the
+machine barely changes it), compile time excluded.
 """
 from __future__ import annotations
 
 import argparse
+from concurrent.futures import ThreadPoolExecutor
 
-from .. import synth
+from .. import harness, speed, synth
 
 # Goals of issue 7 (MHz at width 32): production cores.
 GOALS = {"su1571551": (150, 250), "circ-arc": (120, 200)}
@@ -38,6 +44,44 @@ def cycles_per_step(name: str):
     return round((len(samples) - 1) / steps, 2) if steps else None
 
 
+# Cycles each simulator runs: about 1 s on Icarus, 0.5 s on Verilator for su1571551.
+SIM_CYCLES = {"icarus": 20_000, "verilator": 2_000_000}
+
+
+def sim_speeds(names: list[str], quick: bool) -> dict[tuple[str, str], str]:
+    """(row, simulator) -> cycles/s for the rows with a stimulus (CLI cores, motion_top).
+
+    Builds two at a time, then runs one at a time; a core that does not build or
+    run (one in progress) gets no figure."""
+    jobs = []
+    for name in names:
+        try:
+            made = harness.for_row(name, MOVES.get(name))
+        except Exception:
+            made = None
+        jobs += [(name, sim, made) for sim in speed.SIMULATORS if made]
+
+    def build(job):
+        name, sim, (module, src) = job
+        try:
+            return speed.build_harness(module, sim, src=src)
+        except Exception:
+            return None
+
+    with ThreadPoolExecutor(2) as pool:
+        built = list(pool.map(build, jobs))
+    out = {}
+    for (name, sim, _), cmd in zip(jobs, built):
+        n = SIM_CYCLES[sim] // (10 if quick else 1)
+        try:
+            got, seconds = speed.run_built(cmd, [f"+cycles={n}"], cpu=True) if cmd else ({}, 0)
+        except Exception:
+            continue
+        if got.get("cycles") == n and seconds > 0:
+            out[name, sim] = f"{float(f'{n / seconds:.3g}'):,.0f}"     # three significant figures
+    return out
+
+
 def tables(quick: bool):
     if synth.have_tools() and not quick:
         rows, notes = synth.table(log=lambda m: None)
@@ -49,6 +93,7 @@ def tables(quick: bool):
     for r in rows:
         by_core.setdefault(r["core"], {})[r["family"]] = r
     out = []
+    speeds = sim_speeds(list(by_core), quick)
     for name, fams in by_core.items():
         try:
             cps = cycles_per_step(name)
@@ -69,9 +114,11 @@ def tables(quick: bool):
             line.append(f"{goal[0]}/{goal[1]}: " + "/".join("met" if m else "not met" for m in met))
         else:
             line.append("")
+        line += [speeds.get((name, sim), "-") for sim in ("icarus", "verilator")]
         out.append(line + ["; ".join(notes_of)])
     header = ["core", "cycles/step", "iCE40 HX8K Fmax (MHz)", "iCE40 LUT/FF", "iCE40 Msteps/s",
-              "ECP5-25F Fmax (MHz)", "ECP5 LUT/FF", "ECP5 Msteps/s", "goal iCE40/ECP5", "notes"]
+              "ECP5-25F Fmax (MHz)", "ECP5 LUT/FF", "ECP5 Msteps/s", "goal iCE40/ECP5",
+              "Icarus cycles/s", "Verilator cycles/s", "notes"]
     title = "FPGA at width 32: Yosys 0.70 + nextpnr (YoWASP), seed 1, register to register"
     if notes:
         title += " — " + "; ".join(notes[:3]) + (" ..." if len(notes) > 3 else "")

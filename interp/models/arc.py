@@ -12,7 +12,10 @@ with R^2 = |start - centre|^2 (F = 0 at the start point, as in the lecture):
   End: when the next point would reach or pass the ray from the centre through the
   end point, the last step goes to the end point.
 
-`CircArc` is the cycle model: the same registers as the RTL (E, cross, dot).
+`CircArc` is the cycle model: the registers the bench compares (E, u, v) as in the
+RTL, cross and dot as plain integers (the RTL keeps C = turn * cross - 1 and
+D = dot - 1 as a high and a low part; only their signs are used), and the set-up
+as a count of cycles (the RTL forms its products with sequential multipliers).
 """
 from __future__ import annotations
 
@@ -69,10 +72,17 @@ def arc_steps(cx, cy, x0, y0, x1, y1, ccw: bool, full: bool = False) -> list[Ste
             return out
 
 
+def arc_setup_cycles(width: int = 32) -> int:
+    """Cycles from `start` to the check of rtl/circ_arc.v: load, two multiplier
+    rounds (seq_mult at WIDTH + 1 bits: WIDTH + 4 cycles each) and three
+    two-cycle sums; the check is in cycle 2 * WIDTH + 16, the first step in the next."""
+    return 2 * width + 16
+
+
 class CircArc(CycleModel):
     """Cycle model of rtl/circ_arc.v."""
 
-    IDLE, SQUARE, CHECK, RUN, LAST = range(5)
+    IDLE, SETUP, CHECK, RUN, LAST = range(5)
     watch = {**MOTION_OUTPUTS, "error": False, "e_q": True, "u_q": True, "v_q": True}
 
     def __init__(self, width: int = 32):
@@ -86,7 +96,7 @@ class CircArc(CycleModel):
     def reset(self) -> None:
         self.state = self.IDLE
         self.u_q = self.v_q = self.u1 = self.v1 = self.ccw = self.full = 0
-        self.e_q = self.cross = self.dot = self.a = self.b = 0
+        self.e_q = self.cross = self.dot = self.a = self.b = self.count = 0
         self.step_x = self.step_y = self.dir_x = self.dir_y = self.done = self.error = 0
 
     def clock(self, inputs) -> None:
@@ -101,19 +111,21 @@ class CircArc(CycleModel):
             self.u_q, self.v_q = wrap(inputs["x0"], w) - cx, wrap(inputs["y0"], w) - cy
             self.u1, self.v1 = wrap(inputs["x1"], w) - cx, wrap(inputs["y1"], w) - cy
             self.ccw, self.full = int(bool(inputs.get("ccw"))), int(bool(inputs.get("full")))
-            self.state = self.SQUARE
-        elif state == self.SQUARE:
-            mask = (1 << 2 * w) - 1
-            u, v, u1, v1 = self.u_q, self.v_q, self.u1, self.v1
-            self.a, self.b = (u * u + v * v) & mask, (u1 * u1 + v1 * v1) & mask
-            self.cross, self.dot, self.e_q = u * v1 - v * u1, u * u1 + v * v1, 0
-            self.state = self.CHECK
+            self.state, self.count = self.SETUP, arc_setup_cycles(w) - 1
+        elif state == self.SETUP:
+            self.count -= 1
+            if self.count == 0:
+                u, v, u1, v1 = self.u_q, self.v_q, self.u1, self.v1
+                self.a, self.b = u * u + v * v, u1 * u1 + v1 * v1
+                self.cross, self.dot = u * v1 - v * u1, u * u1 + v * v1
+                self.state = self.CHECK
         elif state == self.CHECK:
             limit = 1 << (w - 3)
             fits = all(-limit < r < limit for r in (self.u_q, self.v_q, self.u1, self.v1))
             bad = not fits or self.a == 0 or not within_half_step(self.a, self.b)
             error = int(bad)
             at_start = (self.u_q, self.v_q) == (self.u1, self.v1)
+            self.e_q = 0
             self.state = self.IDLE if bad else self.LAST if at_start and not self.full else self.RUN
         elif state == self.RUN and inputs.get("tick"):
             u, v = self.u_q, self.v_q

@@ -237,7 +237,7 @@ def radial_deviation(x0: int, y0: int, path, cx: int = 0, cy: int = 0) -> float:
 class CircQuadrant(CycleModel):
     """Cycle model of rtl/circ_quadrant.v, seen through the circ_std/circ_accel wrappers."""
 
-    IDLE, SQUARE, CHECK, RUN = range(4)
+    IDLE, SETUP, CHECK, RUN = range(4)
     watch = {**MOTION_OUTPUTS, "error": False, "u_core.f": True, "u_core.half1": True,
              "u_core.half2": True, "u_core.kox": True, "u_core.koy": True}
 
@@ -256,7 +256,7 @@ class CircQuadrant(CycleModel):
     def reset(self) -> None:
         self.state = self.IDLE
         self.cmd = (0, 0, 0, 0)
-        self.ccw = self.a = self.b = 0
+        self.ccw = self.a = self.b = self.count = 0
         self.trig_x = self.trig_y = self.half1 = self.half2 = self.kox = self.koy = self.f = 0
         self.step_x = self.step_y = self.dir_x = self.dir_y = self.done = self.error = 0
 
@@ -271,12 +271,15 @@ class CircQuadrant(CycleModel):
             if inputs.get("start"):
                 self.cmd = tuple(wrap(inputs[k], self.width) for k in ("x0", "y0", "x1", "y1"))
                 self.ccw = int(bool(inputs.get("ccw")))
-                self.state = self.SQUARE
-        elif self.state == self.SQUARE:
-            x0, y0, x1, y1 = (v & ((1 << self.width) - 1) for v in self.cmd)   # RTL squares the bits
-            mask = (1 << 2 * self.width) - 1
-            self.a, self.b = (x0 * x0 + y0 * y0) & mask, (x1 * x1 + y1 * y1) & mask
-            self.state = self.CHECK
+                # The RTL forms the squares with sequential multipliers (as circ_arc):
+                # the check is in cycle 2 * WIDTH + 16.
+                self.state, self.count = self.SETUP, 2 * self.width + 15
+        elif self.state == self.SETUP:
+            self.count -= 1
+            if self.count == 0:
+                x0, y0, x1, y1 = self.cmd
+                self.a, self.b = x0 * x0 + y0 * y0, x1 * x1 + y1 * y1
+                self.state = self.CHECK
         elif self.state == self.CHECK:
             x0, y0, x1, y1 = self.cmd
             bad = (min(self.cmd) < 0 or self.a == 0 or not within_half_step(self.a, self.b)

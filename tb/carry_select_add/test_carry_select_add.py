@@ -8,7 +8,8 @@ from interp.tbkit import seeded_rng
 @cocotb.test()
 async def adds(dut):
     """Random and carry-edge operands; the sum must equal a + b modulo 2^WIDTH."""
-    width, lo = len(dut.sum), int(dut.LOW.value)
+    width = len(dut.sum)
+    lo = int(dut.LOW.value) or (1 if width < 5 else width * 2 // 5)
     mask, rng = (1 << width) - 1, seeded_rng(dut, "adds")
     edges = [0, 1, mask, mask - 1, (1 << lo) - 1, 1 << lo, (1 << (width - 1)) - 1, 1 << (width - 1)]
     pairs = [(a, b) for a in edges for b in edges]
@@ -20,9 +21,10 @@ async def adds(dut):
         assert int(dut.sum.value) == (a + b) & mask, (a, b)
 
 
-@pytest.mark.parametrize("width, low", [(2, None), (7, None), (34, None), (34, 17)])
-def test_carry_select_add(sim, width, low):
+@pytest.mark.parametrize("width, low, split", [(2, None, 1), (7, None, 1), (34, None, 1), (34, 17, 1),
+                                              (34, None, 0)])
+def test_carry_select_add(sim, width, low, split):
     from interp.sim import run_cocotb
     run_cocotb(toplevel="carry_select_add", test_module="test_carry_select_add", sim=sim,
-               parameters={"WIDTH": width, **({"LOW": low} if low else {})},
-               name=f"carry_select_add_w{width}_l{low or 'default'}")
+               parameters={"WIDTH": width, "SPLIT": split, **({"LOW": low} if low else {})},
+               name=f"carry_select_add_w{width}_l{low or 'default'}_s{split}")

@@ -11,7 +11,7 @@ import pytest
 
 from interp.corecheck import CoreTB, moves, reset_at_any_cycle, start_while_busy
 from interp.tbkit import seeded_rng
-from interp.models.arc import CircArc, arc_error, arc_steps
+from interp.models.arc import CircArc, arc_error, arc_setup_cycles, arc_steps
 from interp.models.lecture import radial_deviation, within_half_step
 from interp.sim import run_cocotb
 
@@ -112,7 +112,9 @@ async def start_while_busy_is_ignored(dut):
 @cocotb.test()
 async def reset_any_cycle(dut):
     tb = await setup(dut)
-    await reset_at_any_cycle(tb, {"cx": 1, "cy": 1, "x0": 6, "y0": 1, "x1": 1, "y1": 6, "ccw": 1, "full": 0}, 12)
+    # Every cycle of the move: the set-up and the 7 steps.
+    await reset_at_any_cycle(tb, {"cx": 1, "cy": 1, "x0": 6, "y0": 1, "x1": 1, "y1": 6, "ccw": 1, "full": 0},
+                             arc_setup_cycles(tb.width) + 10)
 
 
 @pytest.mark.parametrize("width", [8, 32])

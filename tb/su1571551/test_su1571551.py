@@ -112,9 +112,11 @@ async def reset_at_any_cycle(dut):
     await corecheck.reset_at_any_cycle(tb, {"x": 11, "y": 6}, 11 + 5)
 
 
-@pytest.mark.parametrize("width", [8, 32])
-@pytest.mark.parametrize("mode", ["faithful", "exact"])
-def test_su1571551(sim, width, mode):
+@pytest.mark.parametrize("width, mode, carry_select", [
+    (8, "faithful", 1), (32, "faithful", 1), (8, "exact", 1), (32, "exact", 1),
+    (32, "exact", 0),                   # one carry chain per adder (the ECP5 build)
+])
+def test_su1571551(sim, width, mode, carry_select):
     run_cocotb(toplevel="su1571551", test_module="test_su1571551", sim=sim,
-               parameters={"WIDTH": width, "EXACT": int(mode == "exact")},
-               name=f"su1571551_w{width}_{mode}")
+               parameters={"WIDTH": width, "EXACT": int(mode == "exact"), "CARRY_SELECT": carry_select},
+               name=f"su1571551_w{width}_{mode}_cs{carry_select}")
