@@ -9,7 +9,6 @@ its source files changes (PASS stamp keyed by their hash).
 """
 from __future__ import annotations
 
-import configparser
 import hashlib
 import os
 import subprocess

@@ -87,6 +87,8 @@ module circ_arc #(
     reg                  ccw_q, full_q;
     reg                  uz_q, vz_q, s1z_q, s3z_q;   // u, v, s1, s3 == 0
     reg                  xm_q, mjn_q, mnn_q;         // octant: x major, major step < 0, minor < 0
+    reg  [UW-1:0]        xs_q, ys_q;         // P.a - major_neg, P.b - minor_neg (= u or v, inverted if negative)
+    reg  [4*K+11:0]      eop_q;              // end test operands of the octant (end_ops)
     reg  signed [NW-1:0] e1_q;               // E + 1, E = u^2 + v^2 - R^2
     reg  [SW-1:0]        c_q, d_q;           // C = turn * cross - 1, D = dot - 1
     reg  [SW-1:0]        a_q, b_q;           // R^2 (then min(R^2, |End|^2)), |End|^2
@@ -201,9 +203,12 @@ module circ_arc #(
     // Midpoint: P.a = xop + major_neg, P.b = yop + minor_neg (two's complement); the
     // register holds E + 1, so T = (E + 1) + 2 P.a + P.b is one carry-save step and one
     // carry chain: (E + 1) + {xop, major_neg} + yop + major_neg + minor_neg.
-    wire [NW-1:0] u_w = {{(NW-UW){u_neg}}, u_q}, v_w = {{(NW-UW){v_neg}}, v_q};
-    wire [NW-1:0] xop = (xm ? u_w : v_w) ^ {NW{mjn_q}};
-    wire [NW-1:0] yop = (xm ? v_w : u_w) ^ {NW{mnn_q}};
+    // xs_q and ys_q hold the selected and inverted coordinates, formed with the octant.
+    function automatic [2*UW-1:0] point_ops(input xm_f, mjn_f, mnn_f, input [UW-1:0] u_f, v_f);
+        point_ops = {(xm_f ? u_f : v_f) ^ {UW{mjn_f}}, (xm_f ? v_f : u_f) ^ {UW{mnn_f}}};
+    endfunction
+    wire [NW-1:0] xop = {{(NW-UW){xs_q[UW-1]}}, xs_q};
+    wire [NW-1:0] yop = {{(NW-UW){ys_q[UW-1]}}, ys_q};
     wire [NW-1:0] xop2 = {xop[NW-2:0], mjn_q}, yop2 = {yop[NW-2:0], mnn_q};   // 2 P.a - major_neg, ...
     wire [NW-1:0] axial_e = e1_q + xop2 + {{(NW-2){1'b0}}, mjn_q, !mjn_q};        // + 2 P.a + 1
     wire [NW-1:0] diagonal_e = e1_q + xop2 + yop2 +
@@ -213,7 +218,7 @@ module circ_arc #(
                          (xop2[NW-2:0] & yop[NW-2:0]), mjn_q};
     wire [NW-1:0] test = t_s + t_c + {{(NW-1){1'b0}}, mnn_q};                      // T
     // T < 0 (M inside): the outer candidate, which is D when P.b >= 0.
-    wire pb_nonneg = (xm ? vz_q : uz_q) || ((xm ? v_neg : u_neg) == mnn_q);
+    wire pb_nonneg = (xm ? vz_q : uz_q) || !ys_q[UW-1];
     wire take_diagonal = test[NW-1] == pb_nonneg;
 
     // Position and the octant helpers s1 = u + v, s3 = v - u for A and D.
@@ -238,34 +243,51 @@ module circ_arc #(
     wire [1:0] s3f_d = after2(!same, nyd, s3_neg, s3z_q, s3_p1, s3_m1, s3_p2, s3_m2);
     wire [2:0] oct_a = octant(uf_a[1], uf_a[0], vf_a[1], vf_a[0], s1f_a[1], s1f_a[0], s3f_a[1], s3f_a[0], ccw_q);
     wire [2:0] oct_d = octant(uf_d[1], uf_d[0], vf_d[1], vf_d[0], s1f_d[1], s1f_d[0], s3f_d[1], s3f_d[0], ccw_q);
-    wire [2:0] oct_0 = octant(u_neg, u_q == {UW{1'b0}}, v_neg, v_q == {UW{1'b0}},
-                              s1_neg, s1_q == {UW{1'b0}}, s3_neg, s3_q == {UW{1'b0}}, ccw_q);   // CHECK
+    wire [2:0] oct_0 = octant(u_neg, uz_q, v_neg, vz_q, s1_neg, s1z_q, s3_neg, s3z_q, ccw_q);  // set-up
+    wire [UW-1:0] u_x = last ? u1_q : take_diagonal ? u_d : u_a;
+    wire [UW-1:0] v_x = last ? v1_q : take_diagonal ? v_d : v_a;
 
     // ---------------------------------------------------------------- end test (RUN)
     // Step deltas of C and D for A and D: C += turn (sx v1 - sy u1), D += sx u1 + sy v1;
     // operand and sign per octant.
+    // The operands are formed with the octant and held in eop_q: {x, neg} per sum, x inverted if neg.
     wire tneg = !ccw_q;
-    wire [K+1:0]  ca_op = xm ? v1_q[K+1:0] : u1_q[K+1:0], da_op = xm ? u1_q[K+1:0] : v1_q[K+1:0];
-    wire          ca_neg = xm ? mjn_q ^ tneg : !(mjn_q ^ tneg), da_neg = mjn_q;
-    wire [K+1:0]  cd_op = same ? wm_q[K+1:0] : wp_q[K+1:0], dd_op = same ? wp_q[K+1:0] : wm_q[K+1:0];
-    wire          cd_neg = nxd ^ tneg, dd_neg = same ? nxd : !nxd;
+    function automatic [4*K+11:0] end_ops(input xm_f, mjn_f, mnn_f);
+        reg [K+1:0] ca_op, da_op, cd_op, dd_op;
+        reg         ca_neg, da_neg, cd_neg, dd_neg, nxd_f, same_f;
+        begin
+            nxd_f  = xm_f ? mjn_f : mnn_f;
+            same_f = mjn_f == mnn_f;
+            ca_op  = xm_f ? v1_q[K+1:0] : u1_q[K+1:0];
+            da_op  = xm_f ? u1_q[K+1:0] : v1_q[K+1:0];
+            ca_neg = xm_f ? mjn_f ^ tneg : !(mjn_f ^ tneg);
+            da_neg = mjn_f;
+            cd_op  = same_f ? wm_q[K+1:0] : wp_q[K+1:0];
+            dd_op  = same_f ? wp_q[K+1:0] : wm_q[K+1:0];
+            cd_neg = nxd_f ^ tneg;
+            dd_neg = same_f ? nxd_f : !nxd_f;
+            end_ops = {ca_op ^ {(K+2){ca_neg}}, ca_neg, cd_op ^ {(K+2){cd_neg}}, cd_neg,
+                       da_op ^ {(K+2){da_neg}}, da_neg, dd_op ^ {(K+2){dd_neg}}, dd_neg};
+        end
+    endfunction
+    wire [K+1:0]  ca_x = eop_q[4*K+11:3*K+10], cd_x = eop_q[3*K+8:2*K+7];
+    wire [K+1:0]  da_x = eop_q[2*K+5:K+4],     dd_x = eop_q[K+2:1];
+    wire          ca_neg = eop_q[3*K+9], cd_neg = eop_q[2*K+6], da_neg = eop_q[K+3], dd_neg = eop_q[0];
     // L + delta, K + 2 bits signed, in (-2^K, 2^(K+1)): bit K+1 = negative, bits K+1..K = carry.
     // Carry-select: the low LS bits, and the upper bits for both carries from them.
     localparam integer LS = K / 2;
-    function automatic [K+1:0] low_step(input [K-1:0] low, input [K+1:0] op, input neg);
-        reg [K+1:0]    x;
+    function automatic [K+1:0] low_step(input [K-1:0] low, input [K+1:0] x, input neg);
         reg [LS:0]     lo;
         reg [K+1-LS:0] hi0, hi1;
         begin
-            x   = op ^ {(K+2){neg}};
             lo  = {1'b0, low[LS-1:0]} + {1'b0, x[LS-1:0]} + {{LS{1'b0}}, neg};
             hi0 = {2'b00, low[K-1:LS]} + x[K+1:LS];
             hi1 = {2'b00, low[K-1:LS]} + x[K+1:LS] + {{(K+1-LS){1'b0}}, 1'b1};
             low_step = {lo[LS] ? hi1 : hi0, lo[LS-1:0]};
         end
     endfunction
-    wire [K+1:0] lc_a = low_step(c_q[K-1:0], ca_op, ca_neg), lc_d = low_step(c_q[K-1:0], cd_op, cd_neg);
-    wire [K+1:0] ld_a = low_step(d_q[K-1:0], da_op, da_neg), ld_d = low_step(d_q[K-1:0], dd_op, dd_neg);
+    wire [K+1:0] lc_a = low_step(c_q[K-1:0], ca_x, ca_neg), lc_d = low_step(c_q[K-1:0], cd_x, cd_neg);
+    wire [K+1:0] ld_a = low_step(d_q[K-1:0], da_x, da_neg), ld_d = low_step(d_q[K-1:0], dd_x, dd_neg);
     wire [HW-1:0] hc = c_q[SW-1:K], hd = d_q[SW-1:K];
     wire [HW-1:0] hone = {{(HW-1){1'b0}}, 1'b1};
     wire hc_z = hc == {HW{1'b0}};
@@ -321,6 +343,9 @@ module circ_arc #(
             xm_q     <= 1'b0;
             mjn_q    <= 1'b0;
             mnn_q    <= 1'b0;
+            xs_q     <= {UW{1'b0}};
+            ys_q     <= {UW{1'b0}};
+            eop_q    <= {(4*K+12){1'b0}};
             e1_q     <= {{(NW-1){1'b0}}, 1'b1};
             c_q      <= {SW{1'b0}};
             d_q      <= {SW{1'b0}};
@@ -387,17 +412,12 @@ module circ_arc #(
                     if (sub_q) state_q <= CHECK;
                 end
                 CHECK: begin
-                    uz_q    <= u_q == {UW{1'b0}};
-                    vz_q    <= v_q == {UW{1'b0}};
-                    s1z_q   <= s1_q == {UW{1'b0}};
-                    s3z_q   <= s3_q == {UW{1'b0}};
-                    {xm_q, mjn_q, mnn_q} <= oct_0;
                     e1_q    <= {{(NW-1){1'b0}}, 1'b1};
                     state_q <= bad ? IDLE : (at_start && !full_q) ? LAST : RUN;
                 end
                 RUN: if (go) begin
-                    u_q     <= last ? u1_q : take_diagonal ? u_d : u_a;
-                    v_q     <= last ? v1_q : take_diagonal ? v_d : v_a;
+                    u_q     <= u_x;
+                    v_q     <= v_x;
                     s1_q    <= take_diagonal ? s1_d : s1_a;
                     s3_q    <= take_diagonal ? s3_d : s3_a;
                     uz_q    <= take_diagonal ? uf_d[0] : uf_a[0];
@@ -405,6 +425,10 @@ module circ_arc #(
                     s1z_q   <= take_diagonal ? s1f_d[0] : s1f_a[0];
                     s3z_q   <= take_diagonal ? s3f_d[0] : s3f_a[0];
                     {xm_q, mjn_q, mnn_q} <= take_diagonal ? oct_d : oct_a;
+                    {xs_q, ys_q} <= take_diagonal ? point_ops(oct_d[2], oct_d[1], oct_d[0], u_d, v_d)
+                                                  : point_ops(oct_a[2], oct_a[1], oct_a[0], u_a, v_a);
+                    eop_q   <= take_diagonal ? end_ops(oct_d[2], oct_d[1], oct_d[0])
+                                             : end_ops(oct_a[2], oct_a[1], oct_a[0]);
                     e1_q    <= take_diagonal ? diagonal_e : axial_e;
                     c_q     <= take_diagonal ? c_d : c_a;
                     d_q     <= take_diagonal ? d_d : d_a;
@@ -420,6 +444,15 @@ module circ_arc #(
             if (state_q == MUL2) begin
                 dzero_q  <= dd_q == {SW{1'b0}};
                 msmall_q <= dd_q[SW-1] ? nd_q[SW-1:K] == {HW{1'b0}} : dd_q[SW-1:K] == {HW{1'b0}};
+            end
+            if (state_q != RUN) begin           // the flags, octant and operands of the start point
+                uz_q     <= u_q == {UW{1'b0}};      // (settled long before CHECK; only RUN reads them)
+                vz_q     <= v_q == {UW{1'b0}};
+                s1z_q    <= s1_q == {UW{1'b0}};
+                s3z_q    <= s3_q == {UW{1'b0}};
+                {xm_q, mjn_q, mnn_q} <= oct_0;
+                {xs_q, ys_q} <= point_ops(xm_q, mjn_q, mnn_q, u_q, v_q);
+                eop_q    <= end_ops(xm_q, mjn_q, mnn_q);
             end
             if (act_x) dir_x <= neg_x;
             if (act_y) dir_y <= neg_y;
