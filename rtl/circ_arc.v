@@ -21,8 +21,11 @@
 // CCW, -1 CW), each a high part H and a low part L of K = WIDTH - 2 bits: a step
 // changes them by less than 2^K, so the step's sum L + delta (K + 2 bits) and
 // flags of H (H = 0, -1, 1 ...) give the signs; H moves by the carry, -1, 0 or +1.
-// The octant comes from registered sign and zero flags of u, v, u + v and v - u
-// (|v| > |u| <=> (v + u)(v - u) > 0); next flags from compares with +-1, +-2.
+// The octant comes from the signs and registered flags (= 0, +-1, +-2) of u, v, u + v
+// and v - u (|v| > |u| <=> (v + u)(v - u) > 0); next flags from compares with -4 .. 4.
+// Registered with the octant: the operands it selects for T (P.a, P.b) and for the
+// end test, and H's flags; so T is a carry-save step and one chain from registers.
+// The last step sets fin_q, which ends the run in the next cycle (acts as LAST).
 //
 // Set-up (no combinational multiplier: four seq_mult instances, two rounds):
 // round 1 u^2, v^2, u1^2, v1^2 -> a = R^2, b = |End|^2, d = b - a; round 2 the
@@ -79,16 +82,18 @@ module circ_arc #(
                      ADD3 = 4'd6, CHECK = 4'd7, RUN = 4'd8, LAST = 4'd9;
 
     reg  [3:0]           state_q;
+    reg                  fin_q;              // RUN took its last step: acts as LAST
     reg                  sub_q;              // second cycle of a two-cycle sum
     reg  signed [UW-1:0] u_q, v_q;           // current point relative to the centre
     reg  signed [UW-1:0] s1_q, s3_q;         // u + v, v - u
     reg  signed [UW-1:0] u1_q, v1_q;         // end point relative to the centre
     reg  signed [UW-1:0] wp_q, wm_q;         // u1 + v1, v1 - u1
     reg                  ccw_q, full_q;
-    reg                  uz_q, vz_q, s1z_q, s3z_q;   // u, v, s1, s3 == 0
+    reg  [4:0]           uw_q, vw_q, s1w_q, s3w_q;   // u, v, s1, s3 == 2, 1, 0, -1, -2
     reg                  xm_q, mjn_q, mnn_q;         // octant: x major, major step < 0, minor < 0
     reg  [UW-1:0]        xs_q, ys_q;         // P.a - major_neg, P.b - minor_neg (= u or v, inverted if negative)
     reg  [4*K+11:0]      eop_q;              // end test operands of the octant (end_ops)
+    reg                  hcz_q, hdz_q, hdm1_q, hdpos_q;   // high parts: H(C) = 0, H(D) = 0, -1, > 0
     reg  signed [NW-1:0] e1_q;               // E + 1, E = u^2 + v^2 - R^2
     reg  [SW-1:0]        c_q, d_q;           // C = turn * cross - 1, D = dot - 1
     reg  [SW-1:0]        a_q, b_q;           // R^2 (then min(R^2, |End|^2)), |End|^2
@@ -231,10 +236,37 @@ module circ_arc #(
     wire [UW-1:0] s3_a = s3_q + (s3a_dec ? {UW{1'b1}} : one);
     wire [UW-1:0] s1_d = s1_q + (same ? (nxd ? -two : two) : {UW{1'b0}});   // D: 0 or +-2
     wire [UW-1:0] s3_d = s3_q + (same ? {UW{1'b0}} : (nyd ? -two : two));
-    // Flags: x == +-1, +-2 (zero and sign of the next values).
-    wire u_p1 = u_q == one, u_m1 = u_q == {UW{1'b1}}, v_p1 = v_q == one, v_m1 = v_q == {UW{1'b1}};
-    wire s1_p1 = s1_q == one, s1_m1 = s1_q == {UW{1'b1}}, s1_p2 = s1_q == two, s1_m2 = s1_q == -two;
-    wire s3_p1 = s3_q == one, s3_m1 = s3_q == {UW{1'b1}}, s3_p2 = s3_q == two, s3_m2 = s3_q == -two;
+    // Flags: x == 0, +-1, +-2 (zero and sign of the next values), registered: the next flags
+    // are compares of x with -4 .. 4, picked by the step (x' == c <=> x == c - s).
+    function automatic [8:0] small_eq(input [UW-1:0] x);       // bit k + 4: x == k, k = -4 .. 4
+        reg hz, ho;
+        integer k;
+        begin
+            hz = x[UW-1:3] == {(UW-3){1'b0}};
+            ho = x[UW-1:3] == {(UW-3){1'b1}};
+            for (k = -4; k <= 4; k = k + 1)
+                small_eq[k+4] = (k >= 0 ? hz : ho) && x[2:0] == k[2:0];
+        end
+    endfunction
+    function automatic [4:0] window(input [2:0] step, input [8:0] e);   // flags of x + step
+        case (step)                                                    // step: signed -2 .. 2
+            3'b001:  window = e[5:1];
+            3'b010:  window = e[4:0];
+            3'b111:  window = e[7:3];
+            3'b110:  window = e[8:4];
+            default: window = e[6:2];
+        endcase
+    endfunction
+    wire [8:0] ue = small_eq(u_q), ve = small_eq(v_q), s1e = small_eq(s1_q), s3e = small_eq(s3_q);
+    wire uz_q = uw_q[2], vz_q = vw_q[2], s1z_q = s1w_q[2], s3z_q = s3w_q[2];
+    wire u_p1 = uw_q[3], u_m1 = uw_q[1], v_p1 = vw_q[3], v_m1 = vw_q[1];
+    wire s1_p1 = s1w_q[3], s1_m1 = s1w_q[1], s1_p2 = s1w_q[4], s1_m2 = s1w_q[0];
+    wire s3_p1 = s3w_q[3], s3_m1 = s3w_q[1], s3_p2 = s3w_q[4], s3_m2 = s3w_q[0];
+    wire [2:0] p1s = 3'b001, m1s = 3'b111, p2s = 3'b010, m2s = 3'b110, zs = 3'b000;
+    wire [2:0] su_a = xm ? (nxa ? m1s : p1s) : zs, su_d = nxd ? m1s : p1s;
+    wire [2:0] sv_a = xm ? zs : (nya ? m1s : p1s), sv_d = nyd ? m1s : p1s;
+    wire [2:0] ss1_a = mjn_q ? m1s : p1s, ss1_d = same ? (nxd ? m2s : p2s) : zs;
+    wire [2:0] ss3_a = s3a_dec ? m1s : p1s, ss3_d = same ? zs : (nyd ? m2s : p2s);
     wire [1:0] uf_a = after01(xm, nxa, u_neg, uz_q, u_p1, u_m1), uf_d = after1(nxd, u_neg, uz_q, u_p1, u_m1);
     wire [1:0] vf_a = after01(!xm, nya, v_neg, vz_q, v_p1, v_m1), vf_d = after1(nyd, v_neg, vz_q, v_p1, v_m1);
     wire [1:0] s1f_a = after1(mjn_q, s1_neg, s1z_q, s1_p1, s1_m1);
@@ -244,8 +276,6 @@ module circ_arc #(
     wire [2:0] oct_a = octant(uf_a[1], uf_a[0], vf_a[1], vf_a[0], s1f_a[1], s1f_a[0], s3f_a[1], s3f_a[0], ccw_q);
     wire [2:0] oct_d = octant(uf_d[1], uf_d[0], vf_d[1], vf_d[0], s1f_d[1], s1f_d[0], s3f_d[1], s3f_d[0], ccw_q);
     wire [2:0] oct_0 = octant(u_neg, uz_q, v_neg, vz_q, s1_neg, s1z_q, s3_neg, s3z_q, ccw_q);  // set-up
-    wire [UW-1:0] u_x = last ? u1_q : take_diagonal ? u_d : u_a;
-    wire [UW-1:0] v_x = last ? v1_q : take_diagonal ? v_d : v_a;
 
     // ---------------------------------------------------------------- end test (RUN)
     // Step deltas of C and D for A and D: C += turn (sx v1 - sy u1), D += sx u1 + sy v1;
@@ -290,8 +320,16 @@ module circ_arc #(
     wire [K+1:0] ld_a = low_step(d_q[K-1:0], da_x, da_neg), ld_d = low_step(d_q[K-1:0], dd_x, dd_neg);
     wire [HW-1:0] hc = c_q[SW-1:K], hd = d_q[SW-1:K];
     wire [HW-1:0] hone = {{(HW-1){1'b0}}, 1'b1};
-    wire hc_z = hc == {HW{1'b0}};
-    wire hd_z = hd == {HW{1'b0}}, hd_m1 = hd == {HW{1'b1}}, hd_pos = !hd[HW-1] && !hd_z;
+    // H's flags are registered; the next ones are compares of H, picked by the carry.
+    wire hc_z = hcz_q, hd_z = hdz_q, hd_m1 = hdm1_q, hd_pos = hdpos_q;
+    wire hc_e0 = hc == {HW{1'b0}}, hc_e1 = hc == hone, hc_em1 = hc == {HW{1'b1}};
+    wire hd_e0 = hd == {HW{1'b0}}, hd_e1 = hd == hone, hd_em1 = hd == {HW{1'b1}}, hd_em2 = hd == {{(HW-1){1'b1}}, 1'b0};
+    wire hd_gt0 = !hd[HW-1] && !hd_e0;
+    function automatic [3:0] high_flags(input [1:0] cc, cd);   // {H(C)' = 0, H(D)' = 0, -1, > 0}
+        high_flags = {cc == 2'b01 ? hc_em1 : cc == 2'b11 ? hc_e1 : hc_e0,
+                      cd == 2'b01 ? {hd_em1, hd_em2, !hd[HW-1]} :
+                      cd == 2'b11 ? {hd_e1, hd_e0, hd_gt0 && !hd_e1} : {hd_e0, hd_em1, hd_gt0}};
+    endfunction
     // D + delta >= 0 from H's flags and the low sum (carry -1, 0 or +1).
     function automatic dot_ok(input [K+1:0] low, input pos, zero, minus1);
         dot_ok = pos || (zero && !low[K+1]) || (minus1 && low[K+1:K] == 2'b01);
@@ -316,15 +354,19 @@ module circ_arc #(
     wire [1:0] rest_u = u1_q[1:0] - u_q[1:0], rest_v = v1_q[1:0] - v_q[1:0];
     wire last_mx = rest_u != 2'b00, last_nx = rest_u[1];
     wire last_my = rest_v != 2'b00, last_ny = rest_v[1];
-    wire mx = xm | take_diagonal, my = !xm | take_diagonal;
-    wire nx = take_diagonal ? nxd : nxa, ny = take_diagonal ? nyd : nya;
-    wire go = state_q == RUN && tick;
-    wire act_x = go && (last ? last_mx : mx), neg_x = last ? last_nx : nx;
-    wire act_y = go && (last ? last_my : my), neg_y = last ? last_ny : ny;
+    // Everything is formed for both candidates; the midpoint decision selects last.
+    wire go = state_q == RUN && !fin_q && tick;
+    wire act_x = go && (take_diagonal ? !last_d || last_mx : (last_a ? last_mx : xm));
+    wire act_y = go && (take_diagonal ? !last_d || last_my : (last_a ? last_my : !xm));
+    wire neg_x = take_diagonal ? (last_d ? last_nx : nxd) : (last_a ? last_nx : nxa);
+    wire neg_y = take_diagonal ? (last_d ? last_ny : nyd) : (last_a ? last_ny : nya);
+    wire [UW-1:0] u_x = take_diagonal ? (last_d ? u1_q : u_d) : (last_a ? u1_q : u_a);
+    wire [UW-1:0] v_x = take_diagonal ? (last_d ? v1_q : v_d) : (last_a ? v1_q : v_a);
 
     always @(posedge clk) begin
         if (rst) begin
             state_q  <= IDLE;
+            fin_q    <= 1'b0;
             sub_q    <= 1'b0;
             u_q      <= {UW{1'b0}};
             v_q      <= {UW{1'b0}};
@@ -336,16 +378,20 @@ module circ_arc #(
             wm_q     <= {UW{1'b0}};
             ccw_q    <= 1'b0;
             full_q   <= 1'b0;
-            uz_q     <= 1'b0;
-            vz_q     <= 1'b0;
-            s1z_q    <= 1'b0;
-            s3z_q    <= 1'b0;
+            uw_q     <= 5'd0;
+            vw_q     <= 5'd0;
+            s1w_q    <= 5'd0;
+            s3w_q    <= 5'd0;
             xm_q     <= 1'b0;
             mjn_q    <= 1'b0;
             mnn_q    <= 1'b0;
             xs_q     <= {UW{1'b0}};
             ys_q     <= {UW{1'b0}};
             eop_q    <= {(4*K+12){1'b0}};
+            hcz_q    <= 1'b0;
+            hdz_q    <= 1'b0;
+            hdm1_q   <= 1'b0;
+            hdpos_q  <= 1'b0;
             e1_q     <= {{(NW-1){1'b0}}, 1'b1};
             c_q      <= {SW{1'b0}};
             d_q      <= {SW{1'b0}};
@@ -415,15 +461,15 @@ module circ_arc #(
                     e1_q    <= {{(NW-1){1'b0}}, 1'b1};
                     state_q <= bad ? IDLE : (at_start && !full_q) ? LAST : RUN;
                 end
-                RUN: if (go) begin
+                RUN: if (fin_q) state_q <= IDLE; else if (go) begin
                     u_q     <= u_x;
                     v_q     <= v_x;
                     s1_q    <= take_diagonal ? s1_d : s1_a;
                     s3_q    <= take_diagonal ? s3_d : s3_a;
-                    uz_q    <= take_diagonal ? uf_d[0] : uf_a[0];
-                    vz_q    <= take_diagonal ? vf_d[0] : vf_a[0];
-                    s1z_q   <= take_diagonal ? s1f_d[0] : s1f_a[0];
-                    s3z_q   <= take_diagonal ? s3f_d[0] : s3f_a[0];
+                    uw_q    <= take_diagonal ? window(su_d, ue) : window(su_a, ue);
+                    vw_q    <= take_diagonal ? window(sv_d, ve) : window(sv_a, ve);
+                    s1w_q   <= take_diagonal ? window(ss1_d, s1e) : window(ss1_a, s1e);
+                    s3w_q   <= take_diagonal ? window(ss3_d, s3e) : window(ss3_a, s3e);
                     {xm_q, mjn_q, mnn_q} <= take_diagonal ? oct_d : oct_a;
                     {xs_q, ys_q} <= take_diagonal ? point_ops(oct_d[2], oct_d[1], oct_d[0], u_d, v_d)
                                                   : point_ops(oct_a[2], oct_a[1], oct_a[0], u_a, v_a);
@@ -432,7 +478,8 @@ module circ_arc #(
                     e1_q    <= take_diagonal ? diagonal_e : axial_e;
                     c_q     <= take_diagonal ? c_d : c_a;
                     d_q     <= take_diagonal ? d_d : d_a;
-                    if (last) state_q <= LAST;
+                    {hcz_q, hdz_q, hdm1_q, hdpos_q} <= take_diagonal ? high_flags(lc_d[K+1:K], ld_d[K+1:K])
+                                                                     : high_flags(lc_a[K+1:K], ld_a[K+1:K]);
                 end
                 LAST: state_q <= IDLE;
                 default: state_q <= IDLE;
@@ -446,25 +493,27 @@ module circ_arc #(
                 msmall_q <= dd_q[SW-1] ? nd_q[SW-1:K] == {HW{1'b0}} : dd_q[SW-1:K] == {HW{1'b0}};
             end
             if (state_q != RUN) begin           // the flags, octant and operands of the start point
-                uz_q     <= u_q == {UW{1'b0}};      // (settled long before CHECK; only RUN reads them)
-                vz_q     <= v_q == {UW{1'b0}};
-                s1z_q    <= s1_q == {UW{1'b0}};
-                s3z_q    <= s3_q == {UW{1'b0}};
+                uw_q     <= ue[6:2];                // (settled long before CHECK; only RUN reads them)
+                vw_q     <= ve[6:2];
+                s1w_q    <= s1e[6:2];
+                s3w_q    <= s3e[6:2];
                 {xm_q, mjn_q, mnn_q} <= oct_0;
                 {xs_q, ys_q} <= point_ops(xm_q, mjn_q, mnn_q, u_q, v_q);
                 eop_q    <= end_ops(xm_q, mjn_q, mnn_q);
+                {hcz_q, hdz_q, hdm1_q, hdpos_q} <= high_flags(2'b00, 2'b00);
             end
             if (act_x) dir_x <= neg_x;
             if (act_y) dir_y <= neg_y;
             step_x <= act_x;
             step_y <= act_y;
-            done   <= state_q == LAST;
+            fin_q  <= go && last;
+            done   <= state_q == LAST || fin_q;
             error  <= state_q == CHECK && bad;
         end
     end
 
     wire [NW-1:0] e_q = e1_q - {{(NW-1){1'b0}}, 1'b1};    // E, for the benches (not used here)
     wire unused = &{1'b0, e_q, mbusy, mdone_other, p0[PW-1:SW], p1[PW-1:SW], p2[PW-1:SW], p3[PW-1:SW],
-                    carry_q[4:3], nd_q[K-1:0], xop[NW-1]};
+                    carry_q[4:3], nd_q[K-1:0], uw_q[4], uw_q[0], vw_q[4], vw_q[0], xop[NW-1]};
 endmodule
 `default_nettype wire
