@@ -9,15 +9,22 @@ from interp.tbkit import TB, seeded_rng
 from interp.sim import run_cocotb
 
 
+IDLE = dict(load=0, load_value=0, coef_a_in=0, coef_b_in=0, step_a=0, neg_a=0, step_b=0,
+            neg_b=0, advance=0)
+
+
+async def setup(dut):
+    tb = TB(dut)
+    await tb.reset(IDLE)
+    return tb, IDLE
+
+
 @cocotb.test()
 async def random_walks(dut):
     """Random walks from random loads: value, next_value and overflow every cycle."""
     w = int(dut.WIDTH.value)
     rng = seeded_rng(dut, "random_walks")
-    tb = TB(dut)
-    idle = dict(load=0, load_value=0, coef_a_in=0, coef_b_in=0, step_a=0, neg_a=0, step_b=0,
-                neg_b=0, advance=0)
-    await tb.reset(idle)
+    tb, idle = await setup(dut)
     lo, hi = -(1 << (w - 1)), (1 << (w - 1)) - 1
     for _ in range(200):
         c, a, b = (rng.randint(lo, hi) for _ in range(3))
@@ -51,10 +58,7 @@ async def advance_past_overflow(dut):
     """`advance` on an overflowing step stores the wrapped value; -v follows it."""
     w = int(dut.WIDTH.value)
     rng = seeded_rng(dut, "advance_past_overflow")
-    tb = TB(dut)
-    idle = dict(load=0, load_value=0, coef_a_in=0, coef_b_in=0, step_a=0, neg_a=0, step_b=0,
-                neg_b=0, advance=0)
-    await tb.reset(idle)
+    tb, idle = await setup(dut)
     lo, hi = -(1 << (w - 1)), (1 << (w - 1)) - 1
     for _ in range(100):
         v, a, b = (rng.randint(lo, hi) for _ in range(3))
