@@ -16,11 +16,11 @@
 // reached 0 gives its tick to the other axis, so the move always ends at the end
 // point; END when both triggers are reset.
 //
-// Set-up without combinational multipliers (as circ_arc): four seq_mult instances
-// square x0, y0, x1, y1 (a = R^2, b = |End|^2, d = b - a), then one forms m^2 with
-// m = |d|; the end point is within half a step of the circle (circle_band's test)
-// <=> d = 0 or m^2 <= min(a, b) + (m - 1) div 2.  Sums (2*WIDTH + 2 bits) take two
-// cycles, as two chunks with a registered carry.
+// Set-up without combinational multipliers (circle_setup, as in circ_arc): four
+// seq_mult instances square x0, y0, x1, y1 (a = R^2, b = |End|^2, d = b - a), then
+// one forms m^2 with m = |d|; the end point is within half a step of the circle
+// (circle_band's test) <=> d = 0 or m^2 <= min(a, b) + (m - 1) div 2.  Sums
+// (2*WIDTH + 2 bits) take two cycles, as two chunks with a registered carry.
 //
 // Timing: `start` in an idle cycle captures the command (cycle 0); the set-up
 // checks it in cycle 2*WIDTH + 16; from the next cycle one step per `tick` as
@@ -58,72 +58,32 @@ module circ_quadrant #(
     localparam integer FW = 2 * WIDTH + 1;  // F: |x^2 + y^2 - R^2| < 2^(2*WIDTH-1), signed
     localparam integer MW = WIDTH + 1;      // seq_mult operands (m < 2^WIDTH where it matters)
     localparam integer SW = 2 * MW;         // set-up sums: a, b < 2^(2*WIDTH-1), m^2 < 2^(2*WIDTH)
-    localparam integer SK = MW;             // set-up chunk
-    localparam [3:0] IDLE = 4'd0, PREP = 4'd1, MUL1 = 4'd2, ADD1 = 4'd3, ADD2 = 4'd4, MUL2 = 4'd5,
-                     ADD3 = 4'd6, CHECK = 4'd7, RUN = 4'd8;
+    localparam [1:0] IDLE = 2'd0, SETUP = 2'd1, RUN = 2'd2;   // SETUP ends with circle_setup's check
 
-    reg  [3:0]       state_q;
-    reg              sub_q;                 // second cycle of a two-cycle sum
+    reg  [1:0]       state_q;
     reg  [WIDTH-1:0] x0_q, y0_q, x1_q, y1_q;
     reg              ccw_q;
-    reg  [SW-1:0]    a_q, b_q;              // R^2 (then min(a, b)), |End|^2
-    reg  [SW-1:0]    d_q, nd_q, t_q;        // b - a, a - b, min(a, b) + (m - 1) div 2 - m^2
-    reg  [2:0]       carry_q;               // chunk carries of the two-cycle sums
-    reg  [MW-1:0]    m_q, h_q;              // m = |d|, (m - 1) div 2
-    reg              dzero_q, msmall_q;
     reg              trig_x_q, trig_y_q;
+    reg              form_bad_q;            // a coordinate negative, start at the origin, wrong way
 
     wire load = start & (state_q == IDLE);
     assign busy = state_q != IDLE;
 
-    // ---- set-up products ----
-    wire [SW:0]   d_sum, nd_sum;
-    wire [MW-1:0] m_abs = d_sum[SW-1] ? nd_sum[MW-1:0] : d_sum[MW-1:0];        // |d| (ADD2, 2nd cycle)
-    wire          round1 = state_q == PREP, mstart3 = round1 || state_q == ADD2 && sub_q;
-    wire [MW-1:0] ex0 = {1'b0, x0_q}, ey0 = {1'b0, y0_q}, ex1 = {1'b0, x1_q}, ey1 = {1'b0, y1_q};
-    wire [MW-1:0] mop3 = round1 ? ey1 : m_abs;
-    wire [SW-1:0] p0, p1, p2, p3;
-    wire          mdone;
-    wire [3:0]    mbusy;
-    wire [2:0]    mdone_other;
-    seq_mult #(.WIDTH(MW)) u_mul0 (.clk(clk), .rst(rst), .start(round1), .a(ex0), .b(ex0),
-                                   .busy(mbusy[0]), .done(mdone_other[0]), .product(p0));
-    seq_mult #(.WIDTH(MW)) u_mul1 (.clk(clk), .rst(rst), .start(round1), .a(ey0), .b(ey0),
-                                   .busy(mbusy[1]), .done(mdone_other[1]), .product(p1));
-    seq_mult #(.WIDTH(MW)) u_mul2 (.clk(clk), .rst(rst), .start(round1), .a(ex1), .b(ex1),
-                                   .busy(mbusy[2]), .done(mdone_other[2]), .product(p2));
-    seq_mult #(.WIDTH(MW)) u_mul3 (.clk(clk), .rst(rst), .start(mstart3), .a(mop3), .b(mop3),
-                                   .busy(mbusy[3]), .done(mdone), .product(p3));
-    // Two-cycle sum x + y + cin: low chunk now, high chunk with the registered carry.
-    function automatic [SW:0] sum2;          // {carry out of the low chunk, sum}
-        input [SW-1:0] x, y;
-        input cin, hcin;
-        reg [SK:0]   lo;
-        reg [SK-1:0] hi;
-        begin
-            lo = {1'b0, x[SK-1:0]} + {1'b0, y[SK-1:0]} + {{SK{1'b0}}, cin};
-            hi = x[SW-1:SK] + y[SW-1:SK] + {{(SK-1){1'b0}}, hcin};
-            sum2 = {lo[SK], hi, lo[SK-1:0]};
-        end
-    endfunction
-    wire [SW:0] a_sum = sum2(p0, p1, 1'b0, carry_q[0]);                      // ADD1
-    wire [SW:0] b_sum = sum2(p2, p3, 1'b0, carry_q[1]);
-    assign d_sum = sum2(b_q, ~a_q, 1'b1, carry_q[0]);                         // ADD2
-    assign nd_sum = sum2(a_q, ~b_q, 1'b1, carry_q[1]);
-    wire [SW-1:0] h_w = {{(SW-MW){1'b0}}, h_q};                               // ADD3: s + h - m^2
-    wire [SW-1:0] tcs_s = a_q ^ h_w ^ ~p3;
-    wire [SW-1:0] tcs_c = {(a_q[SW-2:0] & h_w[SW-2:0]) | (a_q[SW-2:0] & ~p3[SW-2:0]) |
-                           (h_w[SW-2:0] & ~p3[SW-2:0]), 1'b1};
-    wire [SW:0] t_sum = sum2(tcs_s, tcs_c, 1'b0, carry_q[2]);
+    // ---- set-up: R^2, |End|^2, band test ----
+    wire          check, on_band, setup_busy;
+    circle_setup #(.MW(MW), .SW(SW)) u_setup (
+        .clk(clk), .rst(rst), .start(load),
+        .x0({1'b0, x0_q}), .y0({1'b0, y0_q}), .x1({1'b0, x1_q}), .y1({1'b0, y1_q}),
+        .busy(setup_busy), .check(check), .on_band(on_band)
+    );
 
     // ---- command check (CHECK cycle) ----
-    wire on_band = dzero_q || (msmall_q && !t_q[SW-1]);
     wire negative = x0_q[WIDTH-1] | y0_q[WIDTH-1] | x1_q[WIDTH-1] | y1_q[WIDTH-1];
     wire wrong_way = ccw_q ? ($signed(x1_q) > $signed(x0_q) || $signed(y1_q) < $signed(y0_q))
                            : ($signed(x1_q) < $signed(x0_q) || $signed(y1_q) > $signed(y0_q));
     wire at_origin = x0_q == {WIDTH{1'b0}} && y0_q == {WIDTH{1'b0}};
-    wire bad = negative || at_origin || wrong_way || !on_band;
-    wire begin_run = state_q == CHECK && !bad;
+    wire bad = form_bad_q || !on_band;      // the command's own flags settle during the set-up
+    wire begin_run = check && !bad;
     wire [HW-1:0] sx0 = {x0_q[WIDTH-1], x0_q}, sy0 = {y0_q[WIDTH-1], y0_q};
     wire [HW-1:0] sx1 = {x1_q[WIDTH-1], x1_q}, sy1 = {y1_q[WIDTH-1], y1_q};
     wire [HW-1:0] count_x = ccw_q ? sx0 - sx1 : sx1 - sx0;
@@ -194,19 +154,9 @@ module circ_quadrant #(
             x1_q     <= {WIDTH{1'b0}};
             y1_q     <= {WIDTH{1'b0}};
             ccw_q    <= 1'b0;
-            sub_q    <= 1'b0;
-            a_q      <= {SW{1'b0}};
-            b_q      <= {SW{1'b0}};
-            d_q      <= {SW{1'b0}};
-            nd_q     <= {SW{1'b0}};
-            t_q      <= {SW{1'b0}};
-            carry_q  <= 3'd0;
-            m_q      <= {MW{1'b0}};
-            h_q      <= {MW{1'b0}};
-            dzero_q  <= 1'b0;
-            msmall_q <= 1'b0;
             trig_x_q <= 1'b0;
             trig_y_q <= 1'b0;
+            form_bad_q <= 1'b0;
             dir_x    <= 1'b0;
             dir_y    <= 1'b0;
             step_x   <= 1'b0;
@@ -214,7 +164,6 @@ module circ_quadrant #(
             done     <= 1'b0;
             error    <= 1'b0;
         end else begin
-            sub_q <= 1'b0;
             case (state_q)
                 IDLE: if (load) begin
                     x0_q    <= x0;
@@ -222,41 +171,9 @@ module circ_quadrant #(
                     x1_q    <= x1;
                     y1_q    <= y1;
                     ccw_q   <= ccw;
-                    state_q <= PREP;
+                    state_q <= SETUP;
                 end
-                PREP: state_q <= MUL1;          // round 1 starts
-                MUL1: if (mdone) state_q <= ADD1;
-                ADD1: begin
-                    a_q     <= a_sum[SW-1:0];
-                    b_q     <= b_sum[SW-1:0];
-                    carry_q <= {1'b0, b_sum[SW], a_sum[SW]};
-                    sub_q   <= !sub_q;
-                    if (sub_q) state_q <= ADD2;
-                end
-                ADD2: begin                     // round 2 (m^2) starts in the second cycle
-                    d_q     <= d_sum[SW-1:0];
-                    nd_q    <= nd_sum[SW-1:0];
-                    carry_q <= {1'b0, nd_sum[SW], d_sum[SW]};
-                    sub_q   <= !sub_q;
-                    if (sub_q) begin
-                        a_q     <= d_sum[SW-1] ? b_q : a_q;     // s = min(a, b)
-                        m_q     <= m_abs;
-                        state_q <= MUL2;
-                    end
-                end
-                MUL2: begin
-                    h_q      <= (m_q - 1'b1) >> 1;
-                    dzero_q  <= d_q == {SW{1'b0}};
-                    msmall_q <= (d_q[SW-1] ? nd_q[SW-1:WIDTH] : d_q[SW-1:WIDTH]) == {(SW-WIDTH){1'b0}};
-                    if (mdone) state_q <= ADD3;
-                end
-                ADD3: begin
-                    t_q     <= t_sum[SW-1:0];
-                    carry_q <= {t_sum[SW], 2'b00};
-                    sub_q   <= !sub_q;
-                    if (sub_q) state_q <= CHECK;
-                end
-                CHECK: begin
+                SETUP: if (check) begin
                     state_q  <= bad ? IDLE : RUN;
                     trig_x_q <= !bad && count_x != {HW{1'b0}};
                     trig_y_q <= !bad && count_y != {HW{1'b0}};
@@ -270,14 +187,16 @@ module circ_quadrant #(
                 end
                 default: state_q <= IDLE;
             endcase
+            form_bad_q <= negative || at_origin || wrong_way;
             step_x <= act_x;
             step_y <= act_y;
             done   <= at_end;
-            error  <= state_q == CHECK && bad;
+            error  <= check && bad;
         end
     end
 
-    // Inverted counter outputs are not used; f is for benches and waves.
-    wire unused = &{1'b0, half1_n, half2_n, kox_n, koy_n, f, mbusy, mdone_other, nd_q[WIDTH-1:0]};
+    // Inverted counter outputs and the set-up's extra products and sums are not used;
+    // f is for benches and waves.
+    wire unused = &{1'b0, half1_n, half2_n, kox_n, koy_n, f, setup_busy};
 endmodule
 `default_nettype wire

@@ -79,79 +79,123 @@ def arc_setup_cycles(width: int = 32) -> int:
     return 2 * width + 16
 
 
+STEP_OUTPUTS = {"step_x": False, "step_y": False, "dir_x": False, "dir_y": False}
+
+
+class ArcStepper(CycleModel):
+    """Cycle model of rtl/arc_stepper.v, circ_arc's run loop.
+
+    While `run` is low the point follows the inputs (u0, v0) and E = 0.  With `run`, one
+    step of `arc_steps` per tick; a step into a new octant is followed by a reload cycle,
+    which takes no step (`tick` is an enable, as the synchronization buffer's ~STOP).
+    """
+
+    watch = {**STEP_OUTPUTS, "fin": False, "u": True, "v": True, "e": True}
+
+    def __init__(self):
+        self.reset()
+
+    def reset(self) -> None:
+        self.u = self.v = self.e = 0
+        self.step_x = self.step_y = self.dir_x = self.dir_y = self.fin = 0
+        self.reload = 0
+
+    def clock(self, inputs) -> None:
+        if inputs.get("rst"):                     # control reset; the point follows the inputs
+            self.reset()
+            self.u, self.v = inputs.get("u0", 0), inputs.get("v0", 0)
+            return
+        run, tick = inputs.get("run"), inputs.get("tick")
+        go = run and not self.fin and not self.reload and tick
+        act_x = act_y = neg_x = neg_y = fin = reload = 0
+        if not run:
+            self.u, self.v, self.e = inputs["u0"], inputs["v0"], 0
+        elif go:
+            u, v, u1, v1, ccw = self.u, self.v, inputs["u1"], inputs["v1"], inputs["ccw"]
+            octant = _octant(u, v, ccw)
+            _, (ax, ay), (bx, by) = octant
+            pa, pb = u * ax + v * ay, u * bx + v * by
+            axial_e = self.e + 2 * pa + 1
+            take_diagonal = (axial_e + pb < 0) == (pb >= 0)          # T = E + 2 P.a + P.b + 1
+            sx, sy = (ax + bx, ay + by) if take_diagonal else (ax, ay)
+            turn = 1 if ccw else -1
+            ahead = turn * (u * v1 - v * u1) > 0
+            reached = turn * ((u + sx) * v1 - (v + sy) * u1) <= 0
+            last = ahead and reached and (u + sx) * u1 + (v + sy) * v1 > 0
+            if last:
+                sx, sy = sign(u1 - u), sign(v1 - v)
+            act_x, act_y, neg_x, neg_y = int(sx != 0), int(sy != 0), int(sx < 0), int(sy < 0)
+            self.u, self.v = u + sx, v + sy
+            self.e = axial_e + (2 * pb + 1 if take_diagonal else 0)
+            fin = int(last)
+            reload = int(not last and _octant(self.u, self.v, ccw) != octant)
+        if act_x:
+            self.dir_x = neg_x
+        if act_y:
+            self.dir_y = neg_y
+        self.step_x, self.step_y, self.fin, self.reload = act_x, act_y, fin, reload
+
+
 class CircArc(CycleModel):
-    """Cycle model of rtl/circ_arc.v."""
+    """Cycle model of rtl/circ_arc.v: the set-up as a count of cycles, then ArcStepper."""
 
     IDLE, SETUP, CHECK, RUN, LAST = range(5)
-    watch = {**MOTION_OUTPUTS, "error": False, "e_q": True, "u_q": True, "v_q": True}
+    watch = {**MOTION_OUTPUTS, "error": False, "e": True, "pos_u": True, "pos_v": True}
 
     def __init__(self, width: int = 32):
         self.width = width
+        self.stepper = ArcStepper()
         self.reset()
 
     @property
     def busy(self) -> int:
         return int(self.state != self.IDLE)
 
+    def __getattr__(self, name):            # the stepper's outputs, as circ_arc shows them
+        names = {"step_x": "step_x", "step_y": "step_y", "dir_x": "dir_x", "dir_y": "dir_y",
+                 "e": "e", "pos_u": "u", "pos_v": "v"}
+        if name in names:
+            return getattr(self.__dict__["stepper"], names[name])
+        raise AttributeError(name)
+
     def reset(self) -> None:
         self.state = self.IDLE
-        self.u_q = self.v_q = self.u1 = self.v1 = self.ccw = self.full = 0
-        self.e_q = self.cross = self.dot = self.a = self.b = self.count = 0
-        self.step_x = self.step_y = self.dir_x = self.dir_y = self.done = self.error = 0
+        self.u0 = self.v0 = self.u1 = self.v1 = self.ccw = self.full = 0
+        self.a = self.b = self.count = 0
+        self.done = self.error = 0
 
     def clock(self, inputs) -> None:
+        fin = self.stepper.fin
+        self.stepper.clock({"rst": inputs.get("rst"), "run": int(self.state == self.RUN),
+                            "tick": inputs.get("tick"), "u0": self.u0, "v0": self.v0,
+                            "u1": self.u1, "v1": self.v1, "ccw": self.ccw})
         if inputs.get("rst"):
             self.reset()
             return
-        act_x = act_y = neg_x = neg_y = error = 0
+        error = 0
         w = self.width
         state = self.state
         if state == self.IDLE and inputs.get("start"):
             cx, cy = wrap(inputs["cx"], w), wrap(inputs["cy"], w)
-            self.u_q, self.v_q = wrap(inputs["x0"], w) - cx, wrap(inputs["y0"], w) - cy
+            self.u0, self.v0 = wrap(inputs["x0"], w) - cx, wrap(inputs["y0"], w) - cy
             self.u1, self.v1 = wrap(inputs["x1"], w) - cx, wrap(inputs["y1"], w) - cy
             self.ccw, self.full = int(bool(inputs.get("ccw"))), int(bool(inputs.get("full")))
             self.state, self.count = self.SETUP, arc_setup_cycles(w) - 1
         elif state == self.SETUP:
             self.count -= 1
             if self.count == 0:
-                u, v, u1, v1 = self.u_q, self.v_q, self.u1, self.v1
+                u, v, u1, v1 = self.u0, self.v0, self.u1, self.v1
                 self.a, self.b = u * u + v * v, u1 * u1 + v1 * v1
-                self.cross, self.dot = u * v1 - v * u1, u * u1 + v * v1
                 self.state = self.CHECK
         elif state == self.CHECK:
             limit = 1 << (w - 3)
-            fits = all(-limit < r < limit for r in (self.u_q, self.v_q, self.u1, self.v1))
+            fits = all(-limit < r < limit for r in (self.u0, self.v0, self.u1, self.v1))
             bad = not fits or self.a == 0 or not within_half_step(self.a, self.b)
             error = int(bad)
-            at_start = (self.u_q, self.v_q) == (self.u1, self.v1)
-            self.e_q = 0
+            at_start = (self.u0, self.v0) == (self.u1, self.v1)
             self.state = self.IDLE if bad else self.LAST if at_start and not self.full else self.RUN
-        elif state == self.RUN and inputs.get("tick"):
-            u, v = self.u_q, self.v_q
-            x_major, (ax, ay), (bx, by) = _octant(u, v, self.ccw)
-            pa, pb = u * ax + v * ay, u * bx + v * by
-            axial_e = self.e_q + 2 * pa + 1
-            take_diagonal = (axial_e + pb < 0) == (pb >= 0)
-            sx, sy = (ax + bx, ay + by) if take_diagonal else (ax, ay)
-            cross = self.cross + sx * self.v1 - sy * self.u1
-            dot = self.dot + sx * self.u1 + sy * self.v1
-            ahead = self.cross > 0 if self.ccw else self.cross < 0
-            reached = cross <= 0 if self.ccw else cross >= 0
-            last = ahead and reached and dot > 0
-            if last:
-                sx, sy = sign(self.u1 - u), sign(self.v1 - v)
-            act_x, act_y, neg_x, neg_y = int(sx != 0), int(sy != 0), int(sx < 0), int(sy < 0)
-            self.u_q, self.v_q = u + sx if act_x else u, v + sy if act_y else v
-            self.e_q = axial_e + (2 * pb + 1 if take_diagonal else 0)
-            self.cross, self.dot = cross, dot
-            if last:
-                self.state = self.LAST
+        elif state == self.RUN and fin:
+            self.state = self.IDLE
         elif state == self.LAST:
             self.state = self.IDLE
-        if act_x:
-            self.dir_x = neg_x
-        if act_y:
-            self.dir_y = neg_y
-        self.step_x, self.step_y = act_x, act_y
-        self.done, self.error = int(state == self.LAST), error
+        self.done, self.error = int(state == self.LAST or (state == self.RUN and fin)), error

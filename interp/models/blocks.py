@@ -175,3 +175,102 @@ class SeqMult(CycleModel):
         self.count += 1
         if self.count == w + 2:
             self.busy, self.done = 0, 1
+
+
+class CircleSetup(CycleModel):
+    """rtl/circle_setup.v: set-up of a circle command, register by register.
+
+    Round 1 squares x0, y0, x1, y1 on four SeqMult models; a = x0^2 + y0^2 and
+    b = x1^2 + y1^2 (ADD1), d = b - a and -d (ADD2), each a two-cycle sum of SW/2-bit
+    chunks with a registered carry.  Round 2 forms m^2, m = |d|; ADD3 forms
+    t = min(a, b) + (m - 1) div 2 - m^2; CHECK shows on_band = d == 0 or
+    (m < 2^(SW/2-1) and t >= 0).
+    """
+
+    IDLE, PREP, MUL1, ADD1, ADD2, MUL2, ADD3, CHECK = range(8)
+    watch = {"busy": False, "check": False, "on_band": False}
+
+    def __init__(self, mw: int, sw: int):
+        self.mw, self.sw, self.sk = mw, sw, sw // 2
+        self.mask = (1 << sw) - 1
+        self.mults = [SeqMult(mw) for _ in range(4)]
+        self.reset()
+
+    def reset(self) -> None:
+        self.state = self.sub = self.a = self.b = self.d = self.nd = self.t = 0
+        self.m = self.h = self.dzero = self.msmall = 0
+        self.carry = [0, 0, 0]
+        for mult in self.mults:
+            mult.reset()
+
+    def sum2(self, x: int, y: int, cin: int, hcin: int) -> tuple[int, int]:
+        """(x + y + cin, carry out of the low chunk): high chunk with the registered carry."""
+        sk, chunk = self.sk, (1 << self.sk) - 1
+        lo = (x & chunk) + (y & chunk) + cin
+        hi = ((x >> sk & chunk) + (y >> sk & chunk) + hcin) & chunk
+        return hi << sk | lo & chunk, lo >> sk
+
+    @property
+    def busy(self) -> int:
+        return int(self.state != self.IDLE)
+
+    @property
+    def check(self) -> int:
+        return int(self.state == self.CHECK)
+
+    @property
+    def on_band(self) -> int:
+        return int(self.dzero or (self.msmall and not self.t >> (self.sw - 1)))
+
+    def clock(self, inputs) -> None:
+        if inputs.get("rst"):
+            self.reset()
+            return
+        mw, sw, mask = self.mw, self.sw, self.mask
+        state, sub, top = self.state, self.sub, sw - 1
+        p = [mult.product & mask for mult in self.mults]
+        # Combinational values of this cycle (before the edge).
+        d_sum, d_c = self.sum2(self.b, ~self.a & mask, 1, self.carry[0])
+        nd_sum, nd_c = self.sum2(self.a, ~self.b & mask, 1, self.carry[1])
+        m_abs = (nd_sum if d_sum >> top else d_sum) & ((1 << mw) - 1)
+        round1, round2 = state == self.PREP, state == self.ADD2 and sub
+        squares = [inputs["x0"], inputs["y0"], inputs["x1"]]
+        for k, mult in enumerate(self.mults[:3]):
+            mult.clock({"start": int(round1), "a": squares[k], "b": squares[k]})
+        op3 = inputs["y1"] if round1 else m_abs
+        done = self.mults[3].done
+        self.mults[3].clock({"start": int(round1 or round2), "a": op3, "b": op3})
+        # Registers.
+        self.sub = 0
+        if state == self.IDLE:
+            if inputs.get("start"):
+                self.state = self.PREP
+        elif state == self.PREP:
+            self.state = self.MUL1
+        elif state == self.MUL1:
+            self.state = self.ADD1 if done else state
+        elif state == self.ADD1:
+            (self.a, a_c), (self.b, b_c) = self.sum2(p[0], p[1], 0, self.carry[0]), \
+                self.sum2(p[2], p[3], 0, self.carry[1])
+            self.carry, self.sub = [a_c, b_c, 0], int(not sub)
+            self.state = self.ADD2 if sub else state
+        elif state == self.ADD2:
+            self.d, self.nd, self.carry, self.sub = d_sum, nd_sum, [d_c, nd_c, 0], int(not sub)
+            if sub:
+                self.a = self.b if d_sum >> top else self.a          # s = min(a, b)
+                self.m, self.state = m_abs, self.MUL2
+        elif state == self.MUL2:
+            self.h = ((self.m - 1) & ((1 << mw) - 1)) >> 1
+            self.dzero = int(self.d == 0)
+            self.msmall = int((self.nd if self.d >> top else self.d) >> (self.sk - 1) == 0)
+            self.state = self.ADD3 if done else state
+        elif state == self.ADD3:
+            nsq = ~p[3] & mask
+            tcs_s = self.a ^ self.h ^ nsq
+            tcs_c = ((self.a & self.h | self.a & nsq | self.h & nsq) << 1 | 1) & mask
+            self.t, t_c = self.sum2(tcs_s, tcs_c, 0, self.carry[2])
+            self.carry = [0, 0, t_c]
+            self.sub = int(not sub)
+            self.state = self.CHECK if sub else state
+        else:
+            self.state = self.IDLE

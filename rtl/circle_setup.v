@@ -1,0 +1,160 @@
+`default_nettype none
+// Set-up sequencer of a circle command (circ_quadrant, circ_arc): the half-step band
+// test of the end point against the circle through the start point, without a
+// combinational multiplier.  Four seq_mult instances, two rounds:
+//   round 1: x0^2, y0^2, x1^2, y1^2  ->  a = x0^2 + y0^2 (R^2), b = x1^2 + y1^2
+//            (|End|^2), d = b - a and -d;
+//   round 2: m^2 with m = |d| (multiplier 3);
+//   band:    |sqrt(b) - sqrt(a)| <= 1/2 (circle_band's test)  <=>  d = 0 or
+//            (m < 2^(SW/2 - 1) and m^2 <= min(a, b) + (m - 1) div 2),
+//            t = min(a, b) + (m - 1) div 2 - m^2 with a carry-save step in front.
+// The parent keeps a, b below 2^(SW-2) by its coordinate range, so a larger m is
+// off the band and m^2 and t fit in SW bits.  Sums of SW bits take two cycles, two
+// chunks of SW/2 bits with a registered carry (ADD1: a, b; ADD2: d, -d; ADD3: t).
+//
+// Timing (states IDLE, PREP, MUL1, ADD1, ADD2, MUL2, ADD3, CHECK): `start` in an
+// idle cycle (cycle 0) begins; x0 .. y1 are captured by round 1 in cycle 1 (PREP);
+// ADD1 in cycles MW+5, MW+6; ADD2 in MW+7, MW+8 (round 2 starts in MW+8); ADD3 in
+// 2*MW+12, 2*MW+13; `check` is high in cycle 2*MW+14, with on_band valid; idle again
+// in the next cycle.  `start` while busy is ignored; `rst` returns to idle at once.
+module circle_setup #(
+    parameter integer MW    = 33,   // seq_mult operand width (signed inputs; m = |d| fits)
+    parameter integer SW    = 66    // sum width: even, MW < SW <= 2*MW
+) (
+    input  wire            clk,
+    input  wire            rst,
+    input  wire            start,   // begin a set-up (ignored while busy)
+    input  wire [MW-1:0]   x0,      // round 1 operands (signed): a = x0^2 + y0^2
+    input  wire [MW-1:0]   y0,
+    input  wire [MW-1:0]   x1,      // b = x1^2 + y1^2
+    input  wire [MW-1:0]   y1,
+    output wire            busy,
+    output wire            check,   // one-cycle strobe: on_band valid
+    output wire            on_band  // the end point is within half a step of the circle
+);
+    initial begin
+        if (MW < 2) $error("%m: MW must be at least 2");
+        if (SW % 2 != 0 || SW <= MW || SW > 2 * MW) $error("%m: SW out of range");
+    end
+
+    localparam integer SK = SW / 2;         // chunk
+    localparam integer PW = 2 * MW;         // seq_mult product
+    localparam [2:0] IDLE = 3'd0, PREP = 3'd1, MUL1 = 3'd2, ADD1 = 3'd3, ADD2 = 3'd4, MUL2 = 3'd5,
+                     ADD3 = 3'd6, CHECK = 3'd7;
+
+    reg  [2:0]    state_q;
+    reg           sub_q;                    // second cycle of a two-cycle sum
+    reg  [SW-1:0] a_q, b_q;                 // R^2 (then min(a, b)), |End|^2
+    reg  [SW-1:0] d_q, nd_q, t_q;           // b - a, a - b, min(a, b) + (m - 1) div 2 - m^2
+    reg  [2:0]    carry_q;                  // chunk carries of the two-cycle sums
+    reg  [MW-1:0] m_q, h_q;                 // m = |d|, (m - 1) div 2
+    reg           dzero_q, msmall_q;
+
+    assign busy = state_q != IDLE;
+    assign check = state_q == CHECK;
+    assign on_band = dzero_q || (msmall_q && !t_q[SW-1]);
+
+    // ---- multipliers: round 1 in PREP, round 2 in ADD2's second cycle ----
+    wire [SW:0]   d_sum, nd_sum;
+    wire [MW-1:0] m_abs = d_sum[SW-1] ? nd_sum[MW-1:0] : d_sum[MW-1:0];      // |d| (ADD2, 2nd cycle)
+    wire          round1 = state_q == PREP;
+    wire          round2 = state_q == ADD2 && sub_q;
+    wire [3*MW-1:0] op1 = {x1, y0, x0};      // round 1 of multipliers 2, 1, 0
+    wire [4*PW-1:0] p;                      // products of multipliers 3, 2, 1, 0
+    wire          mdone;
+    wire [3:0]    mbusy;
+    wire [2:0]    mdone_other;
+    genvar k;
+    generate
+        for (k = 0; k < 3; k = k + 1) begin : g_mul
+            seq_mult #(.WIDTH(MW)) u_mul (.clk(clk), .rst(rst), .start(round1),
+                                          .a(op1[k*MW +: MW]), .b(op1[k*MW +: MW]), .busy(mbusy[k]),
+                                          .done(mdone_other[k]), .product(p[k*PW +: PW]));
+        end
+    endgenerate
+    wire [MW-1:0] mop3 = round1 ? y1 : m_abs;
+    seq_mult #(.WIDTH(MW)) u_mul3 (.clk(clk), .rst(rst), .start(round1 || round2), .a(mop3), .b(mop3),
+                                   .busy(mbusy[3]), .done(mdone), .product(p[3*PW +: PW]));
+    wire [SW-1:0] msq = p[3*PW +: SW];
+
+    // Two-cycle sum x + y + cin: low chunk now, high chunk with the registered carry.
+    function automatic [SW:0] sum2;          // {carry out of the low chunk, sum}
+        input [SW-1:0] x, y;
+        input cin, hcin;
+        reg [SK:0]   lo;
+        reg [SK-1:0] hi;
+        begin
+            lo = {1'b0, x[SK-1:0]} + {1'b0, y[SK-1:0]} + {{SK{1'b0}}, cin};
+            hi = x[SW-1:SK] + y[SW-1:SK] + {{(SK-1){1'b0}}, hcin};
+            sum2 = {lo[SK], hi, lo[SK-1:0]};
+        end
+    endfunction
+    wire [SW:0] a_sum = sum2(p[0 +: SW], p[PW +: SW], 1'b0, carry_q[0]);   // ADD1
+    wire [SW:0] b_sum = sum2(p[2*PW +: SW], msq, 1'b0, carry_q[1]);
+    assign d_sum = sum2(b_q, ~a_q, 1'b1, carry_q[0]);                         // ADD2
+    assign nd_sum = sum2(a_q, ~b_q, 1'b1, carry_q[1]);
+    wire [SW-1:0] h_w = {{(SW-MW){1'b0}}, h_q};                               // ADD3: s + h - m^2
+    wire [SW-1:0] tcs_s = a_q ^ h_w ^ ~msq;
+    wire [SW-1:0] tcs_c = {(a_q[SW-2:0] & h_w[SW-2:0]) | (a_q[SW-2:0] & ~msq[SW-2:0]) |
+                           (h_w[SW-2:0] & ~msq[SW-2:0]), 1'b1};               // + 1: -m^2 = ~m^2 + 1
+    wire [SW:0] t_sum = sum2(tcs_s, tcs_c, 1'b0, carry_q[2]);
+
+    always @(posedge clk) begin
+        if (rst) begin
+            state_q  <= IDLE;
+            sub_q    <= 1'b0;
+            a_q      <= {SW{1'b0}};
+            b_q      <= {SW{1'b0}};
+            d_q      <= {SW{1'b0}};
+            nd_q     <= {SW{1'b0}};
+            t_q      <= {SW{1'b0}};
+            carry_q  <= 3'd0;
+            m_q      <= {MW{1'b0}};
+            h_q      <= {MW{1'b0}};
+            dzero_q  <= 1'b0;
+            msmall_q <= 1'b0;
+        end else begin
+            sub_q <= 1'b0;
+            case (state_q)
+                IDLE: if (start) state_q <= PREP;
+                PREP: state_q <= MUL1;          // round 1 starts
+                MUL1: if (mdone) state_q <= ADD1;
+                ADD1: begin
+                    a_q     <= a_sum[SW-1:0];
+                    b_q     <= b_sum[SW-1:0];
+                    carry_q <= {1'b0, b_sum[SW], a_sum[SW]};
+                    sub_q   <= !sub_q;
+                    if (sub_q) state_q <= ADD2;
+                end
+                ADD2: begin                     // round 2 starts in the second cycle
+                    d_q     <= d_sum[SW-1:0];
+                    nd_q    <= nd_sum[SW-1:0];
+                    carry_q <= {1'b0, nd_sum[SW], d_sum[SW]};
+                    sub_q   <= !sub_q;
+                    if (sub_q) begin
+                        a_q     <= d_sum[SW-1] ? b_q : a_q;     // s = min(a, b)
+                        m_q     <= m_abs;
+                        state_q <= MUL2;
+                    end
+                end
+                MUL2: begin
+                    h_q      <= (m_q - 1'b1) >> 1;
+                    dzero_q  <= d_q == {SW{1'b0}};
+                    msmall_q <= (d_q[SW-1] ? nd_q[SW-1:SK-1] : d_q[SW-1:SK-1]) == {(SK+1){1'b0}};
+                    if (mdone) state_q <= ADD3;
+                end
+                ADD3: begin
+                    t_q     <= t_sum[SW-1:0];
+                    carry_q <= {t_sum[SW], 2'b00};
+                    sub_q   <= !sub_q;
+                    if (sub_q) state_q <= CHECK;
+                end
+                default: state_q <= IDLE;       // CHECK
+            endcase
+        end
+    end
+
+    // Busy flags are implied by the state; product bits above SW are not needed.
+    wire unused = &{1'b0, mbusy, mdone_other, nd_q, p};
+endmodule
+`default_nettype wire

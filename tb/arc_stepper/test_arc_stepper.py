@@ -1,0 +1,100 @@
+"""Arc run loop: RTL vs cycle model every cycle, steps vs the step-level midpoint model.
+
+Every move loads the inputs (`run` low for a few cycles), then runs with a tick
+pattern; the octant reloads (no step, whatever `tick`) are compared too.
+"""
+import itertools
+import math
+
+import cocotb
+import pytest
+
+from interp.corecheck import moves
+from interp.models.arc import ArcStepper, arc_steps
+from interp.models.lecture import within_half_step
+from interp.sim import run_cocotb
+from interp.tbkit import TB, scoreboard, seeded_rng
+
+IDLE = {"run": 0, "tick": 0, "u0": 0, "v0": 0, "u1": 0, "v1": 0, "ccw": 0}
+
+
+def inputs(u0, v0, u1, v1, ccw):
+    return {"u0": u0, "v0": v0, "u1": u1, "v1": v1, "ccw": ccw}
+
+
+def arc(load, tick):
+    """`run` low for 7 cycles with the inputs, then run and tick until `fin`, then 2 idle cycles."""
+    for _ in range(7):
+        yield {**load, "run": 0, "tick": 1}
+    cycle = 0
+    sample = yield {**load, "run": 1, "tick": tick(cycle)}
+    while not sample["fin"]:
+        cycle += 1
+        if cycle > 100_000:
+            raise RuntimeError("no fin")
+        sample = yield {**load, "run": 1, "tick": tick(cycle)}
+    for _ in range(2):
+        yield {**load, "run": 0, "tick": 0}
+
+
+async def check(tb, u0, v0, u1, v1, ccw, full, tick=lambda c: 1):
+    load = inputs(u0, v0, u1, v1, ccw)
+    samples = await scoreboard(tb, tb.ref, arc(load, tick), context=str((u0, v0, u1, v1, ccw)))
+    got = [(dx, dy) for dx, dy, _ in moves(samples)]
+    assert got == [(s.dx, s.dy) for s in arc_steps(0, 0, u0, v0, u1, v1, ccw, full)], (u0, v0, u1, v1, ccw)
+    return samples
+
+
+async def setup(dut):
+    tb = TB(dut)
+    await tb.reset(IDLE)
+    tb.ref = ArcStepper()
+    return tb
+
+
+@cocotb.test()
+async def circles(dut):
+    """Full circles R = 1 .. 12 both ways, ticks every cycle: one reload cycle per octant."""
+    tb = await setup(dut)
+    for r, ccw in itertools.product(range(1, 13), (0, 1)):
+        samples = await check(tb, r, 0, r, 0, ccw, True)
+        steps = len(arc_steps(0, 0, r, 0, r, 0, ccw, True))
+        run_cycles = len(samples) - 7 - 3
+        assert steps < run_cycles <= steps + 9, (r, steps, run_cycles)
+
+
+@cocotb.test()
+async def exhaustive_small(dut):
+    """Every start with |u|, |v| <= 4, every end within half a step, both ways."""
+    tb = await setup(dut)
+    for u0, v0 in itertools.product(range(-4, 5), repeat=2):
+        if u0 == v0 == 0:
+            continue
+        r2 = u0 * u0 + v0 * v0
+        ends = [(u, v) for u, v in itertools.product(range(-6, 7), repeat=2)
+                if within_half_step(r2, u * u + v * v) and (u, v) != (u0, v0)]
+        for (u1, v1), ccw in itertools.product(ends, (0, 1)):
+            await check(tb, u0, v0, u1, v1, ccw, False)
+
+
+@cocotb.test()
+async def random_arcs(dut):
+    """Random radii up to the width's limit, random tick patterns (a tick in a reload cycle waits)."""
+    rng = seeded_rng(dut, "random_arcs")
+    tb = await setup(dut)
+    width = int(dut.WIDTH.value)
+    for n in range(40):
+        r = int(2 ** rng.uniform(2, width - 3.6))
+        t0, sweep = rng.random() * 2 * math.pi, rng.uniform(-1, 1) * min(2 * math.pi, 300 / r)
+        u0, v0 = round(r * math.cos(t0)), round(r * math.sin(t0))
+        u1, v1 = round(r * math.cos(t0 + sweep)), round(r * math.sin(t0 + sweep))
+        if (u0, v0) == (0, 0) or (u0, v0) == (u1, v1) or not within_half_step(u0 * u0 + v0 * v0, u1 * u1 + v1 * v1):
+            continue
+        density = rng.choice([1.0, 0.7, 0.4])
+        await check(tb, u0, v0, u1, v1, int(sweep > 0), False, tick=lambda c: rng.random() < density)
+
+
+@pytest.mark.parametrize("width,carry_select", [(8, 1), (32, 1), (32, 0)])
+def test_arc_stepper(sim, width, carry_select):
+    run_cocotb(toplevel="arc_stepper", test_module="test_arc_stepper", sim=sim,
+               parameters={"WIDTH": width, "CARRY_SELECT": carry_select}, name=f"arc_stepper_w{width}_cs{carry_select}")
