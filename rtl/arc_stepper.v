@@ -189,31 +189,21 @@ module arc_stepper #(
         moved_for = {moved(tables[17:9], au + bu, av + bv), moved(tables[8:0], au + bu, av + bv),
                      moved(tables[17:9], au, av), moved(tables[8:0], au, av)};
     endfunction
-    // Per octant {x major, a < 0, b < 0}, with constant steps (so the tables are plain wiring).
-    function automatic [17:0] last_tables(input [2:0] oct, input [24:0] pos_t, dot_t);
-        case (oct)
-            3'b000:  last_tables = tables_for(0, 1, 1, 0, pos_t, dot_t);
-            3'b001:  last_tables = tables_for(0, 1, -1, 0, pos_t, dot_t);
-            3'b010:  last_tables = tables_for(0, -1, 1, 0, pos_t, dot_t);
-            3'b011:  last_tables = tables_for(0, -1, -1, 0, pos_t, dot_t);
-            3'b100:  last_tables = tables_for(1, 0, 0, 1, pos_t, dot_t);
-            3'b101:  last_tables = tables_for(1, 0, 0, -1, pos_t, dot_t);
-            3'b110:  last_tables = tables_for(-1, 0, 0, 1, pos_t, dot_t);
-            default: last_tables = tables_for(-1, 0, 0, -1, pos_t, dot_t);
-        endcase
-    endfunction
-    function automatic [99:0] shifted(input [2:0] oct, input [17:0] tables);
-        case (oct)
-            3'b000:  shifted = moved_for(0, 1, 1, 0, tables);
-            3'b001:  shifted = moved_for(0, 1, -1, 0, tables);
-            3'b010:  shifted = moved_for(0, -1, 1, 0, tables);
-            3'b011:  shifted = moved_for(0, -1, -1, 0, tables);
-            3'b100:  shifted = moved_for(1, 0, 0, 1, tables);
-            3'b101:  shifted = moved_for(1, 0, 0, -1, tables);
-            3'b110:  shifted = moved_for(-1, 0, 0, 1, tables);
-            default: shifted = moved_for(-1, 0, 0, -1, tables);
-        endcase
-    endfunction
+    // Per octant {x major, a < 0, b < 0} the tables are plain wiring of the command's and
+    // the octant's tables (continuous assignments: simulators re-evaluate them only when
+    // those change): last-step tables of every octant, and the current one's moved tables.
+    wire [8*18-1:0] lt_all;                    // octant o at bits 18 o
+    wire [8*100-1:0] st_all;
+    genvar go_i;
+    generate
+        for (go_i = 0; go_i < 8; go_i = go_i + 1) begin : g_octant
+            localparam integer XM = go_i / 4, MJ = go_i / 2 % 2, MN = go_i % 2;
+            localparam integer AU = XM != 0 ? (MJ != 0 ? -1 : 1) : 0, AV = XM != 0 ? 0 : (MJ != 0 ? -1 : 1);
+            localparam integer BU = XM != 0 ? 0 : (MN != 0 ? -1 : 1), BV = XM != 0 ? (MN != 0 ? -1 : 1) : 0;
+            assign lt_all[18 * go_i +: 18] = tables_for(AU, AV, BU, BV, pos_q, dot_q);
+            assign st_all[100 * go_i +: 100] = moved_for(AU, AV, BU, BV, lt_q);
+        end
+    endgenerate
     // Flags: x == k for k = -3 .. 3 (bit k + 3); the window of x + step for D = -2 .. 2.
     function automatic [6:0] small_eq(input [UW-1:0] x);
         reg hz, ho;
@@ -228,15 +218,9 @@ module arc_stepper #(
     function automatic [4:0] window(input move, neg, input [6:0] eq);
         window = !move ? eq[5:1] : neg ? eq[6:2] : eq[4:0];
     endfunction
-    // OR over the grid of window AND table.
+    // OR over the grid of window AND table (the window: one-hot per axis).
     function automatic hit(input [4:0] wu, wv, input [24:0] table_t);
-        integer i, j;
-        begin
-            hit = 1'b0;
-            for (i = 0; i < 5; i = i + 1)
-                for (j = 0; j < 5; j = j + 1)
-                    hit = hit || (wu[i] && wv[j] && table_t[5 * i + j]);
-        end
+        hit = |({{5{wu[4]}}, {5{wu[3]}}, {5{wu[2]}}, {5{wu[1]}}, {5{wu[0]}}} & {5{wv}} & table_t);
     endfunction
 
     // Carry-select sums for the loop (iCE40's carry chain is slow): the low part and both
@@ -329,8 +313,8 @@ module arc_stepper #(
 
     // Data registers without reset: they follow the inputs whenever `run` is low (or in reset).
     always @(posedge clk) begin
-        lt1_q <= last_tables(oct1, pos_q, dot_q);
-        lt2_q <= last_tables(oct2, pos_q, dot_q);
+        lt1_q <= lt_all[18 * oct1 +: 18];
+        lt2_q <= lt_all[18 * oct2 +: 18];
         if (loading) begin                    // the command's tables; the first octant, p and q
             u_q     <= u0;
             v_q     <= v0;
@@ -357,7 +341,7 @@ module arc_stepper #(
             p_q     <= p_0;
             p1_q    <= p_q + one;
             q_q     <= q_0;
-            lt_q    <= last_tables({xm_q, mjn_q, mnn_q}, pos_q, dot_q);
+            lt_q    <= lt_all[18 * {xm_q, mjn_q, mnn_q} +: 18];
             duw_q   <= due[5:1];
             dvw_q   <= dve[5:1];
         end else if (go) begin
@@ -392,7 +376,7 @@ module arc_stepper #(
             q1_q     <= inc_u(q_q);
             nq_q     <= inc_u(~q_q);
             qm1_q    <= q_q == {UW{1'b1}};
-            st_q     <= shifted({xm_q, mjn_q, mnn_q}, lt_q);
+            st_q     <= st_all[100 * {xm_q, mjn_q, mnn_q} +: 100];
             last_a_q <= hit(w1u, w1v, grid(lt_q[8:0]));
             last_d_q <= hit(w1u, w1v, grid(lt_q[17:9]));
         end
