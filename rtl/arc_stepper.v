@@ -234,14 +234,15 @@ module arc_stepper #(
                                       : {lo[LN] ? a[NW-1:LN] - ~b[NW-1:LN] : a[NW-1:LN] + b[NW-1:LN], lo[LN-1:0]};
         end
     endfunction
-    function automatic [UW-1:0] add_u(input [UW-1:0] a, b);
-        reg [LU:0] lo;
+    /* verilator lint_off UNUSEDSIGNAL */        // sum's top bit
+    function automatic [UW-1:0] add_u(input [UW-1:0] a, b);   // the same, one bit narrower
+        reg [NW-1:0] sum;
         begin
-            lo = {1'b0, a[LU-1:0]} + {1'b0, b[LU-1:0]};
-            add_u = CARRY_SELECT == 0 ? a + b
-                                      : {lo[LU] ? a[UW-1:LU] - ~b[UW-1:LU] : a[UW-1:LU] + b[UW-1:LU], lo[LU-1:0]};
+            sum = add_n({a[UW-1], a}, {b[UW-1], b});
+            add_u = sum[UW-1:0];
         end
     endfunction
+    /* verilator lint_on UNUSEDSIGNAL */
     function automatic [UW-1:0] inc_u(input [UW-1:0] a);     // a + 1
         inc_u = CARRY_SELECT == 0 ? a + 1'b1 : {&a[LU-1:0] ? a[UW-1:LU] + 1'b1 : a[UW-1:LU], a[LU-1:0] + 1'b1};
     endfunction
