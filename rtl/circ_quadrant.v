@@ -195,8 +195,8 @@ module circ_quadrant #(
         end
     end
 
-    // Inverted counter outputs and the set-up's extra products and sums are not used;
-    // f is for benches and waves.
+    // Inverted counter outputs and the set-up's busy flag are not used; f is for
+    // benches and waves.
     wire unused = &{1'b0, half1_n, half2_n, kox_n, koy_n, f, setup_busy};
 endmodule
 `default_nettype wire

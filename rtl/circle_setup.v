@@ -154,7 +154,8 @@ module circle_setup #(
         end
     end
 
-    // Busy flags are implied by the state; product bits above SW are not needed.
+    // Busy flags are implied by the state; product bits above SW and nd_q's low bits
+    // (only its sign part feeds msmall) are not needed.
     wire unused = &{1'b0, mbusy, mdone_other, nd_q, p};
 endmodule
 `default_nettype wire
