@@ -116,25 +116,46 @@ module su1571551 #(
     // move, steps left = counter 1 + counter 2 + 1 (the formal block proves
     // the flags equal to AND 9).  The patent's counters then feed nothing but
     // the benches and traces, and synthesis drops them.
+    // Like F's look-ahead sums, the two counters are cleared while idle (to
+    // 0 and -1) and take their start value through their adder, in the frame
+    // cycle, from an operand register that holds L - 1 while idle and -1
+    // after: every adder output goes straight into its register, with no
+    // load multiplexer behind the carry chain.  In the frame cycle the
+    // operand's sign says "none left" (L = 0).
     localparam integer CLO = CW * 2 / 5, CHI = CW - CLO;
-    reg  [CW-1:0] left1, left2;                         // steps left - 1, - 2
-    wire [CW-1:0] left1_dec, left2_dec;
-    wire          step = axial | diagonal;
-    carry_select_add #(.WIDTH(CW), .LOW(CLO), .SPLIT(CARRY_SELECT)) u_left1_dec (
-        .a(left1), .b({CW{1'b1}}), .b_high_plus1({CHI{1'b0}}), .sum(left1_dec));
-    carry_select_add #(.WIDTH(CW), .LOW(CLO), .SPLIT(CARRY_SELECT)) u_left2_dec (
-        .a(left2), .b({CW{1'b1}}), .b_high_plus1({CHI{1'b0}}), .sum(left2_dec));
+    reg  [CW-1:0]  left1, left2;                        // steps left - 1, - 2
+    reg  [CW-1:0]  left_op;                             // L - 1, then -1
+    reg  [CHI-1:0] left_op_hi1;                         // its high part + 1
+    wire [CW-1:0]  left1_sum, left2_sum;
+    wire           step = axial | diagonal;
+    // The step loop's registers advance on every tick while stepping and in
+    // every cycle while not: idle (start values), the frame cycle (set-up of
+    // the first step) and the last cycle (an update nobody reads; idle
+    // reloads them).  So their enable is one gate of a register and `tick`.
+    wire           advance = tick | ~active_q;
+    carry_select_add #(.WIDTH(CW), .LOW(CLO), .SPLIT(CARRY_SELECT)) u_left1_add (
+        .a(left1), .b(left_op), .b_high_plus1(left_op_hi1), .sum(left1_sum));
+    carry_select_add #(.WIDTH(CW), .LOW(CLO), .SPLIT(CARRY_SELECT)) u_left2_add (
+        .a(left2), .b(left_op), .b_high_plus1(left_op_hi1), .sum(left2_sum));
+    wire [CW-1:0] long_len_less1 = long_len - {{(CW-1){1'b0}}, 1'b1};
     always @(posedge clk) begin     // no reset: loaded while idle, read only while running
         if (idle) begin
-            left1 <= long_len - {{(CW-1){1'b0}}, 1'b1};
-            left2 <= long_len - {{(CW-2){1'b0}}, 2'd2};
-        end else if (step) begin
-            left1 <= left1_dec;
-            left2 <= left2_dec;
+            left1       <= {CW{1'b0}};
+            left2       <= {CW{1'b1}};
+            left_op     <= long_len_less1;
+            left_op_hi1 <= long_len_less1[CW-1:CLO] + {{(CHI-1){1'b0}}, 1'b1};
+        end else begin
+            if (advance) begin
+                left1 <= left1_sum;
+                left2 <= left2_sum;
+            end
+            left_op     <= {CW{1'b1}};
+            left_op_hi1 <= {CHI{1'b0}};
         end
     end
     wire run_next  = frame_q | active_q;                 // trigger 14 after this edge
-    wire none_left = step ? left2[CW-1] : left1[CW-1];   // after this edge
+    wire none_left = frame_q ? left_op[CW-1]             // after this edge
+                   : step ? left2[CW-1] : left1[CW-1];
     always @(posedge clk) begin
         if (rst) begin
             busy_q   <= 1'b0;
@@ -164,7 +185,11 @@ module su1571551 #(
             // registers hold their start values (taken in every idle cycle,
             // so at the load too), the frame cycle adds them, and mux 12
             // then selects the first step's operand.
-            localparam integer LO = FW * 2 / 5, HI = FW - LO;
+            // Carry select cuts the adders at LO.  A plain chain does not
+            // read the high-part registers, but the kept mux hierarchy below
+            // would keep them: so one bit there, not HI.
+            localparam integer LO = CARRY_SELECT != 0 ? FW * 2 / 5 : FW - 1, HI = FW - LO;
+            localparam [HI-1:0] HI_ONE = 1;
             reg  [CW-1:0] diagonal_q, axial_q;          // L - S, -S
             reg  [HI-1:0] diagonal_hi1_q, axial_hi1_q;  // high halves of d2, a2, plus one
             reg  [FW-1:0] f_q;
@@ -183,19 +208,42 @@ module su1571551 #(
                 if (idle) begin
                     diagonal_q     <= axial_count;
                     axial_q        <= axial_init;
-                    diagonal_hi1_q <= axial_count[CW-1:LO-1] + {{(HI-1){1'b0}}, 1'b1};
-                    axial_hi1_q    <= axial_init[CW-1:LO-1] + {{(HI-1){1'b0}}, 1'b1};
+                    diagonal_hi1_q <= axial_count[CW-1:LO-1] + HI_ONE;
+                    axial_hi1_q    <= axial_init[CW-1:LO-1] + HI_ONE;
                 end
             end
 
             // mux 12: the operand of the coming step, by the sign of the F
-            // that step will see (the frame cycle makes no step: F stays)
-            wire update = axial | diagonal | frame_q;
+            // that step will see (the frame cycle makes no step: F stays).
+            // One mux per operand register, the idle load folded into its
+            // inputs (both inputs are the start value while idle), so the
+            // decision is the last select before the register.
             wire negative_next = frame_q ? negative_q
-                               : negative_q ? f_diagonal_q[FW-1] : f_axial_q[FW-1];
-            wire [FW+HI-1:0] op_next;
-            mux2 #(.WIDTH(FW + HI)) u_mux (
-                .sel(negative_next), .in0({a2, axial_hi1_q}), .in1({d2, diagonal_hi1_q}), .out(op_next));
+                                          : negative_q ? f_diagonal_q[FW-1] : f_axial_q[FW-1];
+            // With fast carry chains (CARRY_SELECT = 0: ECP5) this path
+            // is critical, so the muxes keep their hierarchy: otherwise ABC
+            // merges the idle select into the decision and puts three LUTs
+            // on it.  Where the adders are cut in two (iCE40) the merged form
+            // is as fast and smaller.
+            wire [FW+HI-1:0] axial_start    = {f_axial_init, f_axial_init[FW-1:LO] + HI_ONE};
+            wire [FW+HI-1:0] diagonal_start = {f_diagonal_init, f_diagonal_init[FW-1:LO] + HI_ONE};
+            wire [FW+HI-1:0] a2_op = {a2, axial_hi1_q}, d2_op = {d2, diagonal_hi1_q};
+            wire [FW+HI-1:0] axial_in0    = idle ? axial_start : a2_op;
+            wire [FW+HI-1:0] axial_in1    = idle ? axial_start : d2_op;
+            wire [FW+HI-1:0] diagonal_in0 = idle ? diagonal_start : a2_op;
+            wire [FW+HI-1:0] diagonal_in1 = idle ? diagonal_start : d2_op;
+            wire [FW+HI-1:0] op_axial_next, op_diagonal_next;
+            if (CARRY_SELECT == 0) begin : g_mux_kept
+                (* keep_hierarchy *) mux2 #(.WIDTH(FW + HI)) u_mux (
+                    .sel(negative_next), .in0(axial_in0), .in1(axial_in1), .out(op_axial_next));
+                (* keep_hierarchy *) mux2 #(.WIDTH(FW + HI)) u_mux_copy (
+                    .sel(negative_next), .in0(diagonal_in0), .in1(diagonal_in1), .out(op_diagonal_next));
+            end else begin : g_mux_merged
+                mux2 #(.WIDTH(FW + HI)) u_mux (
+                    .sel(negative_next), .in0(axial_in0), .in1(axial_in1), .out(op_axial_next));
+                mux2 #(.WIDTH(FW + HI)) u_mux_copy (
+                    .sel(negative_next), .in0(diagonal_in0), .in1(diagonal_in1), .out(op_diagonal_next));
+            end
 
             // adder 3 and its two look-ahead copies
             wire [FW-1:0] f_axial_sum, f_diagonal_sum;
@@ -218,22 +266,16 @@ module su1571551 #(
                 if (idle) begin
                     f_axial_q    <= {FW{1'b0}};
                     f_diagonal_q <= {FW{1'b0}};
-                end else if (update) begin
+                end else if (advance) begin
                     f_axial_q    <= f_axial_sum;
                     f_diagonal_q <= f_diagonal_sum;
                 end
             end
             always @(posedge clk) begin
-                if (idle) begin
-                    op_axial_q        <= f_axial_init;
-                    op_diagonal_q     <= f_diagonal_init;
-                    op_axial_hi1_q    <= f_axial_init[FW-1:LO] + {{(HI-1){1'b0}}, 1'b1};
-                    op_diagonal_hi1_q <= f_diagonal_init[FW-1:LO] + {{(HI-1){1'b0}}, 1'b1};
-                    negative_q        <= f_initial[FW-1];
-                end else if (update) begin
-                    {op_axial_q, op_axial_hi1_q}       <= op_next;
-                    {op_diagonal_q, op_diagonal_hi1_q} <= op_next;
-                    negative_q        <= negative_next;
+                if (advance) begin
+                    {op_axial_q, op_axial_hi1_q}       <= op_axial_next;
+                    {op_diagonal_q, op_diagonal_hi1_q} <= op_diagonal_next;
+                    negative_q <= idle ? f_initial[FW-1] : negative_next;
                 end
             end
             assign f              = f_q;
@@ -334,9 +376,9 @@ module su1571551 #(
         if (run) assert (ctr1 == f_l - f_s - f_axial && ctr2 == f_s - f_diag - 1'b1
                          && f_diag <= f_s && f_axial <= f_l - f_s);
         // AND 9 and the run enable, formed a cycle ahead from the steps left
-        if (busy) assert (left2 == left1 - 1'b1);
-        if (frame_q) assert (left1 == ctr1 + ctr2 - 1'b1);
-        if (run) assert (left1 == ctr1 + ctr2);
+        if (busy) assert (left2 == left1 - 1'b1 && left_op_hi1 == left_op[CW-1:CLO] + 1'b1);
+        if (frame_q) assert (left1 == {CW{1'b0}} && left_op == ctr1 + ctr2 - 1'b1);
+        if (run) assert (left1 == ctr1 + ctr2 && &left_op);
         assert (busy_q == (frame_q | run) && finish == at_end_q
                 && at_end_q == (run && ctr1 == {CW{1'b0}} && &ctr2)
                 && active_q == (run && !(ctr1 == {CW{1'b0}} && &ctr2)));
@@ -356,7 +398,7 @@ module su1571551 #(
                         && $signed(f) >= -$signed({1'b0, f_s, 1'b0})
                         && ($signed(f) < $signed({1'b0, f_l - f_s, 1'b0}) || f_l == {CW{1'b0}}));
             // the retimed decision: look-ahead sums, operands and sign
-            localparam integer LO = FW * 2 / 5;
+            localparam integer LO = CARRY_SELECT != 0 ? FW * 2 / 5 : FW - 1;
             wire [FW-1:0] f_a2 = {g_exact.axial_q, 1'b0}, f_d2 = {g_exact.diagonal_q, 1'b0};
             wire [FW-1:0] f_op = g_exact.negative_q ? f_d2 : f_a2;
             always @(posedge clk) if (f_past_valid && !rst && !$past(rst) && busy) begin
