@@ -120,5 +120,5 @@ async def start_while_busy_is_ignored(dut):
 @cocotb.test()
 async def reset_any_cycle(dut):
     tb = await setup(dut)
-    # Every cycle of the move: the set-up (check in cycle 2 * WIDTH + 16) and the steps.
+    # Every cycle of the move: the set-up (check in cycle 2 * WIDTH + 17) and the steps.
     await reset_at_any_cycle(tb, {"x0": 5, "y0": 0, "x1": 3, "y1": 4, "ccw": 1}, 2 * tb.width + 24)

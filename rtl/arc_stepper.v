@@ -59,18 +59,21 @@ module arc_stepper #(
     localparam integer UW = WIDTH + 1;      // coordinates, p, q and their sums
     localparam integer NW = WIDTH + 2;      // E and T
 
-    reg               reload_q;
+    reg               reload_q, reload2_q;          // the two reload cycles after a new octant
     reg               xm_q, mjn_q, mnn_q, qpos_q;  // x major, a < 0, b < 0, q > 0
     reg  [UW-1:0]     u_q, v_q, du_q, dv_q;        // P, P - End
     reg  [UW-1:0]     s1_q, s3_q;                  // u + v, v - u (first octant only)
     reg               uz_q, vz_q, s1z_q, s3z_q;    // == 0
-    reg  [UW-1:0]     p_q, p1_q, q_q, q1_q, nq_q;  // p, p + 1, q, q + 1, -q
+    reg  [UW-1:0]     p_q, p1_q, q_q, q1_q, q2_q, nq_q;  // p, p + 1, q, q + 1, q + 2, -q
+    reg  [NW-1:0]     t_cs_q, t_cc_q;              // T's reload: E + 2p + q + 1 in carry-save form
     reg  [UW-1:0]     g1_q, g2_q;                  // p + q + 1, p + q + 2
     reg               qm1_q;                       // q == -1
     reg  [NW-1:0]     t_q, e_q;
     reg  [4:0]        duw_q, dvw_q;                // D = -2 .. 2, per axis (one-hot or none)
+    reg               near_u_q, near_v_q;          // |D| <= 4 per axis, a cycle ago
     reg  [UW-1:0]     r1_q, r2_q, r3_q, r5_q, r6_q, r7_q;   // cross(d, End), see `dirs`
     reg               small_q;                     // |u1|, |v1| <= 2
+    reg  [7:0]        dneg_q, dzero_q;             // cross(d, End) < 0, == 0
     reg  [24:0]       pos_q, dot_q;                // pos(D), dot(End + D, End) > 0 on the 5x5 grid
     reg  [17:0]       lt_q, lt1_q, lt2_q;          // {diagonal, axial} last-step tables: octant, next ones
     reg  [99:0]       st_q;                        // tables shifted by a step: {DD, DA, AD, AA}
@@ -132,13 +135,11 @@ module arc_stepper #(
             end
         end
     endfunction
-    wire [7:0] dneg  = {r7_q[UW-1], r6_q[UW-1], r5_q[UW-1], u1[UW-1], r3_q[UW-1], r2_q[UW-1], r1_q[UW-1], v1[UW-1]};
-    wire [7:0] dzero = {r7_q == {UW{1'b0}}, r6_q == {UW{1'b0}}, r5_q == {UW{1'b0}}, u1 == {UW{1'b0}},
-                        r3_q == {UW{1'b0}}, r2_q == {UW{1'b0}}, r1_q == {UW{1'b0}}, v1 == {UW{1'b0}}};
+    // Their signs and zeros are registered (while loading: one cycle more to settle).
     // turn * cross(d, End) > 0 and < 0 (directions 4 .. 7 hold -cross).
     wire [7:0] flip = {{4{ccw}}, {4{!ccw}}};
-    wire [7:0] dgt = (dneg & flip) | (~dneg & ~dzero & ~flip);
-    wire [7:0] dlt = (dneg & ~flip) | (~dneg & ~dzero & flip);
+    wire [7:0] dgt = (dneg_q & flip) | (~dneg_q & ~dzero_q & ~flip);
+    wire [7:0] dlt = (dneg_q & ~flip) | (~dneg_q & ~dzero_q & flip);
     wire [24:0] pos_w, dot_w;
     genvar gi;
     generate
@@ -215,6 +216,18 @@ module arc_stepper #(
                 small_eq[k+3] = (k >= 0 ? hz : ho) && x[1:0] == k[1:0];
         end
     endfunction
+    // The same for D, which moves by at most 1 per cycle: near_q says |D| <= 4 a cycle
+    // ago, so D is in -5 .. 5 now and its low four bits tell -3 .. 3 (no wide compare).
+    function automatic [6:0] near_eq(input near, input [3:0] x);
+        integer k;
+        begin
+            for (k = -3; k <= 3; k = k + 1)
+                near_eq[k+3] = near && x == k[3:0];
+        end
+    endfunction
+    function automatic near4(input [UW-1:0] x);     // -4 <= x <= 4
+        near4 = x[UW-1] ? x[UW-1:2] == {(UW-2){1'b1}} : x[UW-1:2] == {(UW-2){1'b0}} || x == {{(UW-3){1'b0}}, 3'd4};
+    endfunction
     function automatic [4:0] window(input move, neg, input [6:0] eq);
         window = !move ? eq[5:1] : neg ? eq[6:2] : eq[4:0];
     endfunction
@@ -252,7 +265,7 @@ module arc_stepper #(
 
     // ---------------------------------------------------------------- the step
     wire td   = td_q;                            // take the diagonal: (T < 0) == (q > 0)
-    wire go   = run && !fin && !reload_q && tick;
+    wire go   = run && !fin && !reload_q && !reload2_q && tick;
     wire loading = !run || rst;
     wire last = td ? last_d_q : last_a_q;
     // At the last step the end point is one step away: D = P - End in -1 .. 1 per axis.
@@ -287,8 +300,8 @@ module arc_stepper #(
     wire [NW-1:0] t_cs = e_q ^ p2w ^ qw;
     wire [NW-1:0] t_cc = {(e_q[NW-2:0] & p2w[NW-2:0]) | (e_q[NW-2:0] & qw[NW-2:0]) |
                           (p2w[NW-2:0] & qw[NW-2:0]), 1'b1};          // + 1
-    wire [NW-1:0] t_new = add_n(t_cs, t_cc);
-    wire [6:0] due = small_eq(du_q), dve = small_eq(dv_q);
+    wire [NW-1:0] t_new = add_n(t_cs_q, t_cc_q);
+    wire [6:0] due = near_eq(near_u_q, du_q[3:0]), dve = near_eq(near_v_q, dv_q[3:0]);
     wire [4:0] w1u = {1'b0, duw_q[3:1], 1'b0}, w1v = {1'b0, dvw_q[3:1], 1'b0};   // |D| <= 1
     function automatic [24:0] grid(input [8:0] table_t);   // a 9-bit table on the 5x5 grid
         grid = moved(table_t, 0, 0);
@@ -297,6 +310,7 @@ module arc_stepper #(
     always @(posedge clk) begin
         if (rst) begin
             reload_q <= 1'b0;
+            reload2_q <= 1'b0;
             fin      <= 1'b0;
             step_x   <= 1'b0;
             step_y   <= 1'b0;
@@ -305,6 +319,7 @@ module arc_stepper #(
         end else begin
             fin      <= go && last;
             reload_q <= go && bound && !last;
+            reload2_q <= reload_q;
             step_x   <= act_x;
             step_y   <= act_y;
             if (act_x) dir_x <= neg_x;
@@ -314,6 +329,8 @@ module arc_stepper #(
 
     // Data registers without reset: they follow the inputs whenever `run` is low (or in reset).
     always @(posedge clk) begin
+        near_u_q <= near4(du_q);
+        near_v_q <= near4(dv_q);
         lt1_q <= lt_all[18 * oct1 +: 18];
         lt2_q <= lt_all[18 * oct2 +: 18];
         if (loading) begin                    // the command's tables; the first octant, p and q
@@ -328,6 +345,9 @@ module arc_stepper #(
             r5_q    <= v1 + {u1[UW-2:0], 1'b0};
             r6_q    <= v1 + u1;
             r7_q    <= {v1[UW-2:0], 1'b0} + u1;
+            dneg_q  <= {r7_q[UW-1], r6_q[UW-1], r5_q[UW-1], u1[UW-1], r3_q[UW-1], r2_q[UW-1], r1_q[UW-1], v1[UW-1]};
+            dzero_q <= {r7_q == {UW{1'b0}}, r6_q == {UW{1'b0}}, r5_q == {UW{1'b0}}, u1 == {UW{1'b0}},
+                        r3_q == {UW{1'b0}}, r2_q == {UW{1'b0}}, r1_q == {UW{1'b0}}, v1 == {UW{1'b0}}};
             small_q <= (small_eq(u1) & 7'b0111110) != 7'd0 && (small_eq(v1) & 7'b0111110) != 7'd0;
             pos_q   <= pos_w;
             dot_q   <= dot_w;
@@ -359,9 +379,10 @@ module arc_stepper #(
             p_q     <= bound ? p_new : p1_q;
             q_q     <= bound ? q_new : q_next;
             q1_q    <= td ? inc_u(q1_q) : q1_q;
+            q2_q    <= td ? inc_u(q2_q) : q2_q;
             nq_q    <= nq_next;
             qm1_q   <= td ? q_q == {{(UW-1){1'b1}}, 1'b0} : q_q == {UW{1'b1}};
-            p1_q    <= bound && !qpos_q ? (td ? inc_u(q1_q) : q1_q) : inc_u(p1_q);   // swap: p = q'
+            p1_q    <= bound && !qpos_q ? (td ? q2_q : q1_q) : inc_u(p1_q);   // swap: p = q'
             g1_q    <= td ? inc_u(g2_q) : g2_q;
             g2_q    <= td ? add_u(g2_q, two) : inc_u(g2_q);
             t_q     <= td ? t_d : t_a;
@@ -369,12 +390,21 @@ module arc_stepper #(
             last_a_q <= td ? hit(duw_q, dvw_q, st_q[74:50]) : hit(duw_q, dvw_q, st_q[24:0]);
             last_d_q <= td ? hit(duw_q, dvw_q, st_q[99:75]) : hit(duw_q, dvw_q, st_q[49:25]);
         end
-        if (loading || reload_q) begin           // T, the counters and the step tables of the octant
+        // Reload: T in two cycles (a carry-save step, then the carry chain), the counters
+        // and the step tables of the octant (from registers that hold still meanwhile).
+        if (loading || reload_q) begin
+            t_cs_q <= t_cs;
+            t_cc_q <= t_cc;
+        end
+        if (loading || reload2_q) begin
             t_q      <= t_new;
             td_q     <= t_new[NW-1] == qpos_q;
+        end
+        if (loading || reload_q) begin
             g1_q     <= add_u(p1_q, q_q);
             g2_q     <= p1_q - ~q_q;                 // p1 + q + 1
             q1_q     <= inc_u(q_q);
+            q2_q     <= add_u(q_q, two);
             nq_q     <= inc_u(~q_q);
             qm1_q    <= q_q == {UW{1'b1}};
             st_q     <= st_all[100 * {xm_q, mjn_q, mnn_q} +: 100];

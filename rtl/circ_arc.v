@@ -20,7 +20,7 @@
 //           of the command ......................................... arc_stepper
 //
 // Timing: `start` in an idle cycle captures the command (cycle 0); the set-up checks
-// it in cycle 2*WIDTH + 16; from cycle 2*WIDTH + 17 one step per `tick` (the step
+// it in cycle 2*WIDTH + 17; from cycle 2*WIDTH + 18 one step per `tick` (the step
 // strobes and dir levels are registered together), except that the cycle after a
 // step into a new octant reloads the stepper (at most 9 per arc) and takes no step
 // (`tick` is an enable).  `done` one cycle after the last step.  Bad
@@ -81,10 +81,17 @@ module circ_arc #(
         in_range = value[UW-1] ? value[UW-1:LIMIT_BITS] == {(UW-LIMIT_BITS){1'b1}} && value[LIMIT_BITS-1:0] != {LIMIT_BITS{1'b0}}
                                : value[UW-1:LIMIT_BITS] == {(UW-LIMIT_BITS){1'b0}};
     endfunction
-    wire fits = in_range(u0_q) && in_range(v0_q) && in_range(u1_q) && in_range(v1_q);
-    wire bad = !fits || (u0_q == {UW{1'b0}} && v0_q == {UW{1'b0}}) || !on_band;
-    wire at_start = u0_q == u1_q && v0_q == v1_q;
-    wire begin_run = check && !bad && !(at_start && !full_q);
+    // The command's registers hold still through the set-up, so the tests on
+    // them are registered (settled long before `check`): wide compares stay
+    // off the path into the state register.
+    reg fits_q, at_centre_q, at_start_q;
+    always @(posedge clk) begin
+        fits_q      <= in_range(u0_q) && in_range(v0_q) && in_range(u1_q) && in_range(v1_q);
+        at_centre_q <= u0_q == {UW{1'b0}} && v0_q == {UW{1'b0}};
+        at_start_q  <= u0_q == u1_q && v0_q == v1_q;
+    end
+    wire bad = !fits_q || at_centre_q || !on_band;
+    wire begin_run = check && !bad && !(at_start_q && !full_q);
 
     // The stepper follows the command's registers through the set-up and steps in RUN.
     wire          fin;

@@ -23,7 +23,7 @@
 // (2*WIDTH + 2 bits) take two cycles, as two chunks with a registered carry.
 //
 // Timing: `start` in an idle cycle captures the command (cycle 0); the set-up
-// checks it in cycle 2*WIDTH + 16; from the next cycle one step per `tick` as
+// checks it in cycle 2*WIDTH + 17; from the next cycle one step per `tick` as
 // lin_std.  A bad
 // command (a coordinate negative, start at the origin, end not reachable in the
 // chosen direction inside the quadrant, end more than half a step off the circle)

@@ -4,7 +4,7 @@
 // combinational multiplier.  Four seq_mult instances, two rounds:
 //   round 1: x0^2, y0^2, x1^2, y1^2  ->  a = x0^2 + y0^2 (R^2), b = x1^2 + y1^2
 //            (|End|^2), d = b - a and -d;
-//   round 2: m^2 with m = |d| (multiplier 3);
+//   round 2: m^2 with m = |d| (multiplier 3), from the registered d and -d;
 //   band:    |sqrt(b) - sqrt(a)| <= 1/2 (circle_band's test)  <=>  d = 0 or
 //            (m < 2^(SW/2 - 1) and m^2 <= min(a, b) + (m - 1) div 2),
 //            t = min(a, b) + (m - 1) div 2 - m^2 with a carry-save step in front.
@@ -14,9 +14,11 @@
 //
 // Timing (states IDLE, PREP, MUL1, ADD1, ADD2, MUL2, ADD3, CHECK): `start` in an
 // idle cycle (cycle 0) begins; x0 .. y1 are captured by round 1 in cycle 1 (PREP);
-// ADD1 in cycles MW+5, MW+6; ADD2 in MW+7, MW+8 (round 2 starts in MW+8); ADD3 in
-// 2*MW+12, 2*MW+13; `check` is high in cycle 2*MW+14, with on_band valid; idle again
-// in the next cycle.  `start` while busy is ignored; `rst` returns to idle at once.
+// ADD1 in cycles MW+5, MW+6; ADD2 in MW+7, MW+8; round 2 starts in MW+9, the first
+// MUL2 cycle, which also takes min(a, b) (the sign of d is a register by then, not
+// the end of a carry chain); ADD3 in 2*MW+13, 2*MW+14; `check` is high in cycle
+// 2*MW+15, with on_band valid; idle again in the next cycle.  `start` while busy is
+// ignored; `rst` returns to idle at once.
 module circle_setup #(
     parameter integer MW    = 33,   // seq_mult operand width (signed inputs; m = |d| fits)
     parameter integer SW    = 66    // sum width: even, MW < SW <= 2*MW
@@ -54,11 +56,11 @@ module circle_setup #(
     assign check = state_q == CHECK;
     assign on_band = dzero_q || (msmall_q && !t_q[SW-1]);
 
-    // ---- multipliers: round 1 in PREP, round 2 in ADD2's second cycle ----
+    // ---- multipliers: round 1 in PREP, round 2 in MUL2's first cycle ----
     wire [SW:0]   d_sum, nd_sum;
-    wire [MW-1:0] m_abs = d_sum[SW-1] ? nd_sum[MW-1:0] : d_sum[MW-1:0];      // |d| (ADD2, 2nd cycle)
+    wire [MW-1:0] m_abs = d_q[SW-1] ? nd_q[MW-1:0] : d_q[MW-1:0];            // |d|
     wire          round1 = state_q == PREP;
-    wire          round2 = state_q == ADD2 && sub_q;
+    wire          round2 = state_q == MUL2 && sub_q;
     wire [3*MW-1:0] op1 = {x1, y0, x0};      // round 1 of multipliers 2, 1, 0
     wire [4*PW-1:0] p;                      // products of multipliers 3, 2, 1, 0
     wire          mdone;
@@ -126,18 +128,18 @@ module circle_setup #(
                     sub_q   <= !sub_q;
                     if (sub_q) state_q <= ADD2;
                 end
-                ADD2: begin                     // round 2 starts in the second cycle
+                ADD2: begin
                     d_q     <= d_sum[SW-1:0];
                     nd_q    <= nd_sum[SW-1:0];
                     carry_q <= {1'b0, nd_sum[SW], d_sum[SW]};
-                    sub_q   <= !sub_q;
-                    if (sub_q) begin
-                        a_q     <= d_sum[SW-1] ? b_q : a_q;     // s = min(a, b)
-                        m_q     <= m_abs;
-                        state_q <= MUL2;
-                    end
+                    sub_q   <= 1'b1;            // in ADD2's second cycle: MUL2's first is next
+                    if (sub_q) state_q <= MUL2;
                 end
-                MUL2: begin
+                MUL2: begin                     // round 2 starts in the first cycle
+                    if (sub_q) begin
+                        a_q <= d_q[SW-1] ? b_q : a_q;           // s = min(a, b)
+                        m_q <= m_abs;
+                    end
                     h_q      <= (m_q - 1'b1) >> 1;
                     dzero_q  <= d_q == {SW{1'b0}};
                     msmall_q <= (d_q[SW-1] ? nd_q[SW-1:SK-1] : d_q[SW-1:SK-1]) == {(SK+1){1'b0}};
@@ -154,8 +156,8 @@ module circle_setup #(
         end
     end
 
-    // Busy flags are implied by the state; product bits above SW and nd_q's low bits
-    // (only its sign part feeds msmall) are not needed.
+    // Busy flags are implied by the state; product bits above SW and nd_q's middle
+    // bits (its low part is m, its high part feeds msmall) are not needed.
     wire unused = &{1'b0, mbusy, mdone_other, nd_q, p};
 endmodule
 `default_nettype wire

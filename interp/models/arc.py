@@ -75,8 +75,8 @@ def arc_steps(cx, cy, x0, y0, x1, y1, ccw: bool, full: bool = False) -> list[Ste
 def arc_setup_cycles(width: int = 32) -> int:
     """Cycles from `start` to the check of rtl/circ_arc.v: load, two multiplier
     rounds (seq_mult at WIDTH + 1 bits: WIDTH + 4 cycles each) and three
-    two-cycle sums; the check is in cycle 2 * WIDTH + 16, the first step in the next."""
-    return 2 * width + 16
+    two-cycle sums; the check is in cycle 2 * WIDTH + 17, the first step in the next."""
+    return 2 * width + 17
 
 
 STEP_OUTPUTS = {"step_x": False, "step_y": False, "dir_x": False, "dir_y": False}
@@ -86,8 +86,8 @@ class ArcStepper(CycleModel):
     """Cycle model of rtl/arc_stepper.v, circ_arc's run loop.
 
     While `run` is low the point follows the inputs (u0, v0) and E = 0.  With `run`, one
-    step of `arc_steps` per tick; a step into a new octant is followed by a reload cycle,
-    which takes no step (`tick` is an enable, as the synchronization buffer's ~STOP).
+    step of `arc_steps` per tick; a step into a new octant is followed by two reload
+    cycles, which take no step (`tick` is an enable, as the synchronization buffer's ~STOP).
     """
 
     watch = {**STEP_OUTPUTS, "fin": False, "u": True, "v": True, "e": True}
@@ -107,7 +107,8 @@ class ArcStepper(CycleModel):
             return
         run, tick = inputs.get("run"), inputs.get("tick")
         go = run and not self.fin and not self.reload and tick
-        act_x = act_y = neg_x = neg_y = fin = reload = 0
+        act_x = act_y = neg_x = neg_y = fin = 0
+        reload = max(self.reload - 1, 0)        # reload cycles left after this one
         if not run:
             self.u, self.v, self.e = inputs["u0"], inputs["v0"], 0
         elif go:
@@ -128,7 +129,7 @@ class ArcStepper(CycleModel):
             self.u, self.v = u + sx, v + sy
             self.e = axial_e + (2 * pb + 1 if take_diagonal else 0)
             fin = int(last)
-            reload = int(not last and _octant(self.u, self.v, ccw) != octant)
+            reload = 2 if not last and _octant(self.u, self.v, ccw) != octant else 0
         if act_x:
             self.dir_x = neg_x
         if act_y:

@@ -232,8 +232,8 @@ class CircleSetup(CycleModel):
         # Combinational values of this cycle (before the edge).
         d_sum, d_c = self.sum2(self.b, ~self.a & mask, 1, self.carry[0])
         nd_sum, nd_c = self.sum2(self.a, ~self.b & mask, 1, self.carry[1])
-        m_abs = (nd_sum if d_sum >> top else d_sum) & ((1 << mw) - 1)
-        round1, round2 = state == self.PREP, state == self.ADD2 and sub
+        m_abs = (self.nd if self.d >> top else self.d) & ((1 << mw) - 1)   # from the registers
+        round1, round2 = state == self.PREP, state == self.MUL2 and sub
         squares = [inputs["x0"], inputs["y0"], inputs["x1"]]
         for k, mult in enumerate(self.mults[:3]):
             mult.clock({"start": int(round1), "a": squares[k], "b": squares[k]})
@@ -255,12 +255,13 @@ class CircleSetup(CycleModel):
             self.carry, self.sub = [a_c, b_c, 0], int(not sub)
             self.state = self.ADD2 if sub else state
         elif state == self.ADD2:
-            self.d, self.nd, self.carry, self.sub = d_sum, nd_sum, [d_c, nd_c, 0], int(not sub)
-            if sub:
-                self.a = self.b if d_sum >> top else self.a          # s = min(a, b)
-                self.m, self.state = m_abs, self.MUL2
-        elif state == self.MUL2:
+            self.d, self.nd, self.carry, self.sub = d_sum, nd_sum, [d_c, nd_c, 0], 1
+            self.state = self.MUL2 if sub else state
+        elif state == self.MUL2:                # round 2 starts in the first cycle
             self.h = ((self.m - 1) & ((1 << mw) - 1)) >> 1
+            if sub:
+                self.a = self.b if self.d >> top else self.a        # s = min(a, b)
+                self.m = m_abs
             self.dzero = int(self.d == 0)
             self.msmall = int((self.nd if self.d >> top else self.d) >> (self.sk - 1) == 0)
             self.state = self.ADD3 if done else state

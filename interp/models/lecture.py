@@ -272,8 +272,8 @@ class CircQuadrant(CycleModel):
                 self.cmd = tuple(wrap(inputs[k], self.width) for k in ("x0", "y0", "x1", "y1"))
                 self.ccw = int(bool(inputs.get("ccw")))
                 # The RTL forms the squares with sequential multipliers (as circ_arc):
-                # the check is in cycle 2 * WIDTH + 16.
-                self.state, self.count = self.SETUP, 2 * self.width + 15
+                # the check is in cycle 2 * WIDTH + 17.
+                self.state, self.count = self.SETUP, 2 * self.width + 16
         elif self.state == self.SETUP:
             self.count -= 1
             if self.count == 0:

@@ -39,11 +39,11 @@ def command(mw, x0, y0, x1, y1):
 
 
 def check_results(stims, mw):
-    """check in cycle 2*MW + 14; on_band = the exact band test."""
+    """check in cycle 2*MW + 15; on_band = the exact band test."""
     for stim in stims:
         cycles, sample = stim["seen"]
         x0, y0, x1, y1 = stim["point"]
-        assert cycles == 2 * mw + 14, f"{stim['point']}: check in cycle {cycles}"
+        assert cycles == 2 * mw + 15, f"{stim['point']}: check in cycle {cycles}"
         want = within_half_step(x0 * x0 + y0 * y0, x1 * x1 + y1 * y1)
         assert sample["on_band"] == want, f"{stim['point']}: on_band {sample['on_band']}"
 
