@@ -12,7 +12,8 @@
 // never 0; p runs from -q to 0 (q > 0) or from 0 to |q| (q < 0).  The octant ends when the
 // next point has p >= 0 (q > 0: b turns, q = -q) or |p| >= |q| (q < 0: a and b swap, and
 // b turns as well if q reaches 0): the signs of p + 1, p + q + 1, p + q + 2.  The cycle after
-// a step into a new octant reloads T and the counters and takes no step (`tick` is an enable).
+// a step into a new octant reloads T and the counters and takes no step (`tick` is an enable);
+// T's reload takes two cycles (a carry-save step, then the carry chain).
 //
 // End.  The last step goes to the end point End when the next point P' reaches or
 // passes the ray from the centre through End with dot(P', End) > 0, which happens only
@@ -26,8 +27,8 @@
 // the one-hot windows D = -2 .. 2 per axis.
 //
 // Timing: while `run` is low the registers follow the inputs; they settle within
-// 6 cycles.  With `run` high, one step per `tick` (strobes and dir levels registered
-// together), plus one reload cycle after each step into a new octant; `fin` comes with
+// 7 cycles.  With `run` high, one step per `tick` (strobes and dir levels registered
+// together), plus two reload cycles after each step into a new octant; `fin` comes with
 // the last step's strobes.  Used by circ_arc.
 module arc_stepper #(
     parameter integer WIDTH = 32,           // circ_arc's coordinate width (>= 6); |u|, |v| < 2^(WIDTH-3)

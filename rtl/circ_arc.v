@@ -21,9 +21,9 @@
 //
 // Timing: `start` in an idle cycle captures the command (cycle 0); the set-up checks
 // it in cycle 2*WIDTH + 17; from cycle 2*WIDTH + 18 one step per `tick` (the step
-// strobes and dir levels are registered together), except that the cycle after a
-// step into a new octant reloads the stepper (at most 9 per arc) and takes no step
-// (`tick` is an enable).  `done` one cycle after the last step.  Bad
+// strobes and dir levels are registered together), except that the two cycles after
+// a step into a new octant reload the stepper (at most 9 octants per arc) and take no
+// step (`tick` is an enable).  `done` one cycle after the last step.  Bad
 // command (error strobe instead of done, no steps): start = centre (R = 0); end
 // point more than half a step off the circle; a start or end coordinate relative
 // to the centre outside -2^(WIDTH-3) < u < 2^(WIDTH-3) (radius limit of the
