@@ -20,8 +20,10 @@ _PARAM = re.compile(r"parameter\s+(?:integer\s+)?(\w+)\s*=\s*([^,)\n]+?)\s*[,)]?
 
 
 def parameters(text: str) -> list[tuple[str, str, str]]:
-    match = re.search(r"\)\s*\(", text)
-    header = text[:match.start()] if match else ""
+    module = re.search(r"^module\s+\w+", text, re.M)      # the header comment may hold ") ("
+    start = module.end() if module else 0
+    match = re.search(r"\)\s*\(", text[start:])
+    header = text[start:start + match.start()] if match else ""
     return [(n, v.strip(), (c or "").strip()) for n, v, c in _PARAM.findall(header)]
 
 

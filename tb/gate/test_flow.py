@@ -27,3 +27,10 @@ def test_fusesoc_core_lists_dependencies_and_parameters():
     assert "name: interp:rtl:su1571551:" in text
     assert "      - interp:rtl:updown_counter" in text
     assert "parameters: [WIDTH, EXACT, CARRY_SELECT]" in text and "default: 32" in text
+
+
+def test_fusesoc_exports_every_declared_parameter():
+    """A header comment holding ") (" must not cut the parameter list short."""
+    for path in sorted(synth.RTL.glob("*.v")):
+        exported = {name for name, _, _ in fusesoc.parameters(path.read_text())}
+        assert exported == synth.declared_parameters(path), path.name
