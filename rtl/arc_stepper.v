@@ -11,9 +11,9 @@
 // so E and T move by {p, 1}, {p + 1, 1}, {p + q + 1, 0}, {p + q + 2, 1}: counters.  q is
 // never 0; p runs from -q to 0 (q > 0) or from 0 to |q| (q < 0).  The octant ends when the
 // next point has p >= 0 (q > 0: b turns, q = -q) or |p| >= |q| (q < 0: a and b swap, and
-// b turns as well if q reaches 0): the signs of p + 1, p + q + 1, p + q + 2.  The cycle after
-// a step into a new octant reloads T and the counters and takes no step (`tick` is an enable);
-// T's reload takes two cycles (a carry-save step, then the carry chain).
+// b turns as well if q reaches 0): the signs of p + 1, p + q + 1, p + q + 2.  The two cycles
+// after a step into a new octant reload T (a carry-save step, then the carry chain) and the
+// counters, and take no step (`tick` is an enable).
 //
 // End.  The last step goes to the end point End when the next point P' reaches or
 // passes the ray from the centre through End with dot(P', End) > 0, which happens only
@@ -136,7 +136,8 @@ module arc_stepper #(
             end
         end
     endfunction
-    // Their signs and zeros are registered (while loading: one cycle more to settle).
+    // The signs and zeros of cross(d, End) are registers, dneg_q and dzero_q (loaded
+    // while loading, one cycle after r1_q .. r7_q).
     // turn * cross(d, End) > 0 and < 0 (directions 4 .. 7 hold -cross).
     wire [7:0] flip = {{4{ccw}}, {4{!ccw}}};
     wire [7:0] dgt = (dneg_q & flip) | (~dneg_q & ~dzero_q & ~flip);
@@ -393,15 +394,13 @@ module arc_stepper #(
         end
         // Reload: T in two cycles (a carry-save step, then the carry chain), the counters
         // and the step tables of the octant (from registers that hold still meanwhile).
-        if (loading || reload_q) begin
-            t_cs_q <= t_cs;
-            t_cc_q <= t_cc;
-        end
         if (loading || reload2_q) begin
             t_q      <= t_new;
             td_q     <= t_new[NW-1] == qpos_q;
         end
         if (loading || reload_q) begin
+            t_cs_q   <= t_cs;
+            t_cc_q   <= t_cc;
             g1_q     <= add_u(p1_q, q_q);
             g2_q     <= p1_q - ~q_q;                 // p1 + q + 1
             q1_q     <= inc_u(q_q);

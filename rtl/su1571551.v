@@ -219,7 +219,7 @@ module su1571551 #(
             // inputs (both inputs are the start value while idle), so the
             // decision is the last select before the register.
             wire negative_next = frame_q ? negative_q
-                                          : negative_q ? f_diagonal_q[FW-1] : f_axial_q[FW-1];
+                               : negative_q ? f_diagonal_q[FW-1] : f_axial_q[FW-1];
             // With fast carry chains (CARRY_SELECT = 0: ECP5) this path
             // is critical, so the muxes keep their hierarchy: otherwise ABC
             // merges the idle select into the decision and puts three LUTs
