@@ -26,8 +26,13 @@
 // shifted by either step, so the last-step flags for the next step are registered from
 // the one-hot windows D = -2 .. 2 per axis.
 //
+// For the clock: both candidate points are summed from registers and the decision
+// selects after the carry chains; the counters of diagonal steps are sums with the
+// decision at bit 0, not holds (a hold becomes a clock enable net of its own); the
+// reload values are registered every cycle, so a reload is a plain load.
+//
 // Timing: while `run` is low the registers follow the inputs; they settle within
-// 7 cycles.  With `run` high, one step per `tick` (strobes and dir levels registered
+// 9 cycles.  With `run` high, one step per `tick` (strobes and dir levels registered
 // together), plus two reload cycles after each step into a new octant; `fin` comes with
 // the last step's strobes.  Used by circ_arc.
 module arc_stepper #(
@@ -65,7 +70,11 @@ module arc_stepper #(
     reg  [UW-1:0]     u_q, v_q, du_q, dv_q;        // P, P - End
     reg  [UW-1:0]     s1_q, s3_q;                  // u + v, v - u (first octant only)
     reg               uz_q, vz_q, s1z_q, s3z_q;    // == 0
+    reg  [UW-1:0]     ua_q, ud_q, va_q, vd_q;      // the axial and the diagonal step (-1, 0, +1)
+    reg  [UW-1:0]     pa_q, pb_q;                  // P.a, P.b less the + 1 of a negation (loading)
     reg  [UW-1:0]     p_q, p1_q, q_q, q1_q, q2_q, nq_q;  // p, p + 1, q, q + 1, q + 2, -q
+    reg  [UW-1:0]     g1_r, g2_r, q1_r, q2_r, nq_r;      // reload values of g1_q .. nq_q
+    reg               qm1_r, last_a_r, last_d_r;         // and of qm1_q, last_a_q, last_d_q
     reg  [NW-1:0]     t_cs_q, t_cc_q;              // T's reload: E + 2p + q + 1 in carry-save form
     reg  [UW-1:0]     g1_q, g2_q;                  // p + q + 1, p + q + 2
     reg               qm1_q;                       // q == -1
@@ -101,9 +110,6 @@ module arc_stepper #(
         end
     endfunction
     wire [2:0] oct_0 = octant(u_q[UW-1], uz_q, v_q[UW-1], vz_q, s1_q[UW-1], s1z_q, s3_q[UW-1], s3z_q, ccw);
-    wire [UW-1:0] pa_0 = xm_q ? u_q : v_q, pb_0 = xm_q ? v_q : u_q;
-    wire [UW-1:0] p_0 = (pa_0 ^ {UW{mjn_q}}) + {{(UW-1){1'b0}}, mjn_q};   // P.a
-    wire [UW-1:0] q_0 = (pb_0 ^ {UW{mnn_q}}) + {{(UW-1){1'b0}}, mnn_q};   // P.b
 
     // ---------------------------------------------------------------- end tables
     // The eight directions d of the grid (upper half plane) and cross(d, End) = du v1 - dv u1:
@@ -258,11 +264,16 @@ module arc_stepper #(
         end
     endfunction
     /* verilator lint_on UNUSEDSIGNAL */
+    function automatic [UW-1:0] add1_u(input [UW-1:0] a, b);  // a + b + 1 ({0, x} - {1, ~y} = x + y + 1)
+        reg [LU:0] lo;
+        begin
+            lo = {1'b0, a[LU-1:0]} - {1'b1, ~b[LU-1:0]};
+            add1_u = CARRY_SELECT == 0 ? a - ~b
+                                       : {lo[LU] ? a[UW-1:LU] - ~b[UW-1:LU] : a[UW-1:LU] + b[UW-1:LU], lo[LU-1:0]};
+        end
+    endfunction
     function automatic [UW-1:0] inc_u(input [UW-1:0] a);     // a + 1
         inc_u = CARRY_SELECT == 0 ? a + 1'b1 : {&a[LU-1:0] ? a[UW-1:LU] + 1'b1 : a[UW-1:LU], a[LU-1:0] + 1'b1};
-    endfunction
-    function automatic [UW-1:0] dec_u(input [UW-1:0] a);     // a - 1
-        dec_u = CARRY_SELECT == 0 ? a - 1'b1 : {|a[LU-1:0] ? a[UW-1:LU] : a[UW-1:LU] - 1'b1, a[LU-1:0] - 1'b1};
     endfunction
 
     // ---------------------------------------------------------------- the step
@@ -280,11 +291,15 @@ module arc_stepper #(
     wire act_y = go && (last ? !dvw_q[2] : my);
     wire neg_x = last ? duw_q[3] : nx;
     wire neg_y = last ? dvw_q[3] : ny;
-    wire [UW-1:0] one = {{(UW-1){1'b0}}, 1'b1}, two = {{(UW-2){1'b0}}, 2'b10};
-    wire [UW-1:0] u_next = last ? u1 : !mx ? u_q : nx ? dec_u(u_q) : inc_u(u_q);
-    wire [UW-1:0] v_next = last ? v1 : !my ? v_q : ny ? dec_u(v_q) : inc_u(v_q);
-    wire [UW-1:0] du_next = !mx ? du_q : nx ? dec_u(du_q) : inc_u(du_q);
-    wire [UW-1:0] dv_next = !my ? dv_q : ny ? dec_u(dv_q) : inc_u(dv_q);
+    wire [UW-1:0] one = {{(UW-1){1'b0}}, 1'b1}, two = {{(UW-2){1'b0}}, 2'b10}, td_u = {{(UW-1){1'b0}}, td};
+    // Both candidate points are summed from registers (the octant's step vectors,
+    // registered from the octant) and the decision selects late, after the carry chains.
+    wire [UW-1:0] u_a = add_u(u_q, ua_q), u_d = add_u(u_q, ud_q), v_a = add_u(v_q, va_q), v_d = add_u(v_q, vd_q);
+    wire [UW-1:0] u_next = td ? (last_d_q ? u1 : u_d) : (last_a_q ? u1 : u_a);
+    wire [UW-1:0] v_next = td ? (last_d_q ? v1 : v_d) : (last_a_q ? v1 : v_a);
+    function automatic [UW-1:0] unit(input move, neg);      // -1, 0, +1
+        unit = {{(UW-1){move && neg}}, move};
+    endfunction
     wire [NW-1:0] t_a = add_n(t_q, {p1_q, 1'b1}), t_d = add_n(t_q, {g2_q, 1'b1});
     wire [NW-1:0] e_a = add_n(e_q, {p_q, 1'b1}),  e_d = add_n(e_q, {g1_q, 1'b0});
     wire [UW-1:0] q_next = td ? q1_q : q_q;          // q', -q' (-(q + 1) = ~q)
@@ -331,6 +346,23 @@ module arc_stepper #(
 
     // Data registers without reset: they follow the inputs whenever `run` is low (or in reset).
     always @(posedge clk) begin
+        // Registers without an enable (they change only with the octant, E, p or q, so
+        // they are valid in the reload cycles): fewer enable nets to route.
+        t_cs_q <= t_cs;
+        t_cc_q <= t_cc;
+        st_q  <= st_all[100 * {xm_q, mjn_q, mnn_q} +: 100];
+        g1_r  <= add_u(p1_q, q_q);
+        g2_r  <= add1_u(p1_q, q_q);
+        q1_r  <= inc_u(q_q);
+        q2_r  <= add_u(q_q, two);
+        nq_r  <= inc_u(~q_q);
+        qm1_r <= q_q == {UW{1'b1}};
+        last_a_r <= hit(w1u, w1v, grid(lt_q[8:0]));
+        last_d_r <= hit(w1u, w1v, grid(lt_q[17:9]));
+        ua_q  <= unit(xm_q, nxa);
+        ud_q  <= unit(1'b1, nxd);
+        va_q  <= unit(!xm_q, nya);
+        vd_q  <= unit(1'b1, nyd);
         near_u_q <= near4(du_q);
         near_v_q <= near4(dv_q);
         lt1_q <= lt_all[18 * oct1 +: 18];
@@ -339,31 +371,33 @@ module arc_stepper #(
             u_q     <= u0;
             v_q     <= v0;
             e_q     <= {NW{1'b0}};
-            du_q    <= u0 - u1;
-            dv_q    <= v0 - v1;
-            r1_q    <= {v1[UW-2:0], 1'b0} - u1;
-            r2_q    <= v1 - u1;
-            r3_q    <= v1 - {u1[UW-2:0], 1'b0};
-            r5_q    <= v1 + {u1[UW-2:0], 1'b0};
-            r6_q    <= v1 + u1;
-            r7_q    <= {v1[UW-2:0], 1'b0} + u1;
+            du_q    <= add1_u(u0, ~u1);              // u0 - u1
+            dv_q    <= add1_u(v0, ~v1);
+            r1_q    <= add1_u({v1[UW-2:0], 1'b0}, ~u1);
+            r2_q    <= add1_u(v1, ~u1);
+            r3_q    <= add1_u(v1, ~{u1[UW-2:0], 1'b0});
+            r5_q    <= add_u(v1, {u1[UW-2:0], 1'b0});
+            r6_q    <= add_u(v1, u1);
+            r7_q    <= add_u({v1[UW-2:0], 1'b0}, u1);
             dneg_q  <= {r7_q[UW-1], r6_q[UW-1], r5_q[UW-1], u1[UW-1], r3_q[UW-1], r2_q[UW-1], r1_q[UW-1], v1[UW-1]};
             dzero_q <= {r7_q == {UW{1'b0}}, r6_q == {UW{1'b0}}, r5_q == {UW{1'b0}}, u1 == {UW{1'b0}},
                         r3_q == {UW{1'b0}}, r2_q == {UW{1'b0}}, r1_q == {UW{1'b0}}, v1 == {UW{1'b0}}};
             small_q <= (small_eq(u1) & 7'b0111110) != 7'd0 && (small_eq(v1) & 7'b0111110) != 7'd0;
             pos_q   <= pos_w;
             dot_q   <= dot_w;
-            s1_q    <= u_q + v_q;
-            s3_q    <= v_q - u_q;
+            s1_q    <= add_u(u_q, v_q);
+            s3_q    <= add1_u(v_q, ~u_q);
             uz_q    <= u_q == {UW{1'b0}};
             vz_q    <= v_q == {UW{1'b0}};
             s1z_q   <= s1_q == {UW{1'b0}};
             s3z_q   <= s3_q == {UW{1'b0}};
             {xm_q, mjn_q, mnn_q} <= oct_0;
-            qpos_q  <= pb_0[UW-1] == mnn_q;     // q = P.b > 0 (never 0)
-            p_q     <= p_0;
-            p1_q    <= p_q + one;
-            q_q     <= q_0;
+            pa_q    <= (xm_q ? u_q : v_q) ^ {UW{mjn_q}};
+            pb_q    <= (xm_q ? v_q : u_q) ^ {UW{mnn_q}};
+            qpos_q  <= !pb_q[UW-1];             // q = P.b > 0 (never 0)
+            p_q     <= add_u(pa_q, {{(UW-1){1'b0}}, mjn_q});    // P.a
+            p1_q    <= inc_u(p_q);
+            q_q     <= add_u(pb_q, {{(UW-1){1'b0}}, mnn_q});    // P.b
             lt_q    <= lt_all[18 * {xm_q, mjn_q, mnn_q} +: 18];
             duw_q   <= due[5:1];
             dvw_q   <= dve[5:1];
@@ -374,42 +408,41 @@ module arc_stepper #(
             {xm_q, mjn_q, mnn_q} <= !bound ? {xm_q, mjn_q, mnn_q} : turn2 ? oct2 : oct1;
             qpos_q  <= bound ? !qpos_q && !turn2 : qpos_q;
             lt_q    <= !bound ? lt_q : turn2 ? lt2_q : lt1_q;
-            du_q    <= du_next;
-            dv_q    <= dv_next;
+            du_q    <= td ? add_u(du_q, ud_q) : add_u(du_q, ua_q);
+            dv_q    <= td ? add_u(dv_q, vd_q) : add_u(dv_q, va_q);
             duw_q   <= window(mx, nx, due);
             dvw_q   <= window(my, ny, dve);
             p_q     <= bound ? p_new : p1_q;
-            q_q     <= bound ? q_new : q_next;
-            q1_q    <= td ? inc_u(q1_q) : q1_q;
-            q2_q    <= td ? inc_u(q2_q) : q2_q;
-            nq_q    <= nq_next;
+            // Counters of the diagonal steps: sums with td at bit 0, not holds (Yosys would
+            // make each hold a clock enable of its own, a net that goes everywhere).
+            q_q     <= bound ? q_new : add_u(q_q, td_u);
+            q1_q    <= add_u(q1_q, td_u);
+            q2_q    <= add_u(q2_q, td_u);
+            nq_q    <= add1_u(nq_q, ~td_u);              // nq - td
             qm1_q   <= td ? q_q == {{(UW-1){1'b1}}, 1'b0} : q_q == {UW{1'b1}};
-            p1_q    <= bound && !qpos_q ? (td ? q2_q : q1_q) : inc_u(p1_q);   // swap: p = q'
-            g1_q    <= td ? inc_u(g2_q) : g2_q;
-            g2_q    <= td ? add_u(g2_q, two) : inc_u(g2_q);
+            p1_q    <= bound && !qpos_q ? (td ? q2_q : q1_q) : add_u(p1_q, one);   // swap: p = q'
+            g1_q    <= add_u(g2_q, td_u);
+            g2_q    <= add_u(g2_q, {{(UW-2){1'b0}}, td, !td});
             t_q     <= td ? t_d : t_a;
             td_q    <= (td ? t_d[NW-1] : t_a[NW-1]) == qpos_q;    // (a new octant reloads)
             last_a_q <= td ? hit(duw_q, dvw_q, st_q[74:50]) : hit(duw_q, dvw_q, st_q[24:0]);
             last_d_q <= td ? hit(duw_q, dvw_q, st_q[99:75]) : hit(duw_q, dvw_q, st_q[49:25]);
         end
-        // Reload: T in two cycles (a carry-save step, then the carry chain), the counters
-        // and the step tables of the octant (from registers that hold still meanwhile).
+        // Reload, in the second reload cycle: T (its carry-save step t_cs_q, t_cc_q
+        // registered in the first) and the counters, from registers computed every cycle,
+        // which are valid then since p, q, the tables and the windows hold still after the
+        // step; so a reload is a plain load.
         if (loading || reload2_q) begin
             t_q      <= t_new;
             td_q     <= t_new[NW-1] == qpos_q;
-        end
-        if (loading || reload_q) begin
-            t_cs_q   <= t_cs;
-            t_cc_q   <= t_cc;
-            g1_q     <= add_u(p1_q, q_q);
-            g2_q     <= p1_q - ~q_q;                 // p1 + q + 1
-            q1_q     <= inc_u(q_q);
-            q2_q     <= add_u(q_q, two);
-            nq_q     <= inc_u(~q_q);
-            qm1_q    <= q_q == {UW{1'b1}};
-            st_q     <= st_all[100 * {xm_q, mjn_q, mnn_q} +: 100];
-            last_a_q <= hit(w1u, w1v, grid(lt_q[8:0]));
-            last_d_q <= hit(w1u, w1v, grid(lt_q[17:9]));
+            g1_q     <= g1_r;
+            g2_q     <= g2_r;
+            q1_q     <= q1_r;
+            q2_q     <= q2_r;
+            nq_q     <= nq_r;
+            qm1_q    <= qm1_r;
+            last_a_q <= last_a_r;
+            last_d_q <= last_d_r;
         end
     end
 endmodule

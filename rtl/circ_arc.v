@@ -75,20 +75,56 @@ module circ_arc #(
         .busy(setup_busy), .check(check), .on_band(on_band)
     );
 
-    // Command check (in the `check` cycle).
-    localparam integer LIMIT_BITS = WIDTH - 3;
-    function automatic in_range(input [UW-1:0] value);      // -2^(W-3) < value < 2^(W-3)
-        in_range = value[UW-1] ? value[UW-1:LIMIT_BITS] == {(UW-LIMIT_BITS){1'b1}} && value[LIMIT_BITS-1:0] != {LIMIT_BITS{1'b0}}
-                               : value[UW-1:LIMIT_BITS] == {(UW-LIMIT_BITS){1'b0}};
+    // Command check (in the `check` cycle).  The command's registers hold still through
+    // the set-up, so the checks are registered in stages of one or two LUT levels (settled
+    // long before `check`): wide compares straight from the command's registers, which
+    // fan out across the chip, would be the slowest paths of the core.
+    localparam integer LB = WIDTH - 3;      // range: -2^LB < value < 2^LB
+    localparam integer NG = (LB + 3) / 4;   // 4-bit groups of a value's low LB bits
+    localparam integer DG = (UW + 1) / 2;   // 2-bit groups of a coordinate
+    // {top bits all ones, all zeros, low groups nonzero}
+    function automatic [NG+1:0] range_flags(input [UW-1:0] x);
+        integer i;
+        reg [4*NG-1:0] low;
+        begin
+            low = {(4*NG){1'b0}};
+            for (i = 0; i < LB; i = i + 1) low[i] = x[i];
+            for (i = 0; i < NG; i = i + 1) range_flags[i] = |low[4*i +: 4];
+            range_flags[NG+1:NG] = {&x[UW-1:LB], ~|x[UW-1:LB]};
+        end
     endfunction
-    // The command's registers hold still through the set-up, so the tests on
-    // them are registered (settled long before `check`): wide compares stay
-    // off the path into the state register.
-    reg fits_q, at_centre_q, at_start_q;
+    function automatic [DG-1:0] differs(input [UW-1:0] a, b);      // per 2-bit group
+        integer i;
+        reg [2*DG-1:0] d;
+        begin
+            d = {(2*DG){1'b0}};
+            for (i = 0; i < UW; i = i + 1) d[i] = a[i] ^ b[i];
+            for (i = 0; i < DG; i = i + 1) differs[i] = |d[2*i +: 2];
+        end
+    endfunction
+    function automatic in_range(input [NG+1:0] f);
+        in_range = f[NG] || (f[NG+1] && |f[NG-1:0]);
+    endfunction
+    function automatic is_zero(input [NG+1:0] f);
+        is_zero = f[NG] && !(|f[NG-1:0]);
+    endfunction
+    reg [NG+1:0]   rf_u0_q, rf_v0_q, rf_u1_q, rf_v1_q;   // stage 1
+    reg [2*DG-1:0] dif_q;
+    reg [3:0]      fit_q;                                // stage 2
+    reg            zero_u0_q, zero_v0_q;
+    reg            fits_q, at_centre_q, at_start_q;      // stage 3 (at_start_q: 2)
     always @(posedge clk) begin
-        fits_q      <= in_range(u0_q) && in_range(v0_q) && in_range(u1_q) && in_range(v1_q);
-        at_centre_q <= u0_q == {UW{1'b0}} && v0_q == {UW{1'b0}};
-        at_start_q  <= u0_q == u1_q && v0_q == v1_q;
+        rf_u0_q     <= range_flags(u0_q);
+        rf_v0_q     <= range_flags(v0_q);
+        rf_u1_q     <= range_flags(u1_q);
+        rf_v1_q     <= range_flags(v1_q);
+        dif_q       <= {differs(u0_q, u1_q), differs(v0_q, v1_q)};
+        fit_q       <= {in_range(rf_u0_q), in_range(rf_v0_q), in_range(rf_u1_q), in_range(rf_v1_q)};
+        zero_u0_q   <= is_zero(rf_u0_q);
+        zero_v0_q   <= is_zero(rf_v0_q);
+        at_start_q  <= !(|dif_q);
+        fits_q      <= &fit_q;
+        at_centre_q <= zero_u0_q && zero_v0_q;
     end
     wire bad = !fits_q || at_centre_q || !on_band;
     wire begin_run = check && !bad && !(at_start_q && !full_q);

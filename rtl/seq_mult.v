@@ -8,6 +8,8 @@
 // carry chain; a chunk's carry out is registered and enters the next chunk one
 // cycle later (carry-save at the chunk borders), so no carry chain is longer
 // than CW = ceil(2*WIDTH / 3) bits.  Two flush cycles settle those carries.
+// The partial product is registered a cycle ahead, so the chains start at
+// registers; while idle the operand registers follow a and b (no clock enable).
 //
 // Timing: `start` in a cycle with busy low captures a, b (cycle 0); busy is high
 // in cycles 1 .. WIDTH+2 (WIDTH partial products, two carry flushes); `done` is
@@ -39,20 +41,23 @@ module seq_mult #(
     reg  [AW-1:0]    mcand_q;      // multiplicand, sign-extended, shifted left i places
     reg  [WIDTH-1:0] mplier_q;     // multiplier, shifted right: bit i in bit 0 (zeros follow)
     reg  [1:0]       carry_q;      // pending carries into chunks 1 and 2
-    reg              sign_bit_q;   // bit 0 of mplier_q is b's sign bit: subtract
+    reg  [AW-1:0]    addend_q;     // this cycle's partial product: 0, mcand_q or ~mcand_q
+    reg              cin0_q;       // + 1 with ~mcand_q (b's sign bit subtracts)
     reg  [NW-1:0]    count_q;      // busy cycle index
     reg              busy_q;
 
     assign busy = busy_q;
     assign product = acc_q[PW-1:0];
 
-    // This cycle's partial product: 0, the multiplicand, or (sign bit) its inverse + 1.
-    wire          add_it = mplier_q[0];
-    wire [AW-1:0] addend = add_it ? (sign_bit_q ? ~mcand_q : mcand_q) : {AW{1'b0}};
-    wire          cin0 = add_it & sign_bit_q;
-    wire [CW:0]   sum0 = {1'b0, acc_q[CW-1:0]}        + {1'b0, addend[CW-1:0]}        + {{CW{1'b0}}, cin0};
-    wire [CW:0]   sum1 = {1'b0, acc_q[2*CW-1:CW]}     + {1'b0, addend[2*CW-1:CW]}     + {{CW{1'b0}}, carry_q[0]};
-    wire [CW:0]   sum2 = {1'b0, acc_q[3*CW-1:2*CW]}   + {1'b0, addend[3*CW-1:2*CW]}   + {{CW{1'b0}}, carry_q[1]};
+    // The partial product is registered a cycle ahead (the chunk chains start at
+    // registers): 0, the multiplicand, or (b's sign bit) its inverse + 1.
+    function automatic [AW:0] partial(input bit_i, sign_i, input [AW-1:0] m);   // {+1, addend}
+        partial = !bit_i ? {(AW+1){1'b0}} : sign_i ? {1'b1, ~m} : {1'b0, m};
+    endfunction
+    wire [AW-1:0] a_ext = {{(AW-WIDTH){a[WIDTH-1]}}, a};
+    wire [CW:0]   sum0 = {1'b0, acc_q[CW-1:0]}        + {1'b0, addend_q[CW-1:0]}        + {{CW{1'b0}}, cin0_q};
+    wire [CW:0]   sum1 = {1'b0, acc_q[2*CW-1:CW]}     + {1'b0, addend_q[2*CW-1:CW]}     + {{CW{1'b0}}, carry_q[0]};
+    wire [CW:0]   sum2 = {1'b0, acc_q[3*CW-1:2*CW]}   + {1'b0, addend_q[3*CW-1:2*CW]}   + {{CW{1'b0}}, carry_q[1]};
     localparam [31:0] SIGN_NEXT32 = WIDTH - 2, LAST32 = WIDTH + 1;
     localparam [NW-1:0] SIGN_NEXT = SIGN_NEXT32[NW-1:0], LAST = LAST32[NW-1:0];
 
@@ -62,19 +67,22 @@ module seq_mult #(
             mcand_q    <= {AW{1'b0}};
             mplier_q   <= {WIDTH{1'b0}};
             carry_q    <= 2'b00;
-            sign_bit_q <= 1'b0;
+            addend_q   <= {AW{1'b0}};
+            cin0_q     <= 1'b0;
             count_q    <= {NW{1'b0}};
             busy_q     <= 1'b0;
             done       <= 1'b0;
         end else begin
             done <= 1'b0;
             if (!busy_q) begin
+                // The operand registers follow a and b while idle (no clock enable:
+                // the enable nets of the parent's loops keep the global buffers).
+                mcand_q  <= a_ext;
+                mplier_q <= b;
+                {cin0_q, addend_q} <= partial(b[0], 1'b0, a_ext);
                 if (start) begin
                     acc_q      <= {AW{1'b0}};
-                    mcand_q    <= {{(AW-WIDTH){a[WIDTH-1]}}, a};
-                    mplier_q   <= b;
                     carry_q    <= 2'b00;
-                    sign_bit_q <= 1'b0;
                     count_q    <= {NW{1'b0}};
                     busy_q     <= 1'b1;
                 end
@@ -83,7 +91,7 @@ module seq_mult #(
                 carry_q    <= {sum1[CW], sum0[CW]};
                 mcand_q    <= {mcand_q[AW-2:0], 1'b0};
                 mplier_q   <= {1'b0, mplier_q[WIDTH-1:1]};
-                sign_bit_q <= count_q == SIGN_NEXT;
+                {cin0_q, addend_q} <= partial(mplier_q[1], count_q == SIGN_NEXT, {mcand_q[AW-2:0], 1'b0});
                 count_q    <= count_q + 1'b1;
                 if (count_q == LAST) begin
                     busy_q <= 1'b0;
@@ -93,7 +101,8 @@ module seq_mult #(
         end
     end
 
-    // Chunk 2's carry out falls off the top; bits above PW are padding.
-    wire unused = &{1'b0, sum2[CW], acc_q[AW-1:PW-1]};
+    // Chunk 2's carry out falls off the top; bits above PW are padding; the operand
+    // registers are read a cycle ahead (the partial product is registered).
+    wire unused = &{1'b0, sum2[CW], acc_q[AW-1:PW-1], mcand_q[AW-1], mplier_q[0]};
 endmodule
 `default_nettype wire

@@ -23,8 +23,8 @@ def inputs(u0, v0, u1, v1, ccw):
 
 
 def arc(load, tick):
-    """`run` low for 7 cycles with the inputs, then run and tick until `fin`, then 2 idle cycles."""
-    for _ in range(7):
+    """`run` low for 9 cycles with the inputs, then run and tick until `fin`, then 2 idle cycles."""
+    for _ in range(9):
         yield {**load, "run": 0, "tick": 1}
     cycle = 0
     sample = yield {**load, "run": 1, "tick": tick(cycle)}
