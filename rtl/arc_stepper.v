@@ -68,6 +68,7 @@ module arc_stepper #(
     reg               reload_q, reload2_q;          // the two reload cycles after a new octant
     reg               xm_q, mjn_q, mnn_q, qpos_q;  // x major, a < 0, b < 0, q > 0
     reg  [UW-1:0]     u_q, v_q, du_q, dv_q;        // P, P - End
+    reg  [UW-1:0]     u1_q, v1_q;                  // End (read while loading)
     reg  [UW-1:0]     s1_q, s3_q;                  // u + v, v - u (first octant only)
     reg               uz_q, vz_q, s1z_q, s3z_q;    // == 0
     reg  [UW-1:0]     ua_q, ud_q, va_q, vd_q;      // the axial and the diagonal step (-1, 0, +1)
@@ -164,7 +165,7 @@ module arc_stepper #(
             // dot(End + D, End) = |End|^2 + D.End > 0: true when |End|^2 > 8 (|D| <= 2 sqrt 2),
             // else a function of End's low three bits per axis.
             localparam [63:0] DOT_SMALL = dot_table(DU, DV);
-            assign dot_w[gi] = !small_q || DOT_SMALL[{u1[2:0], v1[2:0]}];
+            assign dot_w[gi] = !small_q || DOT_SMALL[{u1_q[2:0], v1_q[2:0]}];
         end
     endgenerate
     // Last-step tables for the steps a, a + b (unit vectors (au, av), (bu, bv)): bit
@@ -295,8 +296,8 @@ module arc_stepper #(
     // Both candidate points are summed from registers (the octant's step vectors,
     // registered from the octant) and the decision selects late, after the carry chains.
     wire [UW-1:0] u_a = add_u(u_q, ua_q), u_d = add_u(u_q, ud_q), v_a = add_u(v_q, va_q), v_d = add_u(v_q, vd_q);
-    wire [UW-1:0] u_next = td ? (last_d_q ? u1 : u_d) : (last_a_q ? u1 : u_a);
-    wire [UW-1:0] v_next = td ? (last_d_q ? v1 : v_d) : (last_a_q ? v1 : v_a);
+    wire [UW-1:0] u_next = td ? (last_d_q ? u1_q : u_d) : (last_a_q ? u1_q : u_a);
+    wire [UW-1:0] v_next = td ? (last_d_q ? v1_q : v_d) : (last_a_q ? v1_q : v_a);
     function automatic [UW-1:0] unit(input move, neg);      // -1, 0, +1
         unit = {{(UW-1){move && neg}}, move};
     endfunction
@@ -368,25 +369,27 @@ module arc_stepper #(
         lt1_q <= lt_all[18 * oct1 +: 18];
         lt2_q <= lt_all[18 * oct2 +: 18];
         if (loading) begin                    // the command's tables; the first octant, p and q
+            u1_q    <= u1;
+            v1_q    <= v1;
             u_q     <= u0;
             v_q     <= v0;
             e_q     <= {NW{1'b0}};
-            du_q    <= add1_u(u0, ~u1);              // u0 - u1
-            dv_q    <= add1_u(v0, ~v1);
-            r1_q    <= add1_u({v1[UW-2:0], 1'b0}, ~u1);
-            r2_q    <= add1_u(v1, ~u1);
-            r3_q    <= add1_u(v1, ~{u1[UW-2:0], 1'b0});
-            r5_q    <= add_u(v1, {u1[UW-2:0], 1'b0});
-            r6_q    <= add_u(v1, u1);
-            r7_q    <= add_u({v1[UW-2:0], 1'b0}, u1);
-            dneg_q  <= {r7_q[UW-1], r6_q[UW-1], r5_q[UW-1], u1[UW-1], r3_q[UW-1], r2_q[UW-1], r1_q[UW-1], v1[UW-1]};
-            dzero_q <= {r7_q == {UW{1'b0}}, r6_q == {UW{1'b0}}, r5_q == {UW{1'b0}}, u1 == {UW{1'b0}},
-                        r3_q == {UW{1'b0}}, r2_q == {UW{1'b0}}, r1_q == {UW{1'b0}}, v1 == {UW{1'b0}}};
-            small_q <= (small_eq(u1) & 7'b0111110) != 7'd0 && (small_eq(v1) & 7'b0111110) != 7'd0;
+            du_q    <= u0 - u1_q;
+            dv_q    <= v0 - v1_q;
+            r1_q    <= {v1_q[UW-2:0], 1'b0} - u1_q;
+            r2_q    <= v1_q - u1_q;
+            r3_q    <= v1_q - {u1_q[UW-2:0], 1'b0};
+            r5_q    <= v1_q + {u1_q[UW-2:0], 1'b0};
+            r6_q    <= v1_q + u1_q;
+            r7_q    <= {v1_q[UW-2:0], 1'b0} + u1_q;
+            dneg_q  <= {r7_q[UW-1], r6_q[UW-1], r5_q[UW-1], u1_q[UW-1], r3_q[UW-1], r2_q[UW-1], r1_q[UW-1], v1_q[UW-1]};
+            dzero_q <= {r7_q == {UW{1'b0}}, r6_q == {UW{1'b0}}, r5_q == {UW{1'b0}}, u1_q == {UW{1'b0}},
+                        r3_q == {UW{1'b0}}, r2_q == {UW{1'b0}}, r1_q == {UW{1'b0}}, v1_q == {UW{1'b0}}};
+            small_q <= (small_eq(u1_q) & 7'b0111110) != 7'd0 && (small_eq(v1_q) & 7'b0111110) != 7'd0;
             pos_q   <= pos_w;
             dot_q   <= dot_w;
-            s1_q    <= add_u(u_q, v_q);
-            s3_q    <= add1_u(v_q, ~u_q);
+            s1_q    <= u_q + v_q;
+            s3_q    <= v_q - u_q;
             uz_q    <= u_q == {UW{1'b0}};
             vz_q    <= v_q == {UW{1'b0}};
             s1z_q   <= s1_q == {UW{1'b0}};
@@ -414,15 +417,16 @@ module arc_stepper #(
             dvw_q   <= window(my, ny, dve);
             p_q     <= bound ? p_new : p1_q;
             // Counters of the diagonal steps: sums with td at bit 0, not holds (Yosys would
-            // make each hold a clock enable of its own, a net that goes everywhere).
-            q_q     <= bound ? q_new : add_u(q_q, td_u);
-            q1_q    <= add_u(q1_q, td_u);
-            q2_q    <= add_u(q2_q, td_u);
-            nq_q    <= add1_u(nq_q, ~td_u);              // nq - td
+            // make each hold a clock enable of its own, a net that goes everywhere), and
+            // one chain each (a carry select's halves would be such holds again).
+            q_q     <= bound ? q_new : q_q + td_u;
+            q1_q    <= q1_q + td_u;
+            q2_q    <= q2_q + td_u;
+            nq_q    <= nq_q - td_u;
             qm1_q   <= td ? q_q == {{(UW-1){1'b1}}, 1'b0} : q_q == {UW{1'b1}};
             p1_q    <= bound && !qpos_q ? (td ? q2_q : q1_q) : add_u(p1_q, one);   // swap: p = q'
-            g1_q    <= add_u(g2_q, td_u);
-            g2_q    <= add_u(g2_q, {{(UW-2){1'b0}}, td, !td});
+            g1_q    <= g2_q + td_u;
+            g2_q    <= g2_q + {{(UW-2){1'b0}}, td, !td};
             t_q     <= td ? t_d : t_a;
             td_q    <= (td ? t_d[NW-1] : t_a[NW-1]) == qpos_q;    // (a new octant reloads)
             last_a_q <= td ? hit(duw_q, dvw_q, st_q[74:50]) : hit(duw_q, dvw_q, st_q[24:0]);

@@ -58,8 +58,9 @@ module seq_mult #(
     wire [CW:0]   sum0 = {1'b0, acc_q[CW-1:0]}        + {1'b0, addend_q[CW-1:0]}        + {{CW{1'b0}}, cin0_q};
     wire [CW:0]   sum1 = {1'b0, acc_q[2*CW-1:CW]}     + {1'b0, addend_q[2*CW-1:CW]}     + {{CW{1'b0}}, carry_q[0]};
     wire [CW:0]   sum2 = {1'b0, acc_q[3*CW-1:2*CW]}   + {1'b0, addend_q[3*CW-1:2*CW]}   + {{CW{1'b0}}, carry_q[1]};
-    localparam [31:0] SIGN_NEXT32 = WIDTH - 2, LAST32 = WIDTH + 1;
-    localparam [NW-1:0] SIGN_NEXT = SIGN_NEXT32[NW-1:0], LAST = LAST32[NW-1:0];
+    localparam [31:0] LAST32 = WIDTH + 1;
+    localparam [NW-1:0] LAST = LAST32[NW-1:0];
+    reg sign_next_q;              // mplier_q[1] is b's sign bit (busy cycle WIDTH - 2)
 
     always @(posedge clk) begin
         if (rst) begin
@@ -70,6 +71,7 @@ module seq_mult #(
             addend_q   <= {AW{1'b0}};
             cin0_q     <= 1'b0;
             count_q    <= {NW{1'b0}};
+            sign_next_q <= 1'b0;
             busy_q     <= 1'b0;
             done       <= 1'b0;
         end else begin
@@ -84,6 +86,7 @@ module seq_mult #(
                     acc_q      <= {AW{1'b0}};
                     carry_q    <= 2'b00;
                     count_q    <= {NW{1'b0}};
+                    sign_next_q <= WIDTH == 2;
                     busy_q     <= 1'b1;
                 end
             end else begin
@@ -91,7 +94,8 @@ module seq_mult #(
                 carry_q    <= {sum1[CW], sum0[CW]};
                 mcand_q    <= {mcand_q[AW-2:0], 1'b0};
                 mplier_q   <= {1'b0, mplier_q[WIDTH-1:1]};
-                {cin0_q, addend_q} <= partial(mplier_q[1], count_q == SIGN_NEXT, {mcand_q[AW-2:0], 1'b0});
+                {cin0_q, addend_q} <= partial(mplier_q[1], sign_next_q, {mcand_q[AW-2:0], 1'b0});
+                sign_next_q <= {{(32-NW){1'b0}}, count_q} + 32'd3 == WIDTH;
                 count_q    <= count_q + 1'b1;
                 if (count_q == LAST) begin
                     busy_q <= 1'b0;
