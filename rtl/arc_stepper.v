@@ -324,6 +324,13 @@ module arc_stepper #(
     function automatic [24:0] grid(input [8:0] table_t);   // a 9-bit table on the 5x5 grid
         grid = moved(table_t, 0, 0);
     endfunction
+    // Inputs of the registers that take a new value every cycle, as continuous
+    // assignments (simulators evaluate the functions only when their inputs change).
+    wire [UW-1:0] g1_w = add_u(p1_q, q_q), g2_w = add1_u(p1_q, q_q), q1_w = inc_u(q_q);
+    wire [UW-1:0] q2_w = add_u(q_q, two), nq_w = inc_u(~q_q);
+    wire          last_a_w = hit(w1u, w1v, grid(lt_q[8:0])), last_d_w = hit(w1u, w1v, grid(lt_q[17:9]));
+    wire [UW-1:0] ua_w = unit(xm_q, nxa), ud_w = unit(1'b1, nxd), va_w = unit(!xm_q, nya), vd_w = unit(1'b1, nyd);
+    wire          near_u_w = near4(du_q), near_v_w = near4(dv_q);
 
     always @(posedge clk) begin
         if (rst) begin
@@ -352,20 +359,20 @@ module arc_stepper #(
         t_cs_q <= t_cs;
         t_cc_q <= t_cc;
         st_q  <= st_all[100 * {xm_q, mjn_q, mnn_q} +: 100];
-        g1_r  <= add_u(p1_q, q_q);
-        g2_r  <= add1_u(p1_q, q_q);
-        q1_r  <= inc_u(q_q);
-        q2_r  <= add_u(q_q, two);
-        nq_r  <= inc_u(~q_q);
+        g1_r  <= g1_w;
+        g2_r  <= g2_w;
+        q1_r  <= q1_w;
+        q2_r  <= q2_w;
+        nq_r  <= nq_w;
         qm1_r <= q_q == {UW{1'b1}};
-        last_a_r <= hit(w1u, w1v, grid(lt_q[8:0]));
-        last_d_r <= hit(w1u, w1v, grid(lt_q[17:9]));
-        ua_q  <= unit(xm_q, nxa);
-        ud_q  <= unit(1'b1, nxd);
-        va_q  <= unit(!xm_q, nya);
-        vd_q  <= unit(1'b1, nyd);
-        near_u_q <= near4(du_q);
-        near_v_q <= near4(dv_q);
+        last_a_r <= last_a_w;
+        last_d_r <= last_d_w;
+        ua_q  <= ua_w;
+        ud_q  <= ud_w;
+        va_q  <= va_w;
+        vd_q  <= vd_w;
+        near_u_q <= near_u_w;
+        near_v_q <= near_v_w;
         lt1_q <= lt_all[18 * oct1 +: 18];
         lt2_q <= lt_all[18 * oct2 +: 18];
         if (loading) begin                    // the command's tables; the first octant, p and q

@@ -113,12 +113,16 @@ module circ_arc #(
     reg [3:0]      fit_q;                                // stage 2
     reg            zero_u0_q, zero_v0_q;
     reg            fits_q, at_centre_q, at_start_q;      // stage 3 (at_start_q: 2)
+    // (continuous assignments: simulators evaluate the functions only when the command changes)
+    wire [NG+1:0]   rf_u0 = range_flags(u0_q), rf_v0 = range_flags(v0_q);
+    wire [NG+1:0]   rf_u1 = range_flags(u1_q), rf_v1 = range_flags(v1_q);
+    wire [2*DG-1:0] dif = {differs(u0_q, u1_q), differs(v0_q, v1_q)};
     always @(posedge clk) begin
-        rf_u0_q     <= range_flags(u0_q);
-        rf_v0_q     <= range_flags(v0_q);
-        rf_u1_q     <= range_flags(u1_q);
-        rf_v1_q     <= range_flags(v1_q);
-        dif_q       <= {differs(u0_q, u1_q), differs(v0_q, v1_q)};
+        rf_u0_q     <= rf_u0;
+        rf_v0_q     <= rf_v0;
+        rf_u1_q     <= rf_u1;
+        rf_v1_q     <= rf_v1;
+        dif_q       <= dif;
         fit_q       <= {in_range(rf_u0_q), in_range(rf_v0_q), in_range(rf_u1_q), in_range(rf_v1_q)};
         zero_u0_q   <= is_zero(rf_u0_q);
         zero_v0_q   <= is_zero(rf_v0_q);

@@ -55,6 +55,8 @@ module seq_mult #(
         partial = !bit_i ? {(AW+1){1'b0}} : sign_i ? {1'b1, ~m} : {1'b0, m};
     endfunction
     wire [AW-1:0] a_ext = {{(AW-WIDTH){a[WIDTH-1]}}, a};
+    wire [AW:0]   first = partial(b[0], 1'b0, a_ext);                               // for cycle 1
+    wire [AW:0]   next = partial(mplier_q[1], sign_next_q, {mcand_q[AW-2:0], 1'b0});
     wire [CW:0]   sum0 = {1'b0, acc_q[CW-1:0]}        + {1'b0, addend_q[CW-1:0]}        + {{CW{1'b0}}, cin0_q};
     wire [CW:0]   sum1 = {1'b0, acc_q[2*CW-1:CW]}     + {1'b0, addend_q[2*CW-1:CW]}     + {{CW{1'b0}}, carry_q[0]};
     wire [CW:0]   sum2 = {1'b0, acc_q[3*CW-1:2*CW]}   + {1'b0, addend_q[3*CW-1:2*CW]}   + {{CW{1'b0}}, carry_q[1]};
@@ -81,7 +83,7 @@ module seq_mult #(
                 // the enable nets of the parent's loops keep the global buffers).
                 mcand_q  <= a_ext;
                 mplier_q <= b;
-                {cin0_q, addend_q} <= partial(b[0], 1'b0, a_ext);
+                {cin0_q, addend_q} <= first;
                 if (start) begin
                     acc_q      <= {AW{1'b0}};
                     carry_q    <= 2'b00;
@@ -94,7 +96,7 @@ module seq_mult #(
                 carry_q    <= {sum1[CW], sum0[CW]};
                 mcand_q    <= {mcand_q[AW-2:0], 1'b0};
                 mplier_q   <= {1'b0, mplier_q[WIDTH-1:1]};
-                {cin0_q, addend_q} <= partial(mplier_q[1], sign_next_q, {mcand_q[AW-2:0], 1'b0});
+                {cin0_q, addend_q} <= next;
                 sign_next_q <= {{(32-NW){1'b0}}, count_q} + 32'd3 == WIDTH;
                 count_q    <= count_q + 1'b1;
                 if (count_q == LAST) begin
