@@ -354,8 +354,9 @@ module arc_stepper #(
 
     // Data registers without reset: they follow the inputs whenever `run` is low (or in reset).
     always @(posedge clk) begin
-        // Registers without an enable (they change only with the octant, E, p or q, so
-        // they are valid in the reload cycles): fewer enable nets to route.
+        // Registers without an enable: fewer enable nets to route.  The reload values
+        // (t_cs_q .. last_d_r) and the step vectors change only with the octant, E, p, q
+        // and the tables, so they are valid in the second reload cycle.
         t_cs_q <= t_cs;
         t_cc_q <= t_cc;
         st_q  <= st_all[100 * {xm_q, mjn_q, mnn_q} +: 100];

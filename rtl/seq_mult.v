@@ -43,6 +43,7 @@ module seq_mult #(
     reg  [1:0]       carry_q;      // pending carries into chunks 1 and 2
     reg  [AW-1:0]    addend_q;     // this cycle's partial product: 0, mcand_q or ~mcand_q
     reg              cin0_q;       // + 1 with ~mcand_q (b's sign bit subtracts)
+    reg              sign_next_q;  // mplier_q[1] is b's sign bit (busy cycle WIDTH - 2)
     reg  [NW-1:0]    count_q;      // busy cycle index
     reg              busy_q;
 
@@ -62,7 +63,6 @@ module seq_mult #(
     wire [CW:0]   sum2 = {1'b0, acc_q[3*CW-1:2*CW]}   + {1'b0, addend_q[3*CW-1:2*CW]}   + {{CW{1'b0}}, carry_q[1]};
     localparam [31:0] LAST32 = WIDTH + 1;
     localparam [NW-1:0] LAST = LAST32[NW-1:0];
-    reg sign_next_q;              // mplier_q[1] is b's sign bit (busy cycle WIDTH - 2)
 
     always @(posedge clk) begin
         if (rst) begin
