@@ -26,10 +26,13 @@
 // shifted by either step, so the last-step flags for the next step are registered from
 // the one-hot windows D = -2 .. 2 per axis.
 //
-// For the clock: both candidate points are summed from registers and the decision
-// selects after the carry chains; the counters of diagonal steps are sums with the
-// decision at bit 0, not holds (a hold becomes a clock enable net of its own); the
-// reload values are registered every cycle, so a reload is a plain load.
+// For the clock: T is held as -T - 1 while q < 0, so the decision is T's top bit (no
+// register and LUT of its own); the point is kept only as D (u, v = End + D, for the
+// benches); both candidate values are summed from registers and the decision selects
+// after the carry chains; the counters of diagonal steps are sums with the decision at
+// bit 0, not holds (a hold becomes a clock enable net of its own); the reload values,
+// the octants' tables and `fin`/reload state for the step enable are registered, so a
+// reload is a plain load and the enable one LUT.
 //
 // Timing: while `run` is low the registers follow the inputs; they settle within
 // 9 cycles.  With `run` high, one step per `tick` (strobes and dir levels registered
@@ -66,8 +69,9 @@ module arc_stepper #(
     localparam integer NW = WIDTH + 2;      // E and T
 
     reg               reload_q, reload2_q;          // the two reload cycles after a new octant
+    reg               ok_q;                         // none of fin, reload_q, reload2_q
     reg               xm_q, mjn_q, mnn_q, qpos_q;  // x major, a < 0, b < 0, q > 0
-    reg  [UW-1:0]     u_q, v_q, du_q, dv_q;        // P, P - End
+    reg  [UW-1:0]     u_q, v_q, du_q, dv_q;        // the start point (loading), D = P - End
     reg  [UW-1:0]     u1_q, v1_q;                  // End (read while loading)
     reg  [UW-1:0]     s1_q, s3_q;                  // u + v, v - u (first octant only)
     reg               uz_q, vz_q, s1z_q, s3z_q;    // == 0
@@ -79,20 +83,22 @@ module arc_stepper #(
     reg  [NW-1:0]     t_cs_q, t_cc_q;              // T's reload: E + 2p + q + 1 in carry-save form
     reg  [UW-1:0]     g1_q, g2_q;                  // p + q + 1, p + q + 2
     reg               qm1_q;                       // q == -1
-    reg  [NW-1:0]     t_q, e_q;
+    reg  [NW-1:0]     t_q, e_q;                    // T (-T - 1 when q < 0: the decision is its sign), E
+    reg  [UW-1:0]     p1x_q, g2x_q, p1x_r, g2x_r;  // T's steps: p + 1, p + q + 2 (complemented when q < 0)
     reg  [4:0]        duw_q, dvw_q;                // D = -2 .. 2, per axis (one-hot or none)
     reg               near_u_q, near_v_q;          // |D| <= 4 per axis, a cycle ago
     reg  [UW-1:0]     r1_q, r2_q, r3_q, r5_q, r6_q, r7_q;   // cross(d, End), see `dirs`
     reg               small_q;                     // |u1|, |v1| <= 2
     reg  [7:0]        dneg_q, dzero_q;             // cross(d, End) < 0, == 0
     reg  [24:0]       pos_q, dot_q;                // pos(D), dot(End + D, End) > 0 on the 5x5 grid
+    reg  [8*18-1:0]   lt_all_q;                    // lt_all, registered
     reg  [17:0]       lt_q, lt1_q, lt2_q;          // {diagonal, axial} last-step tables: octant, next ones
     reg  [99:0]       st_q;                        // tables shifted by a step: {DD, DA, AD, AA}
     reg               last_a_q, last_d_q;          // the axial / diagonal step is the last
-    reg               td_q;                        // take the diagonal, from T's next value
 
-    assign u = u_q;
-    assign v = v_q;
+    reg               loaded_q;                    // loading a cycle ago: u_q, v_q hold P
+    assign u = loaded_q ? u_q : u1_q + du_q;       // P = End + D while running (for the benches only)
+    assign v = loaded_q ? v_q : v1_q + dv_q;
     assign e = e_q;
 
     // ---------------------------------------------------------------- first octant
@@ -278,8 +284,8 @@ module arc_stepper #(
     endfunction
 
     // ---------------------------------------------------------------- the step
-    wire td   = td_q;                            // take the diagonal: (T < 0) == (q > 0)
-    wire go   = run && !fin && !reload_q && !reload2_q && tick;
+    wire td   = t_q[NW-1];                       // take the diagonal: (T < 0) == (q > 0)
+    wire go   = run && ok_q && tick;             // ok_q = !fin && !reload_q && !reload2_q
     wire loading = !run || rst;
     wire last = td ? last_d_q : last_a_q;
     // At the last step the end point is one step away: D = P - End in -1 .. 1 per axis.
@@ -293,16 +299,17 @@ module arc_stepper #(
     wire neg_x = last ? duw_q[3] : nx;
     wire neg_y = last ? dvw_q[3] : ny;
     wire [UW-1:0] one = {{(UW-1){1'b0}}, 1'b1}, two = {{(UW-2){1'b0}}, 2'b10}, td_u = {{(UW-1){1'b0}}, td};
-    // Both candidate points are summed from registers (the octant's step vectors,
+    // Both candidate values of D are summed from registers (the octant's step vectors,
     // registered from the octant) and the decision selects late, after the carry chains.
-    wire [UW-1:0] u_a = add_u(u_q, ua_q), u_d = add_u(u_q, ud_q), v_a = add_u(v_q, va_q), v_d = add_u(v_q, vd_q);
-    wire [UW-1:0] u_next = td ? (last_d_q ? u1_q : u_d) : (last_a_q ? u1_q : u_a);
-    wire [UW-1:0] v_next = td ? (last_d_q ? v1_q : v_d) : (last_a_q ? v1_q : v_a);
+    wire [UW-1:0] du_a = add_u(du_q, ua_q), du_d = add_u(du_q, ud_q), dv_a = add_u(dv_q, va_q), dv_d = add_u(dv_q, vd_q);
+    wire [UW-1:0] zero = {UW{1'b0}};
     function automatic [UW-1:0] unit(input move, neg);      // -1, 0, +1
         unit = {{(UW-1){move && neg}}, move};
     endfunction
-    wire [NW-1:0] t_a = add_n(t_q, {p1_q, 1'b1}), t_d = add_n(t_q, {g2_q, 1'b1});
+    // With q < 0 the register holds ~T, and ~(T + {x, 1}) = ~T + {~x, 1}.
+    wire [NW-1:0] t_a = add_n(t_q, {p1x_q, 1'b1}), t_d = add_n(t_q, {g2x_q, 1'b1});
     wire [NW-1:0] e_a = add_n(e_q, {p_q, 1'b1}),  e_d = add_n(e_q, {g1_q, 1'b0});
+    wire [UW-1:0] p1_1 = add_u(p1_q, one), g2_next = g2_q + {{(UW-2){1'b0}}, td, !td};
     wire [UW-1:0] q_next = td ? q1_q : q_q;          // q', -q' (-(q + 1) = ~q)
     wire [UW-1:0] nq_next = td ? ~q_q : nq_q;
     // The octant ends: p' >= 0 (q > 0) or p' + q' >= 0 (q < 0).
@@ -315,9 +322,10 @@ module arc_stepper #(
     wire [UW-1:0] q_new = qpos_q ? nq_next : turn2 ? ~p_q : p1_q;
     // Reload (and while not running): T and the counters from E, p and q.
     wire [NW-1:0] p2w = {p_q, 1'b0}, qw = {q_q[UW-1], q_q};
-    wire [NW-1:0] t_cs = e_q ^ p2w ^ qw;
-    wire [NW-1:0] t_cc = {(e_q[NW-2:0] & p2w[NW-2:0]) | (e_q[NW-2:0] & qw[NW-2:0]) |
-                          (p2w[NW-2:0] & qw[NW-2:0]), 1'b1};          // + 1
+    // ~(a + b) = ~a + ~b + 1: b's bit 0 is the + 1 when q > 0 and 0 in ~b, so it stays 1.
+    wire [NW-1:0] t_cs = e_q ^ p2w ^ qw ^ {NW{!qpos_q}};
+    wire [NW-1:0] t_cc = {((e_q[NW-2:0] & p2w[NW-2:0]) | (e_q[NW-2:0] & qw[NW-2:0]) |
+                           (p2w[NW-2:0] & qw[NW-2:0])) ^ {(NW-1){!qpos_q}}, 1'b1};   // + 1
     wire [NW-1:0] t_new = add_n(t_cs_q, t_cc_q);
     wire [6:0] due = near_eq(near_u_q, du_q[3:0]), dve = near_eq(near_v_q, dv_q[3:0]);
     wire [4:0] w1u = {1'b0, duw_q[3:1], 1'b0}, w1v = {1'b0, dvw_q[3:1], 1'b0};   // |D| <= 1
@@ -336,6 +344,7 @@ module arc_stepper #(
         if (rst) begin
             reload_q <= 1'b0;
             reload2_q <= 1'b0;
+            ok_q     <= 1'b1;
             fin      <= 1'b0;
             step_x   <= 1'b0;
             step_y   <= 1'b0;
@@ -345,6 +354,7 @@ module arc_stepper #(
             fin      <= go && last;
             reload_q <= go && bound && !last;
             reload2_q <= reload_q;
+            ok_q     <= !(go && (last || bound)) && !reload_q;
             step_x   <= act_x;
             step_y   <= act_y;
             if (act_x) dir_x <= neg_x;
@@ -362,6 +372,8 @@ module arc_stepper #(
         st_q  <= st_all[100 * {xm_q, mjn_q, mnn_q} +: 100];
         g1_r  <= g1_w;
         g2_r  <= g2_w;
+        p1x_r <= p1_q ^ {UW{!qpos_q}};
+        g2x_r <= g2_w ^ {UW{!qpos_q}};
         q1_r  <= q1_w;
         q2_r  <= q2_w;
         nq_r  <= nq_w;
@@ -374,8 +386,10 @@ module arc_stepper #(
         vd_q  <= vd_w;
         near_u_q <= near_u_w;
         near_v_q <= near_v_w;
-        lt1_q <= lt_all[18 * oct1 +: 18];
-        lt2_q <= lt_all[18 * oct2 +: 18];
+        lt_all_q <= lt_all;
+        loaded_q <= loading;
+        lt1_q <= lt_all_q[18 * oct1 +: 18];
+        lt2_q <= lt_all_q[18 * oct2 +: 18];
         if (loading) begin                    // the command's tables; the first octant, p and q
             u1_q    <= u1;
             v1_q    <= v1;
@@ -409,18 +423,16 @@ module arc_stepper #(
             p_q     <= add_u(pa_q, {{(UW-1){1'b0}}, mjn_q});    // P.a
             p1_q    <= inc_u(p_q);
             q_q     <= add_u(pb_q, {{(UW-1){1'b0}}, mnn_q});    // P.b
-            lt_q    <= lt_all[18 * {xm_q, mjn_q, mnn_q} +: 18];
+            lt_q    <= lt_all_q[18 * {xm_q, mjn_q, mnn_q} +: 18];
             duw_q   <= due[5:1];
             dvw_q   <= dve[5:1];
         end else if (go) begin
-            u_q     <= u_next;
-            v_q     <= v_next;
             e_q     <= td ? e_d : e_a;
             {xm_q, mjn_q, mnn_q} <= !bound ? {xm_q, mjn_q, mnn_q} : turn2 ? oct2 : oct1;
             qpos_q  <= bound ? !qpos_q && !turn2 : qpos_q;
             lt_q    <= !bound ? lt_q : turn2 ? lt2_q : lt1_q;
-            du_q    <= td ? add_u(du_q, ud_q) : add_u(du_q, ua_q);
-            dv_q    <= td ? add_u(dv_q, vd_q) : add_u(dv_q, va_q);
+            du_q    <= td ? (last_d_q ? zero : du_d) : (last_a_q ? zero : du_a);   // the last step ends at End
+            dv_q    <= td ? (last_d_q ? zero : dv_d) : (last_a_q ? zero : dv_a);
             duw_q   <= window(mx, nx, due);
             dvw_q   <= window(my, ny, dve);
             p_q     <= bound ? p_new : p1_q;
@@ -432,11 +444,12 @@ module arc_stepper #(
             q2_q    <= q2_q + td_u;
             nq_q    <= nq_q - td_u;
             qm1_q   <= td ? q_q == {{(UW-1){1'b1}}, 1'b0} : q_q == {UW{1'b1}};
-            p1_q    <= bound && !qpos_q ? (td ? q2_q : q1_q) : add_u(p1_q, one);   // swap: p = q'
+            p1_q    <= bound && !qpos_q ? (td ? q2_q : q1_q) : p1_1;   // swap: p = q'
             g1_q    <= g2_q + td_u;
-            g2_q    <= g2_q + {{(UW-2){1'b0}}, td, !td};
-            t_q     <= td ? t_d : t_a;
-            td_q    <= (td ? t_d[NW-1] : t_a[NW-1]) == qpos_q;    // (a new octant reloads)
+            g2_q    <= g2_next;
+            p1x_q   <= p1_1 ^ {UW{!qpos_q}};
+            g2x_q   <= g2_next ^ {UW{!qpos_q}};
+            t_q     <= td ? t_d : t_a;                            // (a new octant reloads)
             last_a_q <= td ? hit(duw_q, dvw_q, st_q[74:50]) : hit(duw_q, dvw_q, st_q[24:0]);
             last_d_q <= td ? hit(duw_q, dvw_q, st_q[99:75]) : hit(duw_q, dvw_q, st_q[49:25]);
         end
@@ -446,7 +459,8 @@ module arc_stepper #(
         // step; so a reload is a plain load.
         if (loading || reload2_q) begin
             t_q      <= t_new;
-            td_q     <= t_new[NW-1] == qpos_q;
+            p1x_q    <= p1x_r;
+            g2x_q    <= g2x_r;
             g1_q     <= g1_r;
             g2_q     <= g2_r;
             q1_q     <= q1_r;
