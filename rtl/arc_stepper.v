@@ -84,7 +84,9 @@ module arc_stepper #(
     reg  [UW-1:0]     g1_q, g2_q;                  // p + q + 1, p + q + 2
     reg               qm1_q;                       // q == -1
     reg  [NW-1:0]     t_q, e_q;                    // T (-T - 1 when q < 0: the decision is its sign), E
-    reg  [UW-1:0]     p1x_q, g2x_q, p1x_r, g2x_r;  // T's steps: p + 1, p + q + 2 (complemented when q < 0)
+    // T's steps p + 1, p + q + 2, complemented when q < 0 (p1_q, g2_q XOR !qpos_q), held in registers
+    // so that T's chains start at registers (and their reload values, like g1_r .. nq_r).
+    reg  [UW-1:0]     p1x_q, g2x_q, p1x_r, g2x_r;
     reg  [4:0]        duw_q, dvw_q;                // D = -2 .. 2, per axis (one-hot or none)
     reg               near_u_q, near_v_q;          // |D| <= 4 per axis, a cycle ago
     reg  [UW-1:0]     r1_q, r2_q, r3_q, r5_q, r6_q, r7_q;   // cross(d, End), see `dirs`
@@ -449,7 +451,7 @@ module arc_stepper #(
             g2_q    <= g2_next;
             p1x_q   <= p1_1 ^ {UW{!qpos_q}};
             g2x_q   <= g2_next ^ {UW{!qpos_q}};
-            t_q     <= td ? t_d : t_a;                            // (a new octant reloads)
+            t_q     <= td ? t_d : t_a;            // (a new octant reloads T, p1x_q and g2x_q)
             last_a_q <= td ? hit(duw_q, dvw_q, st_q[74:50]) : hit(duw_q, dvw_q, st_q[24:0]);
             last_d_q <= td ? hit(duw_q, dvw_q, st_q[99:75]) : hit(duw_q, dvw_q, st_q[49:25]);
         end
