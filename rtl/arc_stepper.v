@@ -11,9 +11,9 @@
 // so E and T move by {p, 1}, {p + 1, 1}, {p + q + 1, 0}, {p + q + 2, 1}: counters.  q is
 // never 0; p runs from -q to 0 (q > 0) or from 0 to |q| (q < 0).  The octant ends when the
 // next point has p >= 0 (q > 0: b turns, q = -q) or |p| >= |q| (q < 0: a and b swap, and
-// b turns as well if q reaches 0): the signs of p + 1, p + q + 1, p + q + 2.  The two cycles
-// after a step into a new octant reload T (a carry-save step, then the carry chain) and the
-// counters, and take no step (`tick` is an enable).
+// b turns as well if q reaches 0): the signs of p + 1, p + q + 1, p + q + 2.  The four
+// cycles after a step into a new octant reload T and the counters (the new octant's kind,
+// the operands, a carry-save step, the carry chain) and take no step (`tick` is an enable).
 //
 // End.  The last step goes to the end point End when the next point P' reaches or
 // passes the ray from the centre through End with dot(P', End) > 0, which happens only
@@ -22,29 +22,31 @@
 //   pos(D) = turn * cross(D, End) > 0  (turn = +1 CCW, -1 CW);
 // the signs of cross(d, End) for the eight directions d of the 5x5 grid, and the dot
 // test (always true for |End|^2 > 8), form two 25-bit tables of the command; per octant
-// they give 9-bit last-step tables for the axial and the diagonal step, and tables
-// shifted by either step, so the last-step flags for the next step are registered from
-// the one-hot windows D = -2 .. 2 per axis.
+// they give 9-bit last-step tables for the axial and the diagonal step, read at D's
+// one-hot window -1 .. 1 per axis.
 //
-// For the clock: T is held as -T - 1 while q < 0, so the decision is T's top bit (no
-// register and LUT of its own); the point is kept only as D (u, v = End + D, for the
-// benches); both candidate values are summed from registers and the decision selects
-// after the carry chains; the counters of diagonal steps are sums with the decision at
-// bit 0, not holds (a hold becomes a clock enable net of its own); the reload values,
-// the octants' tables and `fin`/reload state for the step enable are registered, so a
-// reload is a plain load and the enable one LUT.
+// Two stages, for the clock.  The decision loop holds only T, p + 1 and p + q + 2
+// (complemented while q < 0, so that the decision (T < 0) == (q > 0) is T's top bit);
+// both candidate values are summed from registers and the decision selects after the
+// carry chains.  The step stage, a cycle behind, takes the loop's decisions as tokens:
+// the point (kept as D; u, v = End + D for the benches), E, the octant, the last-step
+// test and the outputs.  The end test's window runs a step ahead, with the loop's
+// decision (D's low five bits and a |D| <= 5 flag three steps old tell D = -2 .. 2, no
+// wide compare), so the last-step flags are a registered lookup.  `run` and the
+// enables' terms are registered, so each enable is one LUT.
 //
-// Timing: while `run` is low the registers follow the inputs; they settle within
-// 9 cycles.  With `run` high, one step per `tick` (strobes and dir levels registered
-// together), plus two reload cycles after each step into a new octant; `fin` comes with
-// the last step's strobes.  Used by circ_arc.
+// Timing: `run` is registered: the stepper follows it from the next cycle.  While not
+// running the registers follow the inputs; they settle within 9 cycles.  Running, the
+// loop decides one step per `tick` and the step's strobes and dir levels come out a
+// cycle later (registered together), plus four reload cycles after each step into a new
+// octant; `fin` comes with the last step's strobes.  Used by circ_arc.
 module arc_stepper #(
     parameter integer WIDTH = 32,           // circ_arc's coordinate width (>= 6); |u|, |v| < 2^(WIDTH-3)
     parameter integer CARRY_SELECT = 1      // 1: loop adders cut in two (iCE40); 0: one chain (ECP5)
 ) (
     input  wire             clk,
     input  wire             rst,
-    input  wire             run,    // 1: step; 0: follow the inputs
+    input  wire             run,    // 1: step, 0: follow the inputs, from the next cycle on (registered)
     input  wire             tick,
     input  wire [WIDTH:0]   u0,     // start point relative to the centre (signed)
     input  wire [WIDTH:0]   v0,
@@ -68,39 +70,48 @@ module arc_stepper #(
     localparam integer UW = WIDTH + 1;      // coordinates, p, q and their sums
     localparam integer NW = WIDTH + 2;      // E and T
 
-    reg               reload_q, reload2_q;          // the two reload cycles after a new octant
-    reg               ok_q;                         // none of fin, reload_q, reload2_q
-    reg               xm_q, mjn_q, mnn_q, qpos_q;  // x major, a < 0, b < 0, q > 0
+    // The decision loop: T, p + 1 and p + q + 2 (complemented while q < 0), q's sign.
+    reg               reload_q, reload2_q, reload3_q;   // the first reload cycles after a step into a new octant
+    reg               run_q, ok_q, ld_q;            // run; running and no reload cycle; loading or the fourth
+    reg  [NW-1:0]     t_q;                         // T (-T - 1 when q < 0: the decision is its sign)
+    reg  [UW-1:0]     p1x_q, g2x_q;                // p + 1, p + q + 2 (complemented when q < 0)
+    reg               qpos_q;                      // q > 0
+    reg  [UW-1:0]     inc1_q, inc2_q;              // +1, +2 (-1, -2 when q < 0): the counters' steps
+    reg               g1neg_q;                     // p + q + 1 < 0
+    reg  [NW-1:0]     t_s_q, t_c_q;                // reload values in carry-save form (sum, carries)
+    reg  [UW-1:0]     p1_s_q, p1_c_q, g2_s_q, g2_c_q, g1_s_q, g1_c_q;
+    // The step stage, a cycle behind: the step's decision and octant's end as tokens.
+    reg               tok_q, td_l_q;
+    reg               done_q;                      // the last step is out: later tokens are dropped
+    reg               xm_q, mjn_q, mnn_q, qpos_l_q; // x major, a < 0, b < 0, q > 0
     reg  [UW-1:0]     u_q, v_q, du_q, dv_q;        // the start point (loading), D = P - End
     reg  [UW-1:0]     u1_q, v1_q;                  // End (read while loading)
     reg  [UW-1:0]     s1_q, s3_q;                  // u + v, v - u (first octant only)
     reg               uz_q, vz_q, s1z_q, s3z_q;    // == 0
     reg  [UW-1:0]     ua_q, ud_q, va_q, vd_q;      // the axial and the diagonal step (-1, 0, +1)
     reg  [UW-1:0]     pa_q, pb_q;                  // P.a, P.b less the + 1 of a negation (loading)
-    reg  [UW-1:0]     p_q, p1_q, q_q, q1_q, q2_q, nq_q;  // p, p + 1, q, q + 1, q + 2, -q
-    reg  [UW-1:0]     g1_r, g2_r, q1_r, q2_r, nq_r;      // reload values of g1_q .. nq_q
-    reg               qm1_r, last_a_r, last_d_r;         // and of qm1_q, last_a_q, last_d_q
-    reg  [NW-1:0]     t_cs_q, t_cc_q;              // T's reload: E + 2p + q + 1 in carry-save form
-    reg  [UW-1:0]     g1_q, g2_q;                  // p + q + 1, p + q + 2
-    reg               qm1_q;                       // q == -1
-    reg  [NW-1:0]     t_q, e_q;                    // T (-T - 1 when q < 0: the decision is its sign), E
-    // T's steps p + 1, p + q + 2, complemented when q < 0 (p1_q, g2_q XOR !qpos_q), held in registers
-    // so that T's chains start at registers (and their reload values, like g1_r .. nq_r).
-    reg  [UW-1:0]     p1x_q, g2x_q, p1x_r, g2x_r;
-    reg  [4:0]        duw_q, dvw_q;                // D = -2 .. 2, per axis (one-hot or none)
-    reg               near_u_q, near_v_q;          // |D| <= 4 per axis, a cycle ago
+    reg  [UW-1:0]     p_q, q_q;                    // P.a, P.b (loading)
+    reg  [NW-1:0]     e_q;                         // E (for the benches)
+    reg               near_u_q, near_v_q;          // |D| <= 5 per axis, two cycles ago
+    reg               hz_u_q, ho_u_q, hz_v_q, ho_v_q;   // its first stage: D's bits above 3 all 0, all 1
+    reg  [3:0]        lo_u_q, lo_v_q;              // and D's low bits
+    // The end test's inputs, a step ahead (with the decision loop): D's low bits and its
+    // window -1 .. 1 per axis (one-hot or none) at the next step the step stage takes.
+    reg  [4:0]        dau_q, dav_q;
+    reg  [2:0]        wau_q, wav_q;
+    reg               zu_q, zv_q, pu_q, pv_q;      // D = 0, D = 1 per axis at the step stage's step
     reg  [UW-1:0]     r1_q, r2_q, r3_q, r5_q, r6_q, r7_q;   // cross(d, End), see `dirs`
     reg               small_q;                     // |u1|, |v1| <= 2
     reg  [7:0]        dneg_q, dzero_q;             // cross(d, End) < 0, == 0
     reg  [24:0]       pos_q, dot_q;                // pos(D), dot(End + D, End) > 0 on the 5x5 grid
     reg  [8*18-1:0]   lt_all_q;                    // lt_all, registered
     reg  [17:0]       lt_q, lt1_q, lt2_q;          // {diagonal, axial} last-step tables: octant, next ones
-    reg  [99:0]       st_q;                        // tables shifted by a step: {DD, DA, AD, AA}
+    reg  [2:0]        oct1_q, oct2_q;              // the next octants (a cycle old)
     reg               last_a_q, last_d_q;          // the axial / diagonal step is the last
 
     reg               loaded_q;                    // loading a cycle ago: u_q, v_q hold P
-    assign u = loaded_q ? u_q : u1_q + du_q;       // P = End + D while running (for the benches only)
-    assign v = loaded_q ? v_q : v1_q + dv_q;
+    assign u = loaded_q ? u_q : done_q ? u1_q : u1_q + du_q;   // P = End + D (for the benches only)
+    assign v = loaded_q ? v_q : done_q ? v1_q : v1_q + dv_q;
     assign e = e_q;
 
     // ---------------------------------------------------------------- first octant
@@ -192,26 +203,10 @@ module arc_stepper #(
                 end
         end
     endfunction
-    // A 9-bit table moved onto the 5x5 grid of the point before a step s: bit 5 (du + 2) + dv + 2.
-    function automatic [24:0] moved(input [8:0] table_t, input integer su_f, sv_f);
-        integer i, j;
-        begin
-            for (i = -2; i <= 2; i = i + 1)
-                for (j = -2; j <= 2; j = j + 1)
-                    moved[5 * (i + 2) + j + 2] = (i + su_f >= -1 && i + su_f <= 1 && j + sv_f >= -1 && j + sv_f <= 1) &&
-                                                 table_t[3 * (i + su_f + 1) + j + sv_f + 1];
-        end
-    endfunction
-    // The tables moved by the axial and the diagonal step: {DD, DA, AD, AA} (step, test).
-    function automatic [99:0] moved_for(input integer au, av, bu, bv, input [17:0] tables);
-        moved_for = {moved(tables[17:9], au + bu, av + bv), moved(tables[8:0], au + bu, av + bv),
-                     moved(tables[17:9], au, av), moved(tables[8:0], au, av)};
-    endfunction
     // Per octant {x major, a < 0, b < 0} the tables are plain wiring of the command's and
     // the octant's tables (continuous assignments: simulators re-evaluate them only when
-    // those change): last-step tables of every octant, and the current one's moved tables.
+    // those change): the last-step tables of every octant.
     wire [8*18-1:0] lt_all;                    // octant o at bits 18 o
-    wire [8*100-1:0] st_all;
     genvar go_i;
     generate
         for (go_i = 0; go_i < 8; go_i = go_i + 1) begin : g_octant
@@ -219,10 +214,9 @@ module arc_stepper #(
             localparam integer AU = XM != 0 ? (MJ != 0 ? -1 : 1) : 0, AV = XM != 0 ? 0 : (MJ != 0 ? -1 : 1);
             localparam integer BU = XM != 0 ? 0 : (MN != 0 ? -1 : 1), BV = XM != 0 ? (MN != 0 ? -1 : 1) : 0;
             assign lt_all[18 * go_i +: 18] = tables_for(AU, AV, BU, BV, pos_q, dot_q);
-            assign st_all[100 * go_i +: 100] = moved_for(AU, AV, BU, BV, lt_q);
         end
     endgenerate
-    // Flags: x == k for k = -3 .. 3 (bit k + 3); the window of x + step for D = -2 .. 2.
+    // Flags: x == k for k = -3 .. 3 (bit k + 3).
     function automatic [6:0] small_eq(input [UW-1:0] x);
         reg hz, ho;
         integer k;
@@ -233,24 +227,26 @@ module arc_stepper #(
                 small_eq[k+3] = (k >= 0 ? hz : ho) && x[1:0] == k[1:0];
         end
     endfunction
-    // The same for D, which moves by at most 1 per cycle: near_q says |D| <= 4 a cycle
-    // ago, so D is in -5 .. 5 now and its low four bits tell -3 .. 3 (no wide compare).
-    function automatic [6:0] near_eq(input near, input [3:0] x);
+    // x == k for k = -2 .. 2 (bit k + 2) for D, which moves by at most 1 per step: near_q
+    // says |D| <= 5 at most three steps before, so D is in -8 .. 8 now and its low five
+    // bits tell -2 .. 2 (no wide compare).
+    function automatic [4:0] near_eq(input near, input [4:0] x);
         integer k;
         begin
-            for (k = -3; k <= 3; k = k + 1)
-                near_eq[k+3] = near && x == k[3:0];
+            for (k = -2; k <= 2; k = k + 1)
+                near_eq[k+2] = near && x == k[4:0];
         end
     endfunction
-    function automatic near4(input [UW-1:0] x);     // -4 <= x <= 4
-        near4 = x[UW-1] ? x[UW-1:2] == {(UW-2){1'b1}} : x[UW-1:2] == {(UW-2){1'b0}} || x == {{(UW-3){1'b0}}, 3'd4};
+    function automatic near5(input hz, ho, input [3:0] lo);    // -5 <= x <= 5 from x's parts
+        near5 = (hz && lo <= 4'd5) || (ho && lo >= 4'd11);
     endfunction
-    function automatic [4:0] window(input move, neg, input [6:0] eq);
-        window = !move ? eq[5:1] : neg ? eq[6:2] : eq[4:0];
+    // The window -1 .. 1 of x + s (s = -1, 0, +1: move, neg) from the flags x == -2 .. 2.
+    function automatic [2:0] window(input move, neg, input [4:0] eq);
+        window = !move ? eq[3:1] : neg ? eq[4:2] : eq[2:0];
     endfunction
-    // OR over the grid of window AND table (the window: one-hot per axis).
-    function automatic hit(input [4:0] wu, wv, input [24:0] table_t);
-        hit = |({{5{wu[4]}}, {5{wu[3]}}, {5{wu[2]}}, {5{wu[1]}}, {5{wu[0]}}} & {5{wv}} & table_t);
+    // OR over the 3x3 grid of window AND table (the window: one-hot per axis, or none).
+    function automatic hit(input [2:0] wu, wv, input [8:0] table_t);
+        hit = |({{3{wu[2]}}, {3{wu[1]}}, {3{wu[0]}}} & {3{wv}} & table_t);
     endfunction
 
     // Carry-select sums for the loop (iCE40's carry chain is slow): the low part and both
@@ -284,81 +280,201 @@ module arc_stepper #(
     function automatic [UW-1:0] inc_u(input [UW-1:0] a);     // a + 1
         inc_u = CARRY_SELECT == 0 ? a + 1'b1 : {&a[LU-1:0] ? a[UW-1:LU] + 1'b1 : a[UW-1:LU], a[LU-1:0] + 1'b1};
     endfunction
-
-    // ---------------------------------------------------------------- the step
+    // ---------------------------------------------------------------- the decision loop
     wire td   = t_q[NW-1];                       // take the diagonal: (T < 0) == (q > 0)
-    wire go   = run && ok_q && tick;             // ok_q = !fin && !reload_q && !reload2_q
-    wire loading = !run || rst;
-    wire last = td ? last_d_q : last_a_q;
+    // `run` is registered (run_q), and so are the enables' terms: ok_q (running, no reload
+    // cycle) and ld_q (not running, or the last reload cycle), so each enable is one LUT.
+    wire go   = ok_q && tick;
+    wire loading = !run_q || rst;
+    wire nqo  = !qpos_q;                         // the registers hold complements
+    wire [UW-1:0] one = {{(UW-1){1'b0}}, 1'b1}, two = {{(UW-2){1'b0}}, 2'b10}, zero = {UW{1'b0}};
+    // With q < 0 the register holds ~T, and ~(T + {x, 1}) = ~T + {~x, 1}; p + 1 and
+    // p + q + 2 count down then.
+    wire [NW-1:0] t_a = add_n(t_q, {p1x_q, 1'b1}), t_d = add_n(t_q, {g2x_q, 1'b1});
+    wire [UW-1:0] p1x_1 = add_u(p1x_q, inc1_q), g2x_1 = add_u(g2x_q, inc1_q), g2x_2 = add_u(g2x_q, inc2_q);
+    // The octant ends: p' >= 0 (q > 0) or p' + q' >= 0 (q < 0), i.e. p + 1 >= 0, or
+    // p + q + 2 >= 0 after a diagonal step and p + q + 1 >= 0 after an axial one.
+    wire p1_neg = p1x_q[UW-1] ^ nqo, g2_neg = g2x_q[UW-1] ^ nqo;
+    wire bound = qpos_q ? !p1_neg : td ? !g2_neg : !g1neg_q;
+
+    // Reload, in four cycles after a step into a new octant (the registers it reads hold
+    // still through them).  After the step p' = (p + 1) - 1 and q' = (p + q + 2) - (p + 1) - 1,
+    // and the new octant's T = E + 2p + q + 1 changes by -2p' - q' + 2p_new + q_new:
+    //   TURN (q > 0, b turns; p_new = p', q_new = -q'):  T - 2q', p + 1, 2(p + 1) - (p + q + 2) + 2;
+    //   SWAP (q < 0, a and b swap; p_new = q', q_new = p'):  T - p' + q', q' + 1, p + q + 2;
+    //   SWAP_TURN (q < 0 and q' = 0; p_new = 0, q_new = -p'):  T - 3p', 1, 2 - p';
+    //   LOAD (the start point, E = 0):  2p + q + 1, p + 1, p + q + 2.
+    // Each is a + b + c + k (k a constant), complemented for q_new < 0 (~x = ~a + ~b + ~c +
+    // 2 - k).  Cycle 1 finds the kind (SWAP_TURN: q = -1 before a diagonal step; with q < 0
+    // the registers hold complements, so q + 1 = p1x - g2x, and q = -1 <=> p1x = g2x);
+    // cycle 2 registers the operands a, b, c, complemented (the kind fixes both polarities,
+    // except LOAD's); cycle 3 sums them with k in carry-save form; cycle 4 is the carry chain.
+    reg               k_load_q, k_turn_q, k_swap_q, k_st_q;   // the kind, one-hot
+    reg               nqn_load_q;                  // LOAD: q < 0
+    reg               qm1_q;                       // q = -1 (q + 1 = p1x - g2x = 0 while q < 0), a cycle old
+    wire              st = qm1_q && td_l_q;        // with q < 0: the step just taken made q' = 0
+    function automatic [NW-1:0] sx(input [UW-1:0] x);          // sign-extended
+        sx = {x[UW-1], x};
+    endfunction
+    /* verilator lint_off UNUSEDSIGNAL */
+    function automatic [NW-1:0] k_n(input integer k);           // a constant (-8 .. 7), NW bits
+        k_n = {{(NW-4){k[3]}}, k[3:0]};
+    endfunction
+    /* verilator lint_on UNUSEDSIGNAL */
+    // One-hot select of the four kinds' operands (functions read only their arguments:
+    // continuous assignments re-evaluate them when those change).
+    wire [3:0] ksel = {k_st_q, k_swap_q, k_turn_q, k_load_q};
+    function automatic [NW-1:0] pick(input [3:0] sel, input [NW-1:0] load_v, turn_v, swap_v, st_v);
+        pick = ({NW{sel[0]}} & load_v) | ({NW{sel[1]}} & turn_v) | ({NW{sel[2]}} & swap_v) | ({NW{sel[3]}} & st_v);
+    endfunction
+    // The operands, complemented where q_new < 0; TURN: q > 0, q_new < 0; SWAP: q < 0, q_new > 0;
+    // SWAP_TURN: q < 0, q_new < 0 (the registers hold complements while q < 0).
+    wire [NW-1:0] zn = {NW{1'b0}}, ln = {NW{nqn_load_q}};
+    wire [NW-1:0] p2w = {p_q, 1'b0}, p1w = {p1x_q, 1'b0}, p1s = sx(p1x_q), g2s = sx(g2x_q);
+    wire [NW-1:0] t_a0 = pick(ksel, p2w ^ ln, ~t_q, ~t_q, t_q);
+    wire [NW-1:0] t_b0 = pick(ksel, sx(q_q) ^ ln, {g2x_q, 1'b0}, ~g2s, ~p1s);
+    wire [NW-1:0] t_c0 = pick(ksel, ln, ~p1w, {p1x_q, 1'b1}, {~p1x_q, 1'b0});
+    /* verilator lint_off UNUSEDSIGNAL */        // p + 1 and p + q + 2 are one bit narrower
+    wire [NW-1:0] p1_a0 = pick(ksel, sx(p_q) ^ ln, ~p1s, ~g2s, ~zn);
+    wire [NW-1:0] p1_b0 = pick(ksel, ln, ~zn, p1s, ~zn);
+    wire [NW-1:0] g2_a0 = pick(ksel, sx(p_q) ^ ln, ~p1w, ~g2s, ~p1s);
+    wire [NW-1:0] g2_b0 = pick(ksel, sx(q_q) ^ ln, g2s, zn, ~zn);
+    /* verilator lint_on UNUSEDSIGNAL */
+    // The constants per kind (LOAD: q > 0, q < 0): k, or 2 - k for a complement, less 1 for
+    // each zero operand left out of a complement (it would be ~0 = -1).
+    function automatic [NW-1:0] pick_k(input [3:0] sel, input nl, input integer kl0, kl1, kt, ks, kst);
+        pick_k = pick(sel, nl ? k_n(kl1) : k_n(kl0), k_n(kt), k_n(ks), k_n(kst));
+    endfunction
+    reg  [NW-1:0] t_a1_q, t_b1_q, t_c1_q;          // cycle 2: the operands
+    reg  [UW-1:0] p1_a1_q, p1_b1_q, g2_a1_q, g2_b1_q;
+    /* verilator lint_off UNUSEDSIGNAL */        // the carries' top bits
+    function automatic [2*NW-1:0] csa(input [NW-1:0] a, b, c);      // {carries, sum} of a + b + c
+        reg [NW-1:0] m;
+        begin
+            m = (a & b) | (a & c) | (b & c);
+            csa = {m[NW-2:0], 1'b0, a ^ b ^ c};
+        end
+    endfunction
+    wire [2*NW-1:0] t_cs1 = csa(t_a1_q, t_b1_q, t_c1_q);
+    wire [2*NW-1:0] t_cs  = csa(t_cs1[NW-1:0], t_cs1[2*NW-1:NW], pick_k(ksel, nqn_load_q, 1, 1, -1, 1, -3));
+    wire [2*NW-1:0] p1_cs = csa(sx(p1_a1_q), sx(p1_b1_q), pick_k(ksel, nqn_load_q, 1, 0, 1, 1, 0));
+    wire [2*NW-1:0] g2_cs = csa(sx(g2_a1_q), sx(g2_b1_q), pick_k(ksel, nqn_load_q, 2, -1, -2, 0, -3));
+    wire [2*NW-1:0] g1_cs = csa(sx(g2_a1_q), sx(g2_b1_q), pick_k(ksel, nqn_load_q, 1, 0, -1, -1, -2));   // p + q + 1: its sign
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire          nqn = k_load_q ? nqn_load_q : !k_swap_q;          // q_new < 0
+    wire [UW-1:0] g1_x = add_u(g1_s_q, g1_c_q);                  // p + q + 1 (complemented if q_new < 0)
+
+    always @(posedge clk) begin
+        if (rst) begin
+            run_q     <= 1'b0;
+            ld_q      <= 1'b1;
+            reload_q  <= 1'b0;
+            reload2_q <= 1'b0;
+            reload3_q <= 1'b0;
+            ok_q      <= 1'b0;
+        end else begin
+            reload_q  <= go && bound;
+            reload2_q <= reload_q;
+            reload3_q <= reload2_q;
+            run_q     <= run;
+            ld_q      <= !run || reload3_q;
+            ok_q      <= run && !(go && bound) && !reload_q && !reload2_q && !reload3_q;
+        end
+    end
+    always @(posedge clk) begin
+        // Every cycle: valid in the reload cycles and (from the start point's p and q) while loading.
+        qm1_q      <= p1x_q == g2x_q;
+        if (loading || reload_q) begin            // held through the reload
+            k_load_q <= loading;
+            k_turn_q <= !loading && qpos_q;
+            k_swap_q <= !loading && !qpos_q && !st;
+            k_st_q   <= !loading && !qpos_q && st;
+        end
+        nqn_load_q <= pb_q[UW-1];                   // the sign of q = P.b (loading)
+        t_a1_q  <= t_a0;
+        t_b1_q  <= t_b0;
+        t_c1_q  <= t_c0;
+        p1_a1_q <= p1_a0[UW-1:0];
+        p1_b1_q <= p1_b0[UW-1:0];
+        g2_a1_q <= g2_a0[UW-1:0];
+        g2_b1_q <= g2_b0[UW-1:0];
+        t_s_q   <= t_cs[NW-1:0];
+        t_c_q   <= t_cs[2*NW-1:NW];
+        p1_s_q  <= p1_cs[UW-1:0];
+        p1_c_q  <= p1_cs[NW+UW-1:NW];
+        g2_s_q  <= g2_cs[UW-1:0];
+        g2_c_q  <= g2_cs[NW+UW-1:NW];
+        g1_s_q  <= g1_cs[UW-1:0];
+        g1_c_q  <= g1_cs[NW+UW-1:NW];
+        if (ld_q || rst) begin
+            t_q    <= add_n(t_s_q, t_c_q);
+            p1x_q  <= add_u(p1_s_q, p1_c_q);
+            g2x_q  <= add_u(g2_s_q, g2_c_q);
+            g1neg_q <= g1_x[UW-1] ^ nqn;
+            qpos_q <= !nqn;
+            inc1_q <= nqn ? ~zero : one;
+            inc2_q <= nqn ? ~one : two;
+        end else if (go) begin
+            t_q    <= td ? t_d : t_a;
+            p1x_q  <= p1x_1;
+            g2x_q  <= td ? g2x_2 : g2x_1;
+            g1neg_q <= (td ? g2x_1[UW-1] : g2x_q[UW-1]) ^ nqo;     // p' + q' + 1 = p + q + 2 + td - 1
+        end
+    end
+
+    // ---------------------------------------------------------------- the step stage
+    // A cycle behind the decision: the point, the octant, the end test and the outputs.
+    wire step = tok_q && !done_q;
+    wire last = td_l_q ? last_d_q : last_a_q;
     // At the last step the end point is one step away: D = P - End in -1 .. 1 per axis.
     // Axial step a, diagonal step a + b.
     wire nxa = mjn_q, nxd = xm_q ? mjn_q : mnn_q;   // x step negative (A: when x major)
     wire nya = mjn_q, nyd = xm_q ? mnn_q : mjn_q;
-    wire mx = td || xm_q, my = td || !xm_q;         // the candidate moves x, y
-    wire nx = td ? nxd : nxa, ny = td ? nyd : nya;
-    wire act_x = go && (last ? !duw_q[2] : mx);
-    wire act_y = go && (last ? !dvw_q[2] : my);
-    wire neg_x = last ? duw_q[3] : nx;
-    wire neg_y = last ? dvw_q[3] : ny;
-    wire [UW-1:0] one = {{(UW-1){1'b0}}, 1'b1}, two = {{(UW-2){1'b0}}, 2'b10}, td_u = {{(UW-1){1'b0}}, td};
+    wire mx = td_l_q || xm_q, my = td_l_q || !xm_q; // the candidate moves x, y
+    wire nx = td_l_q ? nxd : nxa, ny = td_l_q ? nyd : nya;
+    wire act_x = step && (last ? !zu_q : mx);
+    wire act_y = step && (last ? !zv_q : my);
+    wire neg_x = last ? pu_q : nx;
+    wire neg_y = last ? pv_q : ny;
     // Both candidate values of D are summed from registers (the octant's step vectors,
     // registered from the octant) and the decision selects late, after the carry chains.
     wire [UW-1:0] du_a = add_u(du_q, ua_q), du_d = add_u(du_q, ud_q), dv_a = add_u(dv_q, va_q), dv_d = add_u(dv_q, vd_q);
-    wire [UW-1:0] zero = {UW{1'b0}};
     function automatic [UW-1:0] unit(input move, neg);      // -1, 0, +1
         unit = {{(UW-1){move && neg}}, move};
     endfunction
-    // With q < 0 the register holds ~T, and ~(T + {x, 1}) = ~T + {~x, 1}.
-    wire [NW-1:0] t_a = add_n(t_q, {p1x_q, 1'b1}), t_d = add_n(t_q, {g2x_q, 1'b1});
-    wire [NW-1:0] e_a = add_n(e_q, {p_q, 1'b1}),  e_d = add_n(e_q, {g1_q, 1'b0});
-    wire [UW-1:0] p1_1 = add_u(p1_q, one), g2_next = g2_q + {{(UW-2){1'b0}}, td, !td};
-    wire [UW-1:0] q_next = td ? q1_q : q_q;          // q', -q' (-(q + 1) = ~q)
-    wire [UW-1:0] nq_next = td ? ~q_q : nq_q;
-    // The octant ends: p' >= 0 (q > 0) or p' + q' >= 0 (q < 0).
-    wire bound = qpos_q ? !p1_q[UW-1] : td ? !g2_q[UW-1] : !g1_q[UW-1];
-    wire turn2 = !qpos_q && qm1_q && td;             // swap, and q' = 0: turn as well
     // The next octants: q > 0: b turns; q < 0: a and b swap (and b turns).
-    wire [2:0] oct1 = qpos_q ? {xm_q, mjn_q, !mnn_q} : {!xm_q, mnn_q, mjn_q};
+    wire [2:0] oct1 = qpos_l_q ? {xm_q, mjn_q, !mnn_q} : {!xm_q, mnn_q, mjn_q};
     wire [2:0] oct2 = {!xm_q, mnn_q, !mjn_q};
-    wire [UW-1:0] p_new = qpos_q ? p1_q : q_next;                        // after the turn / swap
-    wire [UW-1:0] q_new = qpos_q ? nq_next : turn2 ? ~p_q : p1_q;
-    // Reload (and while not running): T and the counters from E, p and q.
-    wire [NW-1:0] p2w = {p_q, 1'b0}, qw = {q_q[UW-1], q_q};
-    // ~(a + b) = ~a + ~b + 1: b's bit 0 is the + 1 when q > 0 and 0 in ~b, so it stays 1.
-    wire [NW-1:0] t_cs = e_q ^ p2w ^ qw ^ {NW{!qpos_q}};
-    wire [NW-1:0] t_cc = {((e_q[NW-2:0] & p2w[NW-2:0]) | (e_q[NW-2:0] & qw[NW-2:0]) |
-                           (p2w[NW-2:0] & qw[NW-2:0])) ^ {(NW-1){!qpos_q}}, 1'b1};   // + 1
-    wire [NW-1:0] t_new = add_n(t_cs_q, t_cc_q);
-    wire [6:0] due = near_eq(near_u_q, du_q[3:0]), dve = near_eq(near_v_q, dv_q[3:0]);
-    wire [4:0] w1u = {1'b0, duw_q[3:1], 1'b0}, w1v = {1'b0, dvw_q[3:1], 1'b0};   // |D| <= 1
-    function automatic [24:0] grid(input [8:0] table_t);   // a 9-bit table on the 5x5 grid
-        grid = moved(table_t, 0, 0);
-    endfunction
+    // The end test's window a step ahead: D's low bits and window move with the decision
+    // loop's steps (the step stage's octant and step vectors are the loop's step's: after
+    // a step into a new octant the loop reloads while the step stage catches up).
+    wire [4:0] eau = near_eq(near_u_q, dau_q), eav = near_eq(near_v_q, dav_q);
+    wire mx_f = td || xm_q, my_f = td || !xm_q;
+    wire nx_f = td ? nxd : nxa, ny_f = td ? nyd : nya;
     // Inputs of the registers that take a new value every cycle, as continuous
     // assignments (simulators evaluate the functions only when their inputs change).
-    wire [UW-1:0] g1_w = add_u(p1_q, q_q), g2_w = add1_u(p1_q, q_q), q1_w = inc_u(q_q);
-    wire [UW-1:0] q2_w = add_u(q_q, two), nq_w = inc_u(~q_q);
-    wire          last_a_w = hit(w1u, w1v, grid(lt_q[8:0])), last_d_w = hit(w1u, w1v, grid(lt_q[17:9]));
+    wire          last_a_w = hit(wau_q, wav_q, lt_q[8:0]), last_d_w = hit(wau_q, wav_q, lt_q[17:9]);
+    wire [4:0]    dau_w = dau_q + (td ? ud_q[4:0] : ua_q[4:0]), dav_w = dav_q + (td ? vd_q[4:0] : va_q[4:0]);
     wire [UW-1:0] ua_w = unit(xm_q, nxa), ud_w = unit(1'b1, nxd), va_w = unit(!xm_q, nya), vd_w = unit(1'b1, nyd);
-    wire          near_u_w = near4(du_q), near_v_w = near4(dv_q);
+    wire          near_u_w = near5(hz_u_q, ho_u_q, lo_u_q), near_v_w = near5(hz_v_q, ho_v_q, lo_v_q);
+    // E = T - (p + 1) - (p + q + 2) + 2, from the decision loop, which is a step ahead.
+    wire [NW-1:0] tt = t_q ^ {NW{nqo}};
+    wire [UW-1:0] p1t = p1x_q ^ {UW{nqo}}, g2t = g2x_q ^ {UW{nqo}};
+    wire [NW-1:0] e_w = tt - sx(p1t) - sx(g2t) + k_n(2);
 
     always @(posedge clk) begin
         if (rst) begin
-            reload_q <= 1'b0;
-            reload2_q <= 1'b0;
-            ok_q     <= 1'b1;
-            fin      <= 1'b0;
-            step_x   <= 1'b0;
-            step_y   <= 1'b0;
-            dir_x    <= 1'b0;
-            dir_y    <= 1'b0;
+            tok_q     <= 1'b0;
+            fin       <= 1'b0;
+            step_x    <= 1'b0;
+            step_y    <= 1'b0;
+            dir_x     <= 1'b0;
+            dir_y     <= 1'b0;
         end else begin
-            fin      <= go && last;
-            reload_q <= go && bound && !last;
-            reload2_q <= reload_q;
-            ok_q     <= !(go && (last || bound)) && !reload_q;
-            step_x   <= act_x;
-            step_y   <= act_y;
+            tok_q     <= go;
+            fin       <= step && last;
+            step_x    <= act_x;
+            step_y    <= act_y;
             if (act_x) dir_x <= neg_x;
             if (act_y) dir_y <= neg_y;
         end
@@ -366,40 +482,56 @@ module arc_stepper #(
 
     // Data registers without reset: they follow the inputs whenever `run` is low (or in reset).
     always @(posedge clk) begin
-        // Registers without an enable: fewer enable nets to route.  The reload values
-        // (t_cs_q .. last_d_r) and the step vectors change only with the octant, E, p, q
-        // and the tables, so they are valid in the second reload cycle.
-        t_cs_q <= t_cs;
-        t_cc_q <= t_cc;
-        st_q  <= st_all[100 * {xm_q, mjn_q, mnn_q} +: 100];
-        g1_r  <= g1_w;
-        g2_r  <= g2_w;
-        p1x_r <= p1_q ^ {UW{!qpos_q}};
-        g2x_r <= g2_w ^ {UW{!qpos_q}};
-        q1_r  <= q1_w;
-        q2_r  <= q2_w;
-        nq_r  <= nq_w;
-        qm1_r <= q_q == {UW{1'b1}};
-        last_a_r <= last_a_w;
-        last_d_r <= last_d_w;
+        // Registers without an enable: fewer enable nets to route.  The reload values and
+        // the step vectors change only with the octant and the tables, so they are valid
+        // by the cycle after the decision loop's reload.
+        td_l_q    <= td;
+        // The last-step flags of the step the step stage takes next, from the window a
+        // step ahead (it and the tables hold still until then).
+        last_a_q <= last_a_w;
+        last_d_q <= last_d_w;
+        zu_q  <= wau_q[1];
+        zv_q  <= wav_q[1];
+        pu_q  <= wau_q[2];
+        pv_q  <= wav_q[2];
+        if (loading) begin
+            dau_q <= du_q[4:0];
+            dav_q <= dv_q[4:0];
+            wau_q <= window(1'b0, 1'b0, eau);
+            wav_q <= window(1'b0, 1'b0, eav);
+        end else if (go) begin
+            dau_q <= dau_w;
+            dav_q <= dav_w;
+            wau_q <= window(mx_f, nx_f, eau);
+            wav_q <= window(my_f, ny_f, eav);
+        end
         ua_q  <= ua_w;
         ud_q  <= ud_w;
         va_q  <= va_w;
         vd_q  <= vd_w;
+        hz_u_q <= du_q[UW-1:4] == {(UW-4){1'b0}};
+        ho_u_q <= du_q[UW-1:4] == {(UW-4){1'b1}};
+        hz_v_q <= dv_q[UW-1:4] == {(UW-4){1'b0}};
+        ho_v_q <= dv_q[UW-1:4] == {(UW-4){1'b1}};
+        lo_u_q <= du_q[3:0];
+        lo_v_q <= dv_q[3:0];
         near_u_q <= near_u_w;
         near_v_q <= near_v_w;
         lt_all_q <= lt_all;
         loaded_q <= loading;
-        lt1_q <= lt_all_q[18 * oct1 +: 18];
-        lt2_q <= lt_all_q[18 * oct2 +: 18];
+        oct1_q <= oct1;
+        oct2_q <= oct2;
+        lt1_q <= lt_all_q[18 * oct1_q +: 18];
+        lt2_q <= lt_all_q[18 * oct2_q +: 18];
         if (loading) begin                    // the command's tables; the first octant, p and q
+            done_q  <= 1'b0;
             u1_q    <= u1;
             v1_q    <= v1;
             u_q     <= u0;
             v_q     <= v0;
             e_q     <= {NW{1'b0}};
-            du_q    <= u0 - u1_q;
-            dv_q    <= v0 - v1_q;
+            du_q    <= add1_u(u0, ~u1_q);
+            dv_q    <= add1_u(v0, ~v1_q);
             r1_q    <= {v1_q[UW-2:0], 1'b0} - u1_q;
             r2_q    <= v1_q - u1_q;
             r3_q    <= v1_q - {u1_q[UW-2:0], 1'b0};
@@ -421,56 +553,22 @@ module arc_stepper #(
             {xm_q, mjn_q, mnn_q} <= oct_0;
             pa_q    <= (xm_q ? u_q : v_q) ^ {UW{mjn_q}};
             pb_q    <= (xm_q ? v_q : u_q) ^ {UW{mnn_q}};
-            qpos_q  <= !pb_q[UW-1];             // q = P.b > 0 (never 0)
+            qpos_l_q <= !pb_q[UW-1];            // q = P.b > 0 (never 0)
             p_q     <= add_u(pa_q, {{(UW-1){1'b0}}, mjn_q});    // P.a
-            p1_q    <= inc_u(p_q);
             q_q     <= add_u(pb_q, {{(UW-1){1'b0}}, mnn_q});    // P.b
             lt_q    <= lt_all_q[18 * {xm_q, mjn_q, mnn_q} +: 18];
-            duw_q   <= due[5:1];
-            dvw_q   <= dve[5:1];
-        end else if (go) begin
-            e_q     <= td ? e_d : e_a;
-            {xm_q, mjn_q, mnn_q} <= !bound ? {xm_q, mjn_q, mnn_q} : turn2 ? oct2 : oct1;
-            qpos_q  <= bound ? !qpos_q && !turn2 : qpos_q;
-            lt_q    <= !bound ? lt_q : turn2 ? lt2_q : lt1_q;
-            du_q    <= td ? (last_d_q ? zero : du_d) : (last_a_q ? zero : du_a);   // the last step ends at End
-            dv_q    <= td ? (last_d_q ? zero : dv_d) : (last_a_q ? zero : dv_a);
-            duw_q   <= window(mx, nx, due);
-            dvw_q   <= window(my, ny, dve);
-            p_q     <= bound ? p_new : p1_q;
-            // Counters of the diagonal steps: sums with td at bit 0, not holds (Yosys would
-            // make each hold a clock enable of its own, a net that goes everywhere), and
-            // one chain each (a carry select's halves would be such holds again).
-            q_q     <= bound ? q_new : q_q + td_u;
-            q1_q    <= q1_q + td_u;
-            q2_q    <= q2_q + td_u;
-            nq_q    <= nq_q - td_u;
-            qm1_q   <= td ? q_q == {{(UW-1){1'b1}}, 1'b0} : q_q == {UW{1'b1}};
-            p1_q    <= bound && !qpos_q ? (td ? q2_q : q1_q) : p1_1;   // swap: p = q'
-            g1_q    <= g2_q + td_u;
-            g2_q    <= g2_next;
-            p1x_q   <= p1_1 ^ {UW{!qpos_q}};
-            g2x_q   <= g2_next ^ {UW{!qpos_q}};
-            t_q     <= td ? t_d : t_a;            // (a new octant reloads T, p1x_q and g2x_q)
-            last_a_q <= td ? hit(duw_q, dvw_q, st_q[74:50]) : hit(duw_q, dvw_q, st_q[24:0]);
-            last_d_q <= td ? hit(duw_q, dvw_q, st_q[99:75]) : hit(duw_q, dvw_q, st_q[49:25]);
+        end else if (step) begin
+            done_q  <= last;
+            e_q     <= e_w;
+            du_q    <= td_l_q ? du_d : du_a;      // (after the last step u, v show End)
+            dv_q    <= td_l_q ? dv_d : dv_a;
         end
-        // Reload, in the second reload cycle: T (its carry-save step t_cs_q, t_cc_q
-        // registered in the first) and the counters, from registers computed every cycle,
-        // which are valid then since p, q, the tables and the windows hold still after the
-        // step; so a reload is a plain load.
-        if (loading || reload2_q) begin
-            t_q      <= t_new;
-            p1x_q    <= p1x_r;
-            g2x_q    <= g2x_r;
-            g1_q     <= g1_r;
-            g2_q     <= g2_r;
-            q1_q     <= q1_r;
-            q2_q     <= q2_r;
-            nq_q     <= nq_r;
-            qm1_q    <= qm1_r;
-            last_a_q <= last_a_r;
-            last_d_q <= last_d_r;
+        // The new octant, in the second reload cycle (the kind, SWAP_TURN or not, is
+        // found in the first); the step stage's next step comes after the reload.
+        if (!loading && reload2_q) begin
+            {xm_q, mjn_q, mnn_q} <= k_st_q ? oct2 : oct1;
+            qpos_l_q <= !qpos_l_q && !k_st_q;
+            lt_q     <= k_st_q ? lt2_q : lt1_q;
         end
     end
 endmodule

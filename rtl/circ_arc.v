@@ -20,10 +20,11 @@
 //           of the command ......................................... arc_stepper
 //
 // Timing: `start` in an idle cycle captures the command (cycle 0); the set-up checks
-// it in cycle 2*WIDTH + 17; from cycle 2*WIDTH + 18 one step per `tick` (the step
-// strobes and dir levels are registered together), except that the two cycles after
-// a step into a new octant reload the stepper (at most 9 octants per arc) and take no
-// step (`tick` is an enable).  `done` one cycle after the last step.  Bad
+// it in cycle 2*WIDTH + 17; from cycle 2*WIDTH + 18 one step per `tick`, its strobes
+// and dir levels registered together a cycle later (the first in cycle 2*WIDTH + 19),
+// except that the four cycles after a step into a new octant reload the stepper (at
+// most 9 octants per arc) and take no step (`tick` is an enable).  `done` one cycle
+// after the last step's strobes.  Bad
 // command (error strobe instead of done, no steps): start = centre (R = 0); end
 // point more than half a step off the circle; a start or end coordinate relative
 // to the centre outside -2^(WIDTH-3) < u < 2^(WIDTH-3) (radius limit of the
@@ -31,7 +32,7 @@
 // step.  `start` while busy is ignored; `rst` returns to idle at once.
 module circ_arc #(
     parameter integer WIDTH = 32,   // width of the signed absolute coordinates (>= 6)
-    parameter integer CARRY_SELECT = 1  // arc_stepper's loop adders: 1 cut in two (iCE40), 0 one chain (ECP5)
+    parameter integer CARRY_SELECT = 1  // long adders: 1 cut in two (iCE40), 0 one chain (ECP5)
 ) (
     input  wire             clk,
     input  wire             rst,
@@ -62,7 +63,6 @@ module circ_arc #(
     localparam [1:0] IDLE = 2'd0, SETUP = 2'd1, RUN = 2'd2, LAST = 2'd3;  // SETUP ends with `check`
 
     reg  [1:0]    state_q;
-    reg           run_q;                    // state RUN, for the stepper
     reg  [UW-1:0] u0_q, v0_q, u1_q, v1_q;   // start and end point relative to the centre
     reg           ccw_q, full_q;
 
@@ -70,7 +70,7 @@ module circ_arc #(
     assign busy = state_q != IDLE;
 
     wire check, on_band, setup_busy;
-    circle_setup #(.MW(UW), .SW(SW)) u_setup (
+    circle_setup #(.MW(UW), .SW(SW), .CARRY_SELECT(CARRY_SELECT)) u_setup (
         .clk(clk), .rst(rst), .start(load), .x0(u0_q), .y0(v0_q), .x1(u1_q), .y1(v1_q),
         .busy(setup_busy), .check(check), .on_band(on_band)
     );
@@ -137,8 +137,10 @@ module circ_arc #(
     wire          fin;
     wire [UW-1:0] pos_u, pos_v;             // current point (benches)
     wire [UW:0]   e;                        // E (benches)
+    // The stepper registers `run`: it gets the next cycle's state RUN.
+    wire run_d = !rst && (begin_run || (state_q == RUN && !fin));
     arc_stepper #(.WIDTH(WIDTH), .CARRY_SELECT(CARRY_SELECT)) u_stepper (
-        .clk(clk), .rst(rst), .run(run_q), .tick(tick), .u0(u0_q), .v0(v0_q), .u1(u1_q), .v1(v1_q),
+        .clk(clk), .rst(rst), .run(run_d), .tick(tick), .u0(u0_q), .v0(v0_q), .u1(u1_q), .v1(v1_q),
         .ccw(ccw_q), .step_x(step_x), .step_y(step_y), .dir_x(dir_x), .dir_y(dir_y), .fin(fin),
         .u(pos_u), .v(pos_v), .e(e)
     );
@@ -146,7 +148,6 @@ module circ_arc #(
     always @(posedge clk) begin
         if (rst) begin
             state_q <= IDLE;
-            run_q   <= 1'b0;
             u0_q    <= {UW{1'b0}};
             v0_q    <= {UW{1'b0}};
             u1_q    <= {UW{1'b0}};
@@ -170,7 +171,6 @@ module circ_arc #(
                 RUN:   if (fin) state_q <= IDLE;
                 default: state_q <= IDLE;       // LAST: done
             endcase
-            run_q <= begin_run || (run_q && !fin);
             done  <= state_q == LAST || fin;
             error <= check && bad;
         end

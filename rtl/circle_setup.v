@@ -4,7 +4,7 @@
 // combinational multiplier.  Four seq_mult instances, two rounds:
 //   round 1: x0^2, y0^2, x1^2, y1^2  ->  a = x0^2 + y0^2 (R^2), b = x1^2 + y1^2
 //            (|End|^2), d = b - a and -d;
-//   round 2: m^2 with m = |d| (multiplier 3), from the registered d and -d;
+//   round 2: m^2 with m = |d| (multiplier 3), as d^2 from the registered d;
 //   band:    |sqrt(b) - sqrt(a)| <= 1/2 (circle_band's test)  <=>  d = 0 or
 //            (m < 2^(SW/2 - 1) and m^2 <= min(a, b) + (m - 1) div 2),
 //            t = min(a, b) + (m - 1) div 2 - m^2 with a carry-save step in front.
@@ -21,7 +21,8 @@
 // ignored; `rst` returns to idle at once.
 module circle_setup #(
     parameter integer MW    = 33,   // seq_mult operand width (signed inputs; m = |d| fits)
-    parameter integer SW    = 66    // sum width: even, MW < SW <= 2*MW
+    parameter integer SW    = 66,   // sum width: even, MW < SW <= 2*MW
+    parameter integer CARRY_SELECT = 0  // 1: each chunk's sum cut in two (iCE40's slow carry chain)
 ) (
     input  wire            clk,
     input  wire            rst,
@@ -37,6 +38,7 @@ module circle_setup #(
     initial begin
         if (MW < 2) $error("%m: MW must be at least 2");
         if (SW % 2 != 0 || SW <= MW || SW > 2 * MW) $error("%m: SW out of range");
+        if (CARRY_SELECT != 0 && CARRY_SELECT != 1) $error("%m: CARRY_SELECT must be 0 or 1");
     end
 
     localparam integer SK = SW / 2;         // chunk
@@ -74,23 +76,40 @@ module circle_setup #(
                                           .done(mdone_other[k]), .product(p[k*PW +: PW]));
         end
     endgenerate
-    wire [MW-1:0] mop3 = round1 ? y1 : m_abs;
+    // m^2 = d^2: the signed multiplier squares d's low MW bits, which are d itself
+    // whenever m^2 matters (m < 2^(SW/2 - 1) <= 2^(MW - 1)), so no |d| select before it.
+    wire [MW-1:0] mop3 = round1 ? y1 : d_q[MW-1:0];
     seq_mult #(.WIDTH(MW)) u_mul3 (.clk(clk), .rst(rst), .start(round1 || round2), .a(mop3), .b(mop3),
                                    .busy(mbusy[3]), .done(mdone), .product(p[3*PW +: PW]));
     wire [SW-1:0] msq = p[3*PW +: SW];
 
+    // A chunk's {carry out, x + y + cin}: one chain, or (CARRY_SELECT) the low 2/5 and both
+    // versions of the rest at once (x + y + 1 written as x - ~y, so Yosys keeps it apart).
+    localparam integer LK = SK * 2 / 5;
+    function automatic [SK:0] chunk(input [SK-1:0] x, y, input cin);
+        reg [LK:0]    lo;
+        reg [SK-LK:0] h0, h1;
+        begin
+            lo = {1'b0, x[LK-1:0]} + {1'b0, y[LK-1:0]} + {{LK{1'b0}}, cin};
+            h0 = {1'b0, x[SK-1:LK]} + {1'b0, y[SK-1:LK]};
+            h1 = {1'b0, x[SK-1:LK]} - {1'b1, ~y[SK-1:LK]};
+            chunk = CARRY_SELECT == 0 ? {1'b0, x} + {1'b0, y} + {{SK{1'b0}}, cin}
+                                      : {lo[LK] ? h1 : h0, lo[LK-1:0]};
+        end
+    endfunction
     // Two-cycle sum x + y + cin: low chunk now, high chunk with the registered carry.
+    /* verilator lint_off UNUSEDSIGNAL */        // the high chunk's carry out
     function automatic [SW:0] sum2;          // {carry out of the low chunk, sum}
         input [SW-1:0] x, y;
         input cin, hcin;
-        reg [SK:0]   lo;
-        reg [SK-1:0] hi;
+        reg [SK:0] lo, hi;
         begin
-            lo = {1'b0, x[SK-1:0]} + {1'b0, y[SK-1:0]} + {{SK{1'b0}}, cin};
-            hi = x[SW-1:SK] + y[SW-1:SK] + {{(SK-1){1'b0}}, hcin};
-            sum2 = {lo[SK], hi, lo[SK-1:0]};
+            lo = chunk(x[SK-1:0], y[SK-1:0], cin);
+            hi = chunk(x[SW-1:SK], y[SW-1:SK], hcin);
+            sum2 = {lo[SK], hi[SK-1:0], lo[SK-1:0]};
         end
     endfunction
+    /* verilator lint_on UNUSEDSIGNAL */
     wire [SW:0] a_sum = sum2(p[0 +: SW], p[PW +: SW], 1'b0, carry_q[0]);   // ADD1
     wire [SW:0] b_sum = sum2(p[2*PW +: SW], msq, 1'b0, carry_q[1]);
     assign d_sum = sum2(b_q, ~a_q, 1'b1, carry_q[0]);                         // ADD2

@@ -209,7 +209,7 @@ module motion_top #(
     wire [SLW-1:0]    sync_level;
     wire              release_ok = feed_tick & drive_ready & ~hold;
     wire              fire = release_ok & out_valid;
-    step_sync #(.AXES(3), .DEPTH(SDEPTH), .LATENCY(1), .DATA_W(FEED_W), .LW(SLW)) u_sync (
+    step_sync #(.AXES(3), .DEPTH(SDEPTH), .LATENCY(2), .DATA_W(FEED_W), .LW(SLW)) u_sync (
         .clk(clk), .rst(rst), .in_step(core_step), .in_dir(core_dir), .in_data(feed_q),
         .stop(stop), .tick(release_ok), .out_valid(out_valid), .out_step(out_step),
         .out_dir(out_dir), .out_data(out_feed), .level(sync_level), .overflow(sync_overflow)

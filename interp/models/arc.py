@@ -85,9 +85,12 @@ STEP_OUTPUTS = {"step_x": False, "step_y": False, "dir_x": False, "dir_y": False
 class ArcStepper(CycleModel):
     """Cycle model of rtl/arc_stepper.v, circ_arc's run loop.
 
+    `run` is registered: what follows holds from the cycle after it.
     While `run` is low the point follows the inputs (u0, v0) and E = 0.  With `run`, one
-    step of `arc_steps` per tick; a step into a new octant is followed by two reload
+    step of `arc_steps` per tick; a step into a new octant is followed by four reload
     cycles, which take no step (`tick` is an enable, as the synchronization buffer's ~STOP).
+    The decision is taken a cycle before the step is out: the strobes, dir levels, `fin`
+    and the point and E they lead to show a cycle after the tick that took the step.
     """
 
     watch = {**STEP_OUTPUTS, "fin": False, "u": True, "v": True, "e": True}
@@ -98,25 +101,33 @@ class ArcStepper(CycleModel):
     def reset(self) -> None:
         self.u = self.v = self.e = 0
         self.step_x = self.step_y = self.dir_x = self.dir_y = self.fin = 0
+        self.point = (0, 0, 0)                  # the decision's point and E, a cycle ahead
+        self.pending = (0, 0, 0, 0, 0)          # its step: act_x, act_y, neg_x, neg_y, fin
         self.reload = 0
+        self.done = False                       # the last step is decided
+        self.run_q = 0                          # `run`, registered
 
     def clock(self, inputs) -> None:
         if inputs.get("rst"):                     # control reset; the point follows the inputs
             self.reset()
             self.u, self.v = inputs.get("u0", 0), inputs.get("v0", 0)
+            self.point = (self.u, self.v, 0)
             return
-        run, tick = inputs.get("run"), inputs.get("tick")
-        go = run and not self.fin and not self.reload and tick
+        run, tick = self.run_q, inputs.get("tick")
+        self.run_q = int(bool(inputs.get("run")))
+        go = run and not self.done and not self.reload and tick
         act_x = act_y = neg_x = neg_y = fin = 0
         reload = max(self.reload - 1, 0)        # reload cycles left after this one
+        shown = self.point                      # the point the step stage shows next
         if not run:
-            self.u, self.v, self.e = inputs["u0"], inputs["v0"], 0
+            self.point = shown = (inputs["u0"], inputs["v0"], 0)
+            self.done = False
         elif go:
-            u, v, u1, v1, ccw = self.u, self.v, inputs["u1"], inputs["v1"], inputs["ccw"]
+            (u, v, e), u1, v1, ccw = self.point, inputs["u1"], inputs["v1"], inputs["ccw"]
             octant = _octant(u, v, ccw)
             _, (ax, ay), (bx, by) = octant
             pa, pb = u * ax + v * ay, u * bx + v * by
-            axial_e = self.e + 2 * pa + 1
+            axial_e = e + 2 * pa + 1
             take_diagonal = (axial_e + pb < 0) == (pb >= 0)          # T = E + 2 P.a + P.b + 1
             sx, sy = (ax + bx, ay + by) if take_diagonal else (ax, ay)
             turn = 1 if ccw else -1
@@ -126,15 +137,19 @@ class ArcStepper(CycleModel):
             if last:
                 sx, sy = sign(u1 - u), sign(v1 - v)
             act_x, act_y, neg_x, neg_y = int(sx != 0), int(sy != 0), int(sx < 0), int(sy < 0)
-            self.u, self.v = u + sx, v + sy
-            self.e = axial_e + (2 * pb + 1 if take_diagonal else 0)
+            self.point = (u + sx, v + sy, axial_e + (2 * pb + 1 if take_diagonal else 0))
             fin = int(last)
-            reload = 2 if not last and _octant(self.u, self.v, ccw) != octant else 0
-        if act_x:
-            self.dir_x = neg_x
-        if act_y:
-            self.dir_y = neg_y
-        self.step_x, self.step_y, self.fin, self.reload = act_x, act_y, fin, reload
+            self.done = last
+            reload = 4 if not last and _octant(u + sx, v + sy, ccw) != octant else 0
+        self.u, self.v, self.e = shown
+        p_act_x, p_act_y, p_neg_x, p_neg_y, p_fin = self.pending
+        if p_act_x:
+            self.dir_x = p_neg_x
+        if p_act_y:
+            self.dir_y = p_neg_y
+        self.step_x, self.step_y, self.fin = p_act_x, p_act_y, p_fin
+        self.pending = (act_x, act_y, neg_x, neg_y, fin)
+        self.reload = reload
 
 
 class CircArc(CycleModel):
@@ -167,9 +182,13 @@ class CircArc(CycleModel):
 
     def clock(self, inputs) -> None:
         fin = self.stepper.fin
-        self.stepper.clock({"rst": inputs.get("rst"), "run": int(self.state == self.RUN),
-                            "tick": inputs.get("tick"), "u0": self.u0, "v0": self.v0,
-                            "u1": self.u1, "v1": self.v1, "ccw": self.ccw})
+        stepper_inputs = {"rst": inputs.get("rst"), "tick": inputs.get("tick"), "u0": self.u0,
+                          "v0": self.v0, "u1": self.u1, "v1": self.v1, "ccw": self.ccw}
+        self.update(inputs, fin)
+        # The stepper registers `run`: it gets the state RUN of the next cycle.
+        self.stepper.clock({**stepper_inputs, "run": int(self.state == self.RUN)})
+
+    def update(self, inputs, fin) -> None:
         if inputs.get("rst"):
             self.reset()
             return

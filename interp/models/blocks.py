@@ -182,7 +182,7 @@ class CircleSetup(CycleModel):
 
     Round 1 squares x0, y0, x1, y1 on four SeqMult models; a = x0^2 + y0^2 and
     b = x1^2 + y1^2 (ADD1), d = b - a and -d (ADD2), each a two-cycle sum of SW/2-bit
-    chunks with a registered carry.  Round 2 forms m^2, m = |d|; ADD3 forms
+    chunks with a registered carry.  Round 2 forms m^2 (as d^2), m = |d|; ADD3 forms
     t = min(a, b) + (m - 1) div 2 - m^2; CHECK shows on_band = d == 0 or
     (m < 2^(SW/2-1) and t >= 0).
     """
@@ -237,7 +237,8 @@ class CircleSetup(CycleModel):
         squares = [inputs["x0"], inputs["y0"], inputs["x1"]]
         for k, mult in enumerate(self.mults[:3]):
             mult.clock({"start": int(round1), "a": squares[k], "b": squares[k]})
-        op3 = inputs["y1"] if round1 else m_abs
+        # m^2 as d^2: the signed multiplier squares d's low mw bits (d itself whenever m^2 matters).
+        op3 = inputs["y1"] if round1 else self.d & ((1 << mw) - 1)
         done = self.mults[3].done
         self.mults[3].clock({"start": int(round1 or round2), "a": op3, "b": op3})
         # Registers.

@@ -398,7 +398,7 @@ class MotionTop(CycleModel):
         self.queue = SyncFifo(3 + feed_w + 7 * w, qdepth, qlw)
         self.line_a, self.line_b = Su1571551(w, True), Su1571551(w, True)
         self.arc, self.curve = CircArc(w), CurveTangent(w, w + 8, w)
-        self.sync = StepSync(3, sdepth, 1, feed_w, 4)
+        self.sync = StepSync(3, sdepth, 2, feed_w, 4)
         self.feed, self.out = FeedRate(frac), StepDir(3, tw)
         self.reset()
 
