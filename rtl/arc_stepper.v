@@ -480,11 +480,11 @@ module arc_stepper #(
         end
     end
 
-    // Data registers without reset: they follow the inputs whenever `run` is low (or in reset).
+    // Data registers without reset: they follow the inputs while not running (or in reset).
     always @(posedge clk) begin
-        // Registers without an enable: fewer enable nets to route.  The reload values and
-        // the step vectors change only with the octant and the tables, so they are valid
-        // by the cycle after the decision loop's reload.
+        // Registers without an enable: fewer enable nets to route.  The step vectors and
+        // the next octants' tables change only with the octant, so they are valid again
+        // before the decision loop's reload ends.
         td_l_q    <= td;
         // The last-step flags of the step the step stage takes next, from the window a
         // step ahead (it and the tables hold still until then).
