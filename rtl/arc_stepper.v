@@ -277,9 +277,6 @@ module arc_stepper #(
                                        : {lo[LU] ? a[UW-1:LU] - ~b[UW-1:LU] : a[UW-1:LU] + b[UW-1:LU], lo[LU-1:0]};
         end
     endfunction
-    function automatic [UW-1:0] inc_u(input [UW-1:0] a);     // a + 1
-        inc_u = CARRY_SELECT == 0 ? a + 1'b1 : {&a[LU-1:0] ? a[UW-1:LU] + 1'b1 : a[UW-1:LU], a[LU-1:0] + 1'b1};
-    endfunction
     // ---------------------------------------------------------------- the decision loop
     wire td   = t_q[NW-1];                       // take the diagonal: (T < 0) == (q > 0)
     // `run` is registered (run_q), and so are the enables' terms: ok_q (running, no reload

@@ -75,7 +75,8 @@ def arc_steps(cx, cy, x0, y0, x1, y1, ccw: bool, full: bool = False) -> list[Ste
 def arc_setup_cycles(width: int = 32) -> int:
     """Cycles from `start` to the check of rtl/circ_arc.v: load, two multiplier
     rounds (seq_mult at WIDTH + 1 bits: WIDTH + 4 cycles each) and three
-    two-cycle sums; the check is in cycle 2 * WIDTH + 17, the first step in the next."""
+    two-cycle sums; the check is in cycle 2 * WIDTH + 17, the first step is taken in the
+    next and its strobes come a cycle later."""
     return 2 * width + 17
 
 
