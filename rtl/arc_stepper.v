@@ -77,14 +77,15 @@ module arc_stepper #(
     reg  [UW-1:0]     p1x_q, g2x_q;                // p + 1, p + q + 2 (complemented when q < 0)
     reg               qpos_q;                      // q > 0
     reg  [UW-1:0]     inc1_q, inc2_q;              // +1, +2 (-1, -2 when q < 0): the counters' steps
-    reg               g1neg_q;                     // p + q + 1 < 0
+    reg  [UW-1:0]     inc1p_q;                     // inc1_q's copy for p + 1's adder (fanout)
     reg  [NW-1:0]     t_s_q, t_c_q;                // reload values in carry-save form (sum, carries)
-    reg  [UW-1:0]     p1_s_q, p1_c_q, g2_s_q, g2_c_q, g1_s_q, g1_c_q;
+    reg  [UW-1:0]     p1_s_q, p1_c_q, g2_s_q, g2_c_q;
     // The step stage, a cycle behind: the step's decision and octant's end as tokens.
     reg               tok_q, td_l_q;
     reg               done_q;                      // the last step is out: later tokens are dropped
     reg               xm_q, mjn_q, mnn_q, qpos_l_q; // x major, a < 0, b < 0, q > 0
     reg  [UW-1:0]     u_q, v_q, du_q, dv_q;        // the start point (loading), D = P - End
+    reg  [UW-1:0]     du0_q, dv0_q;                // start point - End (every cycle; D's load value)
     reg  [UW-1:0]     u1_q, v1_q;                  // End (read while loading)
     reg  [UW-1:0]     s1_q, s3_q;                  // u + v, v - u (first octant only)
     reg               uz_q, vz_q, s1z_q, s3z_q;    // == 0
@@ -100,7 +101,6 @@ module arc_stepper #(
     reg  [4:0]        dau_q, dav_q;
     reg  [2:0]        wau_q, wav_q;
     reg               zu_q, zv_q, pu_q, pv_q;      // D = 0, D = 1 per axis at the step stage's step
-    reg  [UW-1:0]     r1_q, r2_q, r3_q, r5_q, r6_q, r7_q;   // cross(d, End), see `dirs`
     reg               small_q;                     // |u1|, |v1| <= 2
     reg  [7:0]        dneg_q, dzero_q;             // cross(d, End) < 0, == 0
     reg  [24:0]       pos_q, dot_q;                // pos(D), dot(End + D, End) > 0 on the 5x5 grid
@@ -163,7 +163,7 @@ module arc_stepper #(
         end
     endfunction
     // The signs and zeros of cross(d, End) are registers, dneg_q and dzero_q (loaded
-    // while loading, one cycle after r1_q .. r7_q).
+    // while loading, one cycle after r1 .. r7).
     // turn * cross(d, End) > 0 and < 0 (directions 4 .. 7 hold -cross).
     wire [7:0] flip = {{4{ccw}}, {4{!ccw}}};
     wire [7:0] dgt = (dneg_q & flip) | (~dneg_q & ~dzero_q & ~flip);
@@ -280,19 +280,22 @@ module arc_stepper #(
     // ---------------------------------------------------------------- the decision loop
     wire td   = t_q[NW-1];                       // take the diagonal: (T < 0) == (q > 0)
     // `run` is registered (run_q), and so are the enables' terms: ok_q (running, no reload
-    // cycle) and ld_q (not running, or the last reload cycle), so each enable is one LUT.
-    wire go   = ok_q && tick;
+    // cycle but the first, whose reload_q is a term of its own) and ld_q (not running, or
+    // the last reload cycle), so each enable is one LUT.
+    wire go   = ok_q && !reload_q && tick;
     wire loading = !run_q || rst;
     wire nqo  = !qpos_q;                         // the registers hold complements
     wire [UW-1:0] one = {{(UW-1){1'b0}}, 1'b1}, two = {{(UW-2){1'b0}}, 2'b10}, zero = {UW{1'b0}};
     // With q < 0 the register holds ~T, and ~(T + {x, 1}) = ~T + {~x, 1}; p + 1 and
     // p + q + 2 count down then.
     wire [NW-1:0] t_a = add_n(t_q, {p1x_q, 1'b1}), t_d = add_n(t_q, {g2x_q, 1'b1});
-    wire [UW-1:0] p1x_1 = add_u(p1x_q, inc1_q), g2x_1 = add_u(g2x_q, inc1_q), g2x_2 = add_u(g2x_q, inc2_q);
+    wire [UW-1:0] p1x_1 = add_u(p1x_q, inc1p_q), g2x_1 = add_u(g2x_q, inc1_q), g2x_2 = add_u(g2x_q, inc2_q);
     // The octant ends: p' >= 0 (q > 0) or p' + q' >= 0 (q < 0), i.e. p + 1 >= 0, or
     // p + q + 2 >= 0 after a diagonal step and p + q + 1 >= 0 after an axial one.
+    // p + q + 1 < 0 <=> p + q + 2 <= 0: from the register, without a carry chain.
     wire p1_neg = p1x_q[UW-1] ^ nqo, g2_neg = g2x_q[UW-1] ^ nqo;
-    wire bound = qpos_q ? !p1_neg : td ? !g2_neg : !g1neg_q;
+    wire g1_neg = g2_neg || (g2x_q ^ {UW{nqo}}) == zero;
+    wire bound = qpos_q ? !p1_neg : td ? !g2_neg : !g1_neg;
 
     // Reload, in four cycles after a step into a new octant (the registers it reads hold
     // still through them).  After the step p' = (p + 1) - 1 and q' = (p + q + 2) - (p + 1) - 1,
@@ -308,8 +311,20 @@ module arc_stepper #(
     // except LOAD's); cycle 3 sums them with k in carry-save form; cycle 4 is the carry chain.
     reg               k_load_q, k_turn_q, k_swap_q, k_st_q;   // the kind, one-hot
     reg               nqn_load_q;                  // LOAD: q < 0
-    reg               qm1_q;                       // q = -1 (q + 1 = p1x - g2x = 0 while q < 0), a cycle old
-    wire              st = qm1_q && td_l_q;        // with q < 0: the step just taken made q' = 0
+    // q = -1 (q + 1 = p1x - g2x = 0 while q < 0), a cycle old: 4-bit groups of p1x = g2x
+    // registered, so the wide compare is two stages.
+    localparam integer QG = (UW + 3) / 4;
+    function automatic [QG-1:0] equal_groups(input [UW-1:0] a, b);
+        integer i;
+        reg [4*QG-1:0] x;
+        begin
+            x = {{(4*QG-UW){1'b0}}, a ^ b};
+            for (i = 0; i < QG; i = i + 1) equal_groups[i] = x[4*i +: 4] == 4'd0;
+        end
+    endfunction
+    reg  [QG-1:0]     qm1_g_q;
+    wire [QG-1:0]     qm1_g = equal_groups(p1x_q, g2x_q);
+    wire              st = &qm1_g_q && td_l_q;     // with q < 0: the step just taken made q' = 0
     function automatic [NW-1:0] sx(input [UW-1:0] x);          // sign-extended
         sx = {x[UW-1], x};
     endfunction
@@ -356,10 +371,8 @@ module arc_stepper #(
     wire [2*NW-1:0] t_cs  = csa(t_cs1[NW-1:0], t_cs1[2*NW-1:NW], pick_k(ksel, nqn_load_q, 1, 1, -1, 1, -3));
     wire [2*NW-1:0] p1_cs = csa(sx(p1_a1_q), sx(p1_b1_q), pick_k(ksel, nqn_load_q, 1, 0, 1, 1, 0));
     wire [2*NW-1:0] g2_cs = csa(sx(g2_a1_q), sx(g2_b1_q), pick_k(ksel, nqn_load_q, 2, -1, -2, 0, -3));
-    wire [2*NW-1:0] g1_cs = csa(sx(g2_a1_q), sx(g2_b1_q), pick_k(ksel, nqn_load_q, 1, 0, -1, -1, -2));   // p + q + 1: its sign
     /* verilator lint_on UNUSEDSIGNAL */
     wire          nqn = k_load_q ? nqn_load_q : !k_swap_q;          // q_new < 0
-    wire [UW-1:0] g1_x = add_u(g1_s_q, g1_c_q);                  // p + q + 1 (complemented if q_new < 0)
 
     always @(posedge clk) begin
         if (rst) begin
@@ -375,12 +388,12 @@ module arc_stepper #(
             reload3_q <= reload2_q;
             run_q     <= run;
             ld_q      <= !run || reload3_q;
-            ok_q      <= run && !(go && bound) && !reload_q && !reload2_q && !reload3_q;
+            ok_q      <= run && !reload_q && !reload2_q && !reload3_q;
         end
     end
     always @(posedge clk) begin
         // Every cycle: valid in the reload cycles and (from the start point's p and q) while loading.
-        qm1_q      <= p1x_q == g2x_q;
+        qm1_g_q    <= qm1_g;
         if (loading || reload_q) begin            // held through the reload
             k_load_q <= loading;
             k_turn_q <= !loading && qpos_q;
@@ -401,13 +414,10 @@ module arc_stepper #(
         p1_c_q  <= p1_cs[NW+UW-1:NW];
         g2_s_q  <= g2_cs[UW-1:0];
         g2_c_q  <= g2_cs[NW+UW-1:NW];
-        g1_s_q  <= g1_cs[UW-1:0];
-        g1_c_q  <= g1_cs[NW+UW-1:NW];
-        if (ld_q || rst) begin
+        if (ld_q) begin                           // (ld_q is set by rst)
             t_q    <= add_n(t_s_q, t_c_q);
             p1x_q  <= add_u(p1_s_q, p1_c_q);
             g2x_q  <= add_u(g2_s_q, g2_c_q);
-            g1neg_q <= g1_x[UW-1] ^ nqn;
             qpos_q <= !nqn;
             inc1_q <= nqn ? ~zero : one;
             inc2_q <= nqn ? ~one : two;
@@ -415,8 +425,10 @@ module arc_stepper #(
             t_q    <= td ? t_d : t_a;
             p1x_q  <= p1x_1;
             g2x_q  <= td ? g2x_2 : g2x_1;
-            g1neg_q <= (td ? g2x_1[UW-1] : g2x_q[UW-1]) ^ nqo;     // p' + q' + 1 = p + q + 2 + td - 1
         end
+        // The same as inc1_q (ld_q is set whenever run_q is not), under an enable that Yosys
+        // does not see as the same, so the copies stay apart and each sits by its adder.
+        if (ld_q || !run_q) inc1p_q <= nqn ? ~zero : one;
     end
 
     // ---------------------------------------------------------------- the step stage
@@ -458,6 +470,33 @@ module arc_stepper #(
     wire [NW-1:0] tt = t_q ^ {NW{nqo}};
     wire [UW-1:0] p1t = p1x_q ^ {UW{nqo}}, g2t = g2x_q ^ {UW{nqo}};
     wire [NW-1:0] e_w = tt - sx(p1t) - sx(g2t) + k_n(2);
+
+    // cross(d, End) for d = 1, 2, 3, 5, 6, 7 as x + y + c (c = 1 with y = ~u1 or ~2u1), registered
+    // in two halves while loading: the high half takes the low half's carry of the cycle
+    // before (End holds still while loading, so they settle in two cycles).
+    localparam integer RL = UW / 2;
+    wire [UW-1:0]   u2 = {u1_q[UW-2:0], 1'b0}, v2 = {v1_q[UW-2:0], 1'b0};
+    wire [6*UW-1:0] r_x = {v2, v1_q, v1_q, v1_q, v1_q, v2};       // r7, r6, r5, r3, r2, r1
+    wire [6*UW-1:0] r_y = {u1_q, u1_q, u2, ~u2, ~u1_q, ~u1_q};
+    wire [5:0]      r_c = 6'b000111;
+    wire [6*UW-1:0] r_all;
+    genvar gr;
+    generate
+        for (gr = 0; gr < 6; gr = gr + 1) begin : g_cross
+            reg [UW-1:0] r_q;
+            reg          carry_q;
+            always @(posedge clk) begin
+                if (loading) begin
+                    {carry_q, r_q[RL-1:0]} <= {1'b0, r_x[gr*UW +: RL]} + {1'b0, r_y[gr*UW +: RL]} +
+                                              {{RL{1'b0}}, r_c[gr]};
+                    r_q[UW-1:RL] <= r_x[gr*UW+RL +: UW-RL] + r_y[gr*UW+RL +: UW-RL] + {{(UW-RL-1){1'b0}}, carry_q};
+                end
+            end
+            assign r_all[gr*UW +: UW] = r_q;
+        end
+    endgenerate
+    wire [UW-1:0] r1 = r_all[0 +: UW], r2 = r_all[UW +: UW], r3 = r_all[2*UW +: UW],
+                  r5 = r_all[3*UW +: UW], r6 = r_all[4*UW +: UW], r7 = r_all[5*UW +: UW];
 
     always @(posedge clk) begin
         if (rst) begin
@@ -516,6 +555,8 @@ module arc_stepper #(
         near_v_q <= near_v_w;
         lt_all_q <= lt_all;
         loaded_q <= loading;
+        du0_q <= add1_u(u_q, ~u1_q);
+        dv0_q <= add1_u(v_q, ~v1_q);
         oct1_q <= oct1;
         oct2_q <= oct2;
         lt1_q <= lt_all_q[18 * oct1_q +: 18];
@@ -527,17 +568,11 @@ module arc_stepper #(
             u_q     <= u0;
             v_q     <= v0;
             e_q     <= {NW{1'b0}};
-            du_q    <= add1_u(u0, ~u1_q);
-            dv_q    <= add1_u(v0, ~v1_q);
-            r1_q    <= {v1_q[UW-2:0], 1'b0} - u1_q;
-            r2_q    <= v1_q - u1_q;
-            r3_q    <= v1_q - {u1_q[UW-2:0], 1'b0};
-            r5_q    <= v1_q + {u1_q[UW-2:0], 1'b0};
-            r6_q    <= v1_q + u1_q;
-            r7_q    <= {v1_q[UW-2:0], 1'b0} + u1_q;
-            dneg_q  <= {r7_q[UW-1], r6_q[UW-1], r5_q[UW-1], u1_q[UW-1], r3_q[UW-1], r2_q[UW-1], r1_q[UW-1], v1_q[UW-1]};
-            dzero_q <= {r7_q == {UW{1'b0}}, r6_q == {UW{1'b0}}, r5_q == {UW{1'b0}}, u1_q == {UW{1'b0}},
-                        r3_q == {UW{1'b0}}, r2_q == {UW{1'b0}}, r1_q == {UW{1'b0}}, v1_q == {UW{1'b0}}};
+            du_q    <= du0_q;
+            dv_q    <= dv0_q;
+            dneg_q  <= {r7[UW-1], r6[UW-1], r5[UW-1], u1_q[UW-1], r3[UW-1], r2[UW-1], r1[UW-1], v1_q[UW-1]};
+            dzero_q <= {r7 == {UW{1'b0}}, r6 == {UW{1'b0}}, r5 == {UW{1'b0}}, u1_q == {UW{1'b0}},
+                        r3 == {UW{1'b0}}, r2 == {UW{1'b0}}, r1 == {UW{1'b0}}, v1_q == {UW{1'b0}}};
             small_q <= (small_eq(u1_q) & 7'b0111110) != 7'd0 && (small_eq(v1_q) & 7'b0111110) != 7'd0;
             pos_q   <= pos_w;
             dot_q   <= dot_w;

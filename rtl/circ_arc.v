@@ -113,6 +113,7 @@ module circ_arc #(
     reg [3:0]      fit_q;                                // stage 2
     reg            zero_u0_q, zero_v0_q;
     reg            fits_q, at_centre_q, at_start_q;      // stage 3 (at_start_q: 2)
+    reg            cmd_ok_q, steps_q;                    // stage 4: fits and off the centre; and steps too
     // (continuous assignments: simulators evaluate the functions only when the command changes)
     wire [NG+1:0]   rf_u0 = range_flags(u0_q), rf_v0 = range_flags(v0_q);
     wire [NG+1:0]   rf_u1 = range_flags(u1_q), rf_v1 = range_flags(v1_q);
@@ -129,16 +130,18 @@ module circ_arc #(
         at_start_q  <= !(|dif_q);
         fits_q      <= &fit_q;
         at_centre_q <= zero_u0_q && zero_v0_q;
+        cmd_ok_q    <= fits_q && !at_centre_q;
+        steps_q     <= fits_q && !at_centre_q && !(at_start_q && !full_q);
     end
-    wire bad = !fits_q || at_centre_q || !on_band;
-    wire begin_run = check && !bad && !(at_start_q && !full_q);
+    wire bad = !cmd_ok_q || !on_band;
+    wire begin_run = check && on_band && steps_q;
 
     // The stepper follows the command's registers through the set-up and steps in RUN.
     wire          fin;
     wire [UW-1:0] pos_u, pos_v;             // current point (benches)
     wire [UW:0]   e;                        // E (benches)
-    // The stepper registers `run`: it gets the next cycle's state RUN.
-    wire run_d = !rst && (begin_run || (state_q == RUN && !fin));
+    // The stepper registers `run`: it gets the next cycle's state RUN (its `rst` clears it).
+    wire run_d = begin_run || (state_q == RUN && !fin);
     arc_stepper #(.WIDTH(WIDTH), .CARRY_SELECT(CARRY_SELECT)) u_stepper (
         .clk(clk), .rst(rst), .run(run_d), .tick(tick), .u0(u0_q), .v0(v0_q), .u1(u1_q), .v1(v1_q),
         .ccw(ccw_q), .step_x(step_x), .step_y(step_y), .dir_x(dir_x), .dir_y(dir_y), .fin(fin),

@@ -7,10 +7,12 @@
 //   round 2: m^2 with m = |d| (multiplier 3), as d^2 from the registered d;
 //   band:    |sqrt(b) - sqrt(a)| <= 1/2 (circle_band's test)  <=>  d = 0 or
 //            (m < 2^(SW/2 - 1) and m^2 <= min(a, b) + (m - 1) div 2),
-//            t = min(a, b) + (m - 1) div 2 - m^2 with a carry-save step in front.
+//            t = min(a, b) + (m - 1) div 2 - m^2 with a carry-save step in front
+//            (registered every cycle: its inputs hold from MUL2's last cycle on).
 // The parent keeps a, b below 2^(SW-2) by its coordinate range, so a larger m is
 // off the band and m^2 and t fit in SW bits.  Sums of SW bits take two cycles, two
-// chunks of SW/2 bits with a registered carry (ADD1: a, b; ADD2: d, -d; ADD3: t).
+// chunks of SW/2 bits with a registered carry (ADD1: a, b; ADD2: d, -d; ADD3: t), each
+// sum its own carry register, so a chain ends at a register (no state select behind it).
 //
 // Timing (states IDLE, PREP, MUL1, ADD1, ADD2, MUL2, ADD3, CHECK): `start` in an
 // idle cycle (cycle 0) begins; x0 .. y1 are captured by round 1 in cycle 1 (PREP);
@@ -48,14 +50,33 @@ module circle_setup #(
 
     reg  [2:0]    state_q;
     reg           sub_q;                    // second cycle of a two-cycle sum
+    reg           check_q;                  // state CHECK, as a flag of its own
     reg  [SW-1:0] a_q, b_q;                 // R^2 (then min(a, b)), |End|^2
     reg  [SW-1:0] d_q, nd_q, t_q;           // b - a, a - b, min(a, b) + (m - 1) div 2 - m^2
-    reg  [2:0]    carry_q;                  // chunk carries of the two-cycle sums
+    reg           ca_q, cb_q, cd_q, cnd_q, ct_q;   // chunk carries of the two-cycle sums
+    reg  [SW-1:0] tcs_s_q, tcs_c_q;         // ADD3's carry-save step (sum, carries)
     reg  [MW-1:0] m_q, h_q;                 // m = |d|, (m - 1) div 2
     reg           dzero_q, msmall_q;
+    // Their first stage, zero flags of 4-bit groups (d, and the bits of d and -d that
+    // msmall reads): the wide compares take two cycles of MUL2 (d holds still in it).
+    localparam integer NZ = (SW + 3) / 4, NS = (SK + 4) / 4;
+    reg  [NZ-1:0] dz_q;
+    reg  [NS-1:0] dhz_q, ndhz_q;
+    function automatic [NZ-1:0] zero_groups(input [SW-1:0] x);
+        integer i;
+        reg [4*NZ-1:0] w;
+        begin
+            w = {{(4*NZ-SW){1'b0}}, x};
+            for (i = 0; i < NZ; i = i + 1) zero_groups[i] = w[4*i +: 4] == 4'd0;
+        end
+    endfunction
+    // (continuous assignments: simulators evaluate the functions only when d changes)
+    wire [NZ-1:0] dz_w = zero_groups(d_q);
+    wire [NZ-1:0] dhz_w = zero_groups({{(SK-1){1'b0}}, d_q[SW-1:SK-1]}),
+                  ndhz_w = zero_groups({{(SK-1){1'b0}}, nd_q[SW-1:SK-1]});
 
     assign busy = state_q != IDLE;
-    assign check = state_q == CHECK;
+    assign check = check_q;
     assign on_band = dzero_q || (msmall_q && !t_q[SW-1]);
 
     // ---- multipliers: round 1 in PREP, round 2 in MUL2's first cycle ----
@@ -78,7 +99,9 @@ module circle_setup #(
     endgenerate
     // m^2 = d^2: the signed multiplier squares d's low MW bits, which are d itself
     // whenever m^2 matters (m < 2^(SW/2 - 1) <= 2^(MW - 1)), so no |d| select before it.
-    wire [MW-1:0] mop3 = round1 ? y1 : d_q[MW-1:0];
+    // Its operand: y1 until ADD2, d from then on (a register selects: the select fans out).
+    reg           sq_d_q;
+    wire [MW-1:0] mop3 = sq_d_q ? d_q[MW-1:0] : y1;
     seq_mult #(.WIDTH(MW)) u_mul3 (.clk(clk), .rst(rst), .start(round1 || round2), .a(mop3), .b(mop3),
                                    .busy(mbusy[3]), .done(mdone), .product(p[3*PW +: PW]));
     wire [SW-1:0] msq = p[3*PW +: SW];
@@ -110,32 +133,48 @@ module circle_setup #(
         end
     endfunction
     /* verilator lint_on UNUSEDSIGNAL */
-    wire [SW:0] a_sum = sum2(p[0 +: SW], p[PW +: SW], 1'b0, carry_q[0]);   // ADD1
-    wire [SW:0] b_sum = sum2(p[2*PW +: SW], msq, 1'b0, carry_q[1]);
-    assign d_sum = sum2(b_q, ~a_q, 1'b1, carry_q[0]);                         // ADD2
-    assign nd_sum = sum2(a_q, ~b_q, 1'b1, carry_q[1]);
+    wire [SW:0] a_sum = sum2(p[0 +: SW], p[PW +: SW], 1'b0, ca_q);          // ADD1
+    wire [SW:0] b_sum = sum2(p[2*PW +: SW], msq, 1'b0, cb_q);
+    assign d_sum = sum2(b_q, ~a_q, 1'b1, cd_q);                               // ADD2
+    assign nd_sum = sum2(a_q, ~b_q, 1'b1, cnd_q);
     wire [SW-1:0] h_w = {{(SW-MW){1'b0}}, h_q};                               // ADD3: s + h - m^2
     wire [SW-1:0] tcs_s = a_q ^ h_w ^ ~msq;
     wire [SW-1:0] tcs_c = {(a_q[SW-2:0] & h_w[SW-2:0]) | (a_q[SW-2:0] & ~msq[SW-2:0]) |
                            (h_w[SW-2:0] & ~msq[SW-2:0]), 1'b1};               // + 1: -m^2 = ~m^2 + 1
-    wire [SW:0] t_sum = sum2(tcs_s, tcs_c, 1'b0, carry_q[2]);
+    wire [SW:0] t_sum = sum2(tcs_s_q, tcs_c_q, 1'b0, ct_q);
+
+    always @(posedge clk) begin
+        tcs_s_q <= tcs_s;
+        tcs_c_q <= tcs_c;
+        dz_q    <= dz_w;
+        dhz_q   <= dhz_w[NS-1:0];
+        ndhz_q  <= ndhz_w[NS-1:0];
+    end
 
     always @(posedge clk) begin
         if (rst) begin
             state_q  <= IDLE;
+            check_q  <= 1'b0;
+            sq_d_q   <= 1'b0;
             sub_q    <= 1'b0;
             a_q      <= {SW{1'b0}};
             b_q      <= {SW{1'b0}};
             d_q      <= {SW{1'b0}};
             nd_q     <= {SW{1'b0}};
             t_q      <= {SW{1'b0}};
-            carry_q  <= 3'd0;
+            ca_q     <= 1'b0;
+            cb_q     <= 1'b0;
+            cd_q     <= 1'b0;
+            cnd_q    <= 1'b0;
+            ct_q     <= 1'b0;
             m_q      <= {MW{1'b0}};
             h_q      <= {MW{1'b0}};
             dzero_q  <= 1'b0;
             msmall_q <= 1'b0;
         end else begin
-            sub_q <= 1'b0;
+            sub_q   <= 1'b0;
+            check_q <= state_q == ADD3 && sub_q;
+            sq_d_q  <= state_q == ADD2 || state_q == MUL2;
             case (state_q)
                 IDLE: if (start) state_q <= PREP;
                 PREP: state_q <= MUL1;          // round 1 starts
@@ -143,14 +182,16 @@ module circle_setup #(
                 ADD1: begin
                     a_q     <= a_sum[SW-1:0];
                     b_q     <= b_sum[SW-1:0];
-                    carry_q <= {1'b0, b_sum[SW], a_sum[SW]};
+                    ca_q    <= a_sum[SW];
+                    cb_q    <= b_sum[SW];
                     sub_q   <= !sub_q;
                     if (sub_q) state_q <= ADD2;
                 end
                 ADD2: begin
                     d_q     <= d_sum[SW-1:0];
                     nd_q    <= nd_sum[SW-1:0];
-                    carry_q <= {1'b0, nd_sum[SW], d_sum[SW]};
+                    cd_q    <= d_sum[SW];
+                    cnd_q   <= nd_sum[SW];
                     sub_q   <= 1'b1;            // in ADD2's second cycle: MUL2's first is next
                     if (sub_q) state_q <= MUL2;
                 end
@@ -160,13 +201,13 @@ module circle_setup #(
                         m_q <= m_abs;
                     end
                     h_q      <= (m_q - 1'b1) >> 1;
-                    dzero_q  <= d_q == {SW{1'b0}};
-                    msmall_q <= (d_q[SW-1] ? nd_q[SW-1:SK-1] : d_q[SW-1:SK-1]) == {(SK+1){1'b0}};
+                    dzero_q  <= &dz_q;
+                    msmall_q <= d_q[SW-1] ? &ndhz_q : &dhz_q;
                     if (mdone) state_q <= ADD3;
                 end
                 ADD3: begin
                     t_q     <= t_sum[SW-1:0];
-                    carry_q <= {t_sum[SW], 2'b00};
+                    ct_q    <= t_sum[SW];
                     sub_q   <= !sub_q;
                     if (sub_q) state_q <= CHECK;
                 end
@@ -177,6 +218,6 @@ module circle_setup #(
 
     // Busy flags are implied by the state; product bits above SW and nd_q's middle
     // bits (its low part is m, its high part feeds msmall) are not needed.
-    wire unused = &{1'b0, mbusy, mdone_other, nd_q, p};
+    wire unused = &{1'b0, mbusy, mdone_other, nd_q, p, dhz_w, ndhz_w};
 endmodule
 `default_nettype wire

@@ -45,6 +45,7 @@ module seq_mult #(
     reg              cin0_q;       // + 1 with ~mcand_q (b's sign bit subtracts)
     reg              sign_next_q;  // mplier_q[1] is b's sign bit (busy cycle WIDTH - 2)
     reg  [NW-1:0]    count_q;      // busy cycle index
+    reg              last_q;       // the last busy cycle (count_q = WIDTH + 1)
     reg              busy_q;
 
     assign busy = busy_q;
@@ -61,8 +62,8 @@ module seq_mult #(
     wire [CW:0]   sum0 = {1'b0, acc_q[CW-1:0]}        + {1'b0, addend_q[CW-1:0]}        + {{CW{1'b0}}, cin0_q};
     wire [CW:0]   sum1 = {1'b0, acc_q[2*CW-1:CW]}     + {1'b0, addend_q[2*CW-1:CW]}     + {{CW{1'b0}}, carry_q[0]};
     wire [CW:0]   sum2 = {1'b0, acc_q[3*CW-1:2*CW]}   + {1'b0, addend_q[3*CW-1:2*CW]}   + {{CW{1'b0}}, carry_q[1]};
-    localparam [31:0] LAST32 = WIDTH + 1;
-    localparam [NW-1:0] LAST = LAST32[NW-1:0];
+    localparam [31:0] BEFORE_LAST32 = WIDTH;       // busy cycle index before the last one
+    localparam [NW-1:0] BEFORE_LAST = BEFORE_LAST32[NW-1:0];
 
     always @(posedge clk) begin
         if (rst) begin
@@ -74,6 +75,7 @@ module seq_mult #(
             cin0_q     <= 1'b0;
             count_q    <= {NW{1'b0}};
             sign_next_q <= 1'b0;
+            last_q     <= 1'b0;
             busy_q     <= 1'b0;
             done       <= 1'b0;
         end else begin
@@ -99,7 +101,8 @@ module seq_mult #(
                 {cin0_q, addend_q} <= next;
                 sign_next_q <= {{(32-NW){1'b0}}, count_q} + 32'd3 == WIDTH;
                 count_q    <= count_q + 1'b1;
-                if (count_q == LAST) begin
+                last_q     <= count_q == BEFORE_LAST;
+                if (last_q) begin
                     busy_q <= 1'b0;
                     done   <= 1'b1;
                 end

@@ -182,8 +182,9 @@ class CircleSetup(CycleModel):
 
     Round 1 squares x0, y0, x1, y1 on four SeqMult models; a = x0^2 + y0^2 and
     b = x1^2 + y1^2 (ADD1), d = b - a and -d (ADD2), each a two-cycle sum of SW/2-bit
-    chunks with a registered carry.  Round 2 forms m^2 (as d^2), m = |d|; ADD3 forms
-    t = min(a, b) + (m - 1) div 2 - m^2; CHECK shows on_band = d == 0 or
+    chunks with a registered carry (one per sum).  Round 2 forms m^2 (as d^2), m = |d|;
+    ADD3 forms t = min(a, b) + (m - 1) div 2 - m^2 from a carry-save step registered every
+    cycle; CHECK shows on_band = d == 0 or
     (m < 2^(SW/2-1) and t >= 0).
     """
 
@@ -198,8 +199,9 @@ class CircleSetup(CycleModel):
 
     def reset(self) -> None:
         self.state = self.sub = self.a = self.b = self.d = self.nd = self.t = 0
-        self.m = self.h = self.dzero = self.msmall = 0
-        self.carry = [0, 0, 0]
+        self.m = self.h = self.dzero = self.msmall = self.tcs_s = self.tcs_c = 0
+        self.zeros = (0, 0, 0)          # d == 0, d's and -d's bits from SW/2 - 1 up == 0
+        self.carry = {"a": 0, "b": 0, "d": 0, "nd": 0, "t": 0}
         for mult in self.mults:
             mult.reset()
 
@@ -230,8 +232,10 @@ class CircleSetup(CycleModel):
         state, sub, top = self.state, self.sub, sw - 1
         p = [mult.product & mask for mult in self.mults]
         # Combinational values of this cycle (before the edge).
-        d_sum, d_c = self.sum2(self.b, ~self.a & mask, 1, self.carry[0])
-        nd_sum, nd_c = self.sum2(self.a, ~self.b & mask, 1, self.carry[1])
+        carry = self.carry
+        d_sum, d_c = self.sum2(self.b, ~self.a & mask, 1, carry["d"])
+        nd_sum, nd_c = self.sum2(self.a, ~self.b & mask, 1, carry["nd"])
+        t_sum, t_c = self.sum2(self.tcs_s, self.tcs_c, 0, carry["t"])
         m_abs = (self.nd if self.d >> top else self.d) & ((1 << mw) - 1)   # from the registers
         round1, round2 = state == self.PREP, state == self.MUL2 and sub
         squares = [inputs["x0"], inputs["y0"], inputs["x1"]]
@@ -241,7 +245,13 @@ class CircleSetup(CycleModel):
         op3 = inputs["y1"] if round1 else self.d & ((1 << mw) - 1)
         done = self.mults[3].done
         self.mults[3].clock({"start": int(round1 or round2), "a": op3, "b": op3})
-        # Registers.
+        # Registers.  ADD3's carry-save step and the first stage of the wide zero tests,
+        # every cycle (-m^2 = ~m^2 + 1).
+        d_zero, dhi_zero, ndhi_zero = self.zeros
+        self.zeros = (int(self.d == 0), int(self.d >> (self.sk - 1) == 0), int(self.nd >> (self.sk - 1) == 0))
+        nsq = ~p[3] & mask
+        self.tcs_s = self.a ^ self.h ^ nsq
+        self.tcs_c = ((self.a & self.h | self.a & nsq | self.h & nsq) << 1 | 1) & mask
         self.sub = 0
         if state == self.IDLE:
             if inputs.get("start"):
@@ -251,27 +261,24 @@ class CircleSetup(CycleModel):
         elif state == self.MUL1:
             self.state = self.ADD1 if done else state
         elif state == self.ADD1:
-            (self.a, a_c), (self.b, b_c) = self.sum2(p[0], p[1], 0, self.carry[0]), \
-                self.sum2(p[2], p[3], 0, self.carry[1])
-            self.carry, self.sub = [a_c, b_c, 0], int(not sub)
+            (self.a, carry["a"]), (self.b, carry["b"]) = self.sum2(p[0], p[1], 0, carry["a"]), \
+                self.sum2(p[2], p[3], 0, carry["b"])
+            self.sub = int(not sub)
             self.state = self.ADD2 if sub else state
         elif state == self.ADD2:
-            self.d, self.nd, self.carry, self.sub = d_sum, nd_sum, [d_c, nd_c, 0], 1
+            self.d, self.nd, self.sub = d_sum, nd_sum, 1
+            carry["d"], carry["nd"] = d_c, nd_c
             self.state = self.MUL2 if sub else state
         elif state == self.MUL2:                # round 2 starts in the first cycle
             self.h = ((self.m - 1) & ((1 << mw) - 1)) >> 1
             if sub:
                 self.a = self.b if self.d >> top else self.a        # s = min(a, b)
                 self.m = m_abs
-            self.dzero = int(self.d == 0)
-            self.msmall = int((self.nd if self.d >> top else self.d) >> (self.sk - 1) == 0)
+            self.dzero = d_zero
+            self.msmall = ndhi_zero if self.d >> top else dhi_zero
             self.state = self.ADD3 if done else state
         elif state == self.ADD3:
-            nsq = ~p[3] & mask
-            tcs_s = self.a ^ self.h ^ nsq
-            tcs_c = ((self.a & self.h | self.a & nsq | self.h & nsq) << 1 | 1) & mask
-            self.t, t_c = self.sum2(tcs_s, tcs_c, 0, self.carry[2])
-            self.carry = [0, 0, t_c]
+            self.t, carry["t"] = t_sum, t_c
             self.sub = int(not sub)
             self.state = self.CHECK if sub else state
         else:
