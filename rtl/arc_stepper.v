@@ -293,8 +293,9 @@ module arc_stepper #(
     // The octant ends: p' >= 0 (q > 0) or p' + q' >= 0 (q < 0), i.e. p + 1 >= 0, or
     // p + q + 2 >= 0 after a diagonal step and p + q + 1 >= 0 after an axial one.
     // p + q + 1 < 0 <=> p + q + 2 <= 0: from the register, without a carry chain.
-    wire p1_neg = p1x_q[UW-1] ^ nqo, g2_neg = g2x_q[UW-1] ^ nqo;
-    wire g1_neg = g2_neg || (g2x_q ^ {UW{nqo}}) == zero;
+    wire [UW-1:0] p1t = p1x_q ^ {UW{nqo}}, g2t = g2x_q ^ {UW{nqo}};   // p + 1, p + q + 2
+    wire p1_neg = p1t[UW-1], g2_neg = g2t[UW-1];
+    wire g1_neg = g2_neg || g2t == zero;
     wire bound = qpos_q ? !p1_neg : td ? !g2_neg : !g1_neg;
 
     // Reload, in four cycles after a step into a new octant (the registers it reads hold
@@ -468,7 +469,6 @@ module arc_stepper #(
     wire          near_u_w = near5(hz_u_q, ho_u_q, lo_u_q), near_v_w = near5(hz_v_q, ho_v_q, lo_v_q);
     // E = T - (p + 1) - (p + q + 2) + 2, from the decision loop, which is a step ahead.
     wire [NW-1:0] tt = t_q ^ {NW{nqo}};
-    wire [UW-1:0] p1t = p1x_q ^ {UW{nqo}}, g2t = g2x_q ^ {UW{nqo}};
     wire [NW-1:0] e_w = tt - sx(p1t) - sx(g2t) + k_n(2);
 
     // cross(d, End) for d = 1, 2, 3, 5, 6, 7 as x + y + c (c = 1 with y = ~u1 or ~2u1), registered
