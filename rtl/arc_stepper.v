@@ -11,7 +11,8 @@
 // so E and T move by {p, 1}, {p + 1, 1}, {p + q + 1, 0}, {p + q + 2, 1}: counters.  q is
 // never 0; p runs from -q to 0 (q > 0) or from 0 to |q| (q < 0).  The octant ends when the
 // next point has p >= 0 (q > 0: b turns, q = -q) or |p| >= |q| (q < 0: a and b swap, and
-// b turns as well if q reaches 0): the signs of p + 1, p + q + 1, p + q + 2.  The four
+// b turns as well if q reaches 0): the signs of p + 1, p + q + 1, p + q + 2 (p + q + 1 < 0
+// is p + q + 2 <= 0, with a registered zero flag).  The four
 // cycles after a step into a new octant reload T and the counters (the new octant's kind,
 // the operands, a carry-save step, the carry chain) and take no step (`tick` is an enable).
 //
@@ -31,7 +32,7 @@
 // carry chains.  The step stage, a cycle behind, takes the loop's decisions as tokens:
 // the point (kept as D; u, v = End + D for the benches), E, the octant, the last-step
 // test and the outputs.  The end test's window runs a step ahead, with the loop's
-// decision (D's low five bits and a |D| <= 5 flag three steps old tell D = -2 .. 2, no
+// decision (D's low five bits and a |D| <= 6 flag four steps old tell D = -2 .. 2, no
 // wide compare), so the last-step flags are a registered lookup.  `run` and the
 // enables' terms are registered, so each enable is one LUT.
 //
@@ -93,8 +94,8 @@ module arc_stepper #(
     reg  [UW-1:0]     pa_q, pb_q;                  // P.a, P.b less the + 1 of a negation (loading)
     reg  [UW-1:0]     p_q, q_q;                    // P.a, P.b (loading)
     reg  [NW-1:0]     e_q;                         // E (for the benches)
-    reg               near_u_q, near_v_q;          // |D| <= 5 per axis, two cycles ago
-    reg               hz_u_q, ho_u_q, hz_v_q, ho_v_q;   // its first stage: D's bits above 3 all 0, all 1
+    reg               near_u_q, near_v_q;          // |D| <= 6 per axis, three cycles ago
+    reg               hz_u_q, ho_u_q, hz_v_q, ho_v_q;   // its second stage: D's bits above 3 all 0, all 1
     reg  [3:0]        lo_u_q, lo_v_q;              // and D's low bits
     // The end test's inputs, a step ahead (with the decision loop): D's low bits and its
     // window -1 .. 1 per axis (one-hot or none) at the next step the step stage takes.
@@ -104,8 +105,9 @@ module arc_stepper #(
     reg               small_q;                     // |u1|, |v1| <= 2
     reg  [7:0]        dneg_q, dzero_q;             // cross(d, End) < 0, == 0
     reg  [24:0]       pos_q, dot_q;                // pos(D), dot(End + D, End) > 0 on the 5x5 grid
+    reg  [24:0]       dot_small_q;                 // dot > 0 for |End|^2 <= 8, from End's low bits
     reg  [8*18-1:0]   lt_all_q;                    // lt_all, registered
-    reg  [17:0]       lt_q, lt1_q, lt2_q;          // {diagonal, axial} last-step tables: octant, next ones
+    reg  [17:0]       lt_q, lt0_q, lt1_q, lt2_q;   // {diagonal, axial} last-step tables: octant; first, next ones
     reg  [2:0]        oct1_q, oct2_q;              // the next octants (a cycle old)
     reg               last_a_q, last_d_q;          // the axial / diagonal step is the last
 
@@ -117,7 +119,8 @@ module arc_stepper #(
     // ---------------------------------------------------------------- first octant
     // Leading axis: the tangent's larger component; on a diagonal, the one of the next octant.
     // |v| > |u| <=> (v + u)(v - u) > 0;  |v| = |u| <=> v + u = 0 or v - u = 0.
-    function automatic [2:0] octant;   // {x_major, major_neg, minor_neg}
+    // Two register stages: x major and both versions of the signs, then the select.
+    function automatic [4:0] octant;   // {x_major; major_neg, minor_neg if x major; if not}
         input un, uz, vn, vz, s1n, s1z, s3n, s3z, cc;
         reg xm, up, vp;
         begin
@@ -125,11 +128,15 @@ module arc_stepper #(
             up = !un && !uz;
             vp = !vn && !vz;
             // Tangent (-v, u) for CCW, (v, -u) for CW; a zero minor component steps inwards.
-            octant = {xm, xm ? (cc ? vp : vn) : (cc ? un : up),
-                          xm ? (uz ? vp : (cc ? un : up)) : (vz ? up : (cc ? vp : vn))};
+            octant = {xm, cc ? vp : vn, uz ? vp : (cc ? un : up), cc ? un : up, vz ? up : (cc ? vp : vn)};
         end
     endfunction
-    wire [2:0] oct_0 = octant(u_q[UW-1], uz_q, v_q[UW-1], vz_q, s1_q[UW-1], s1z_q, s3_q[UW-1], s3z_q, ccw);
+    reg  [4:0] oct_p_q;
+    wire [4:0] oct_p = octant(u_q[UW-1], uz_q, v_q[UW-1], vz_q, s1_q[UW-1], s1z_q, s3_q[UW-1], s3z_q, ccw);
+    wire [2:0] oct_0 = {oct_p_q[4], oct_p_q[4] ? oct_p_q[3:2] : oct_p_q[1:0]};
+    // u + v = 0 without the sum (a carry-free test: u ^ v = (u | v) << 1), and v - u = 0.
+    wire [UW-1:0] uv_x = u_q ^ v_q;
+    wire [UW-2:0] uv_o = u_q[UW-2:0] | v_q[UW-2:0];
 
     // ---------------------------------------------------------------- end tables
     // The eight directions d of the grid (upper half plane) and cross(d, End) = du v1 - dv u1:
@@ -168,7 +175,7 @@ module arc_stepper #(
     wire [7:0] flip = {{4{ccw}}, {4{!ccw}}};
     wire [7:0] dgt = (dneg_q & flip) | (~dneg_q & ~dzero_q & ~flip);
     wire [7:0] dlt = (dneg_q & ~flip) | (~dneg_q & ~dzero_q & flip);
-    wire [24:0] pos_w, dot_w;
+    wire [24:0] pos_w, dot_w, dot_small_w;
     genvar gi;
     generate
         for (gi = 0; gi < 25; gi = gi + 1) begin : g_grid        // grid point D = (gi / 5 - 2, gi % 5 - 2)
@@ -184,7 +191,8 @@ module arc_stepper #(
             // dot(End + D, End) = |End|^2 + D.End > 0: true when |End|^2 > 8 (|D| <= 2 sqrt 2),
             // else a function of End's low three bits per axis.
             localparam [63:0] DOT_SMALL = dot_table(DU, DV);
-            assign dot_w[gi] = !small_q || DOT_SMALL[{u1_q[2:0], v1_q[2:0]}];
+            assign dot_small_w[gi] = DOT_SMALL[{u1_q[2:0], v1_q[2:0]}];
+            assign dot_w[gi] = !small_q || dot_small_q[gi];
         end
     endgenerate
     // Last-step tables for the steps a, a + b (unit vectors (au, av), (bu, bv)): bit
@@ -216,19 +224,12 @@ module arc_stepper #(
             assign lt_all[18 * go_i +: 18] = tables_for(AU, AV, BU, BV, pos_q, dot_q);
         end
     endgenerate
-    // Flags: x == k for k = -3 .. 3 (bit k + 3).
-    function automatic [6:0] small_eq(input [UW-1:0] x);
-        reg hz, ho;
-        integer k;
-        begin
-            hz = x[UW-1:2] == {(UW-2){1'b0}};
-            ho = x[UW-1:2] == {(UW-2){1'b1}};
-            for (k = -3; k <= 3; k = k + 1)
-                small_eq[k+3] = (k >= 0 ? hz : ho) && x[1:0] == k[1:0];
-        end
+    // |x| <= 2 from x's parts: its bits above 1 all 0 or all 1, and its low bits.
+    function automatic small2(input hz, ho, input [1:0] lo);
+        small2 = (hz && lo != 2'd3) || (ho && lo[1]);
     endfunction
     // x == k for k = -2 .. 2 (bit k + 2) for D, which moves by at most 1 per step: near_q
-    // says |D| <= 5 at most three steps before, so D is in -8 .. 8 now and its low five
+    // says |D| <= 6 at most four steps before, so D is in -10 .. 10 now and its low five
     // bits tell -2 .. 2 (no wide compare).
     function automatic [4:0] near_eq(input near, input [4:0] x);
         integer k;
@@ -237,8 +238,8 @@ module arc_stepper #(
                 near_eq[k+2] = near && x == k[4:0];
         end
     endfunction
-    function automatic near5(input hz, ho, input [3:0] lo);    // -5 <= x <= 5 from x's parts
-        near5 = (hz && lo <= 4'd5) || (ho && lo >= 4'd11);
+    function automatic near6(input hz, ho, input [3:0] lo);    // -6 <= x <= 6 from x's parts
+        near6 = (hz && lo <= 4'd6) || (ho && lo >= 4'd10);
     endfunction
     // The window -1 .. 1 of x + s (s = -1, 0, +1: move, neg) from the flags x == -2 .. 2.
     function automatic [2:0] window(input move, neg, input [4:0] eq);
@@ -292,10 +293,16 @@ module arc_stepper #(
     wire [UW-1:0] p1x_1 = add_u(p1x_q, inc1p_q), g2x_1 = add_u(g2x_q, inc1_q), g2x_2 = add_u(g2x_q, inc2_q);
     // The octant ends: p' >= 0 (q > 0) or p' + q' >= 0 (q < 0), i.e. p + 1 >= 0, or
     // p + q + 2 >= 0 after a diagonal step and p + q + 1 >= 0 after an axial one.
-    // p + q + 1 < 0 <=> p + q + 2 <= 0: from the register, without a carry chain.
+    // p + q + 1 < 0 <=> p + q + 2 <= 0: its sign and a registered zero flag.
     wire [UW-1:0] p1t = p1x_q ^ {UW{nqo}}, g2t = g2x_q ^ {UW{nqo}};   // p + 1, p + q + 2
     wire p1_neg = p1t[UW-1], g2_neg = g2t[UW-1];
-    wire g1_neg = g2_neg || g2t == zero;
+    // p + q + 2 = 0 without a wide compare in the loop: it grows by 1 (axial step) or 2
+    // (diagonal) per step, so flags of its values 0, -1, -2 registered with the step (and
+    // a carry-free zero test of the reload value) give it.
+    reg           g2_is0_q, g2_ism1_q, g2_ism2_q;  // p + q + 2 = 0, -1, -2 (a cycle ago)
+    reg           g2_ld0_q, ld_d_q;                // the reload value's p + q + 2 = 0; ld_q, a cycle ago
+    wire g2_zero = ld_d_q ? g2_ld0_q : tok_q ? (td_l_q ? g2_ism2_q : g2_ism1_q) : g2_is0_q;
+    wire g1_neg = g2_neg || g2_zero;
     wire bound = qpos_q ? !p1_neg : td ? !g2_neg : !g1_neg;
 
     // Reload, in four cycles after a step into a new octant (the registers it reads hold
@@ -374,6 +381,19 @@ module arc_stepper #(
     wire [2*NW-1:0] g2_cs = csa(sx(g2_a1_q), sx(g2_b1_q), pick_k(ksel, nqn_load_q, 2, -1, -2, 0, -3));
     /* verilator lint_on UNUSEDSIGNAL */
     wire          nqn = k_load_q ? nqn_load_q : !k_swap_q;          // q_new < 0
+    // The reload value of p + q + 2 is 0: its operands a + b = kt, the constant that makes
+    // the value 0 (~0 while q_new < 0), tested without a carry chain (a sum equal to kt has
+    // the carries c = ((a & b) | ((a ^ b) & ~kt)) << 1, and a ^ b ^ kt = c), as 4-bit group
+    // flags in the third reload cycle, their AND in the fourth (kt registered with the
+    // operands).
+    /* verilator lint_off UNUSEDSIGNAL */        // the constant's and the carries' top bits
+    wire [NW-1:0] g2_kt_n = pick_k(ksel, nqn_load_q, -2, 0, 1, 0, 2);
+    reg  [UW-1:0] g2_kt_q;
+    wire [UW-1:0] g2_ab = g2_a1_q ^ g2_b1_q;
+    wire [UW-1:0] g2_cy = (g2_a1_q & g2_b1_q) | (g2_ab & ~g2_kt_q);
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [QG-1:0] g2_ld0_g = equal_groups(g2_ab ^ g2_kt_q, {g2_cy[UW-2:0], 1'b0});
+    reg  [QG-1:0] g2_ld0_g_q;
 
     always @(posedge clk) begin
         if (rst) begin
@@ -395,6 +415,13 @@ module arc_stepper #(
     always @(posedge clk) begin
         // Every cycle: valid in the reload cycles and (from the start point's p and q) while loading.
         qm1_g_q    <= qm1_g;
+        g2_is0_q   <= g2t == zero;
+        g2_ism1_q  <= g2t == ~zero;
+        g2_ism2_q  <= g2t == ~one;
+        g2_kt_q    <= g2_kt_n[UW-1:0];
+        g2_ld0_g_q <= g2_ld0_g;
+        g2_ld0_q   <= &g2_ld0_g_q;
+        ld_d_q     <= ld_q;
         if (loading || reload_q) begin            // held through the reload
             k_load_q <= loading;
             k_turn_q <= !loading && qpos_q;
@@ -466,18 +493,25 @@ module arc_stepper #(
     wire          last_a_w = hit(wau_q, wav_q, lt_q[8:0]), last_d_w = hit(wau_q, wav_q, lt_q[17:9]);
     wire [4:0]    dau_w = dau_q + (td ? ud_q[4:0] : ua_q[4:0]), dav_w = dav_q + (td ? vd_q[4:0] : va_q[4:0]);
     wire [UW-1:0] ua_w = unit(xm_q, nxa), ud_w = unit(1'b1, nxd), va_w = unit(!xm_q, nya), vd_w = unit(1'b1, nyd);
-    wire          near_u_w = near5(hz_u_q, ho_u_q, lo_u_q), near_v_w = near5(hz_v_q, ho_v_q, lo_v_q);
+    wire          near_u_w = near6(hz_u_q, ho_u_q, lo_u_q), near_v_w = near6(hz_v_q, ho_v_q, lo_v_q);
     // E = T - (p + 1) - (p + q + 2) + 2, from the decision loop, which is a step ahead.
     wire [NW-1:0] tt = t_q ^ {NW{nqo}};
     wire [NW-1:0] e_w = tt - sx(p1t) - sx(g2t) + k_n(2);
 
     // cross(d, End) for d = 1, 2, 3, 5, 6, 7 as x + y + c (c = 1 with y = ~u1 or ~2u1), registered
     // in two halves while loading: the high half takes the low half's carry of the cycle
-    // before (End holds still while loading, so they settle in two cycles).
+    // before (End holds still while loading, so they settle in two cycles).  They read a
+    // copy of End of their own (without an enable, so it stays a copy: End's loads span
+    // the chip).
     localparam integer RL = UW / 2;
-    wire [UW-1:0]   u2 = {u1_q[UW-2:0], 1'b0}, v2 = {v1_q[UW-2:0], 1'b0};
-    wire [6*UW-1:0] r_x = {v2, v1_q, v1_q, v1_q, v1_q, v2};       // r7, r6, r5, r3, r2, r1
-    wire [6*UW-1:0] r_y = {u1_q, u1_q, u2, ~u2, ~u1_q, ~u1_q};
+    reg  [UW-1:0]   u1c_q, v1c_q;
+    always @(posedge clk) begin
+        u1c_q <= u1;
+        v1c_q <= v1;
+    end
+    wire [UW-1:0]   u2 = {u1c_q[UW-2:0], 1'b0}, v2 = {v1c_q[UW-2:0], 1'b0};
+    wire [6*UW-1:0] r_x = {v2, v1c_q, v1c_q, v1c_q, v1c_q, v2};   // r7, r6, r5, r3, r2, r1
+    wire [6*UW-1:0] r_y = {u1c_q, u1c_q, u2, ~u2, ~u1c_q, ~u1c_q};
     wire [5:0]      r_c = 6'b000111;
     wire [6*UW-1:0] r_all;
     genvar gr;
@@ -516,6 +550,14 @@ module arc_stepper #(
         end
     end
 
+    // |D| <= 6's first stage: D's bits above 3 all 0, all 1, in 4-bit groups (the low
+    // group compares constants), and D's low bits.
+    reg  [QG-1:0] hzg_u_q, hog_u_q, hzg_v_q, hog_v_q;
+    reg  [QG-1:0] szg_u_q, sog_u_q, szg_v_q, sog_v_q;     // the same for End's bits above 1 (|End| <= 2)
+    reg  [3:0]    lo1_u_q, lo1_v_q;
+    wire [QG-1:0] hzg_u = equal_groups({du_q[UW-1:4], 4'h0}, zero), hog_u = equal_groups({du_q[UW-1:4], 4'hf}, ~zero),
+                  hzg_v = equal_groups({dv_q[UW-1:4], 4'h0}, zero), hog_v = equal_groups({dv_q[UW-1:4], 4'hf}, ~zero);
+
     // Data registers without reset: they follow the inputs while not running (or in reset).
     always @(posedge clk) begin
         // Registers without an enable: fewer enable nets to route.  The step vectors and
@@ -545,20 +587,32 @@ module arc_stepper #(
         ud_q  <= ud_w;
         va_q  <= va_w;
         vd_q  <= vd_w;
-        hz_u_q <= du_q[UW-1:4] == {(UW-4){1'b0}};
-        ho_u_q <= du_q[UW-1:4] == {(UW-4){1'b1}};
-        hz_v_q <= dv_q[UW-1:4] == {(UW-4){1'b0}};
-        ho_v_q <= dv_q[UW-1:4] == {(UW-4){1'b1}};
-        lo_u_q <= du_q[3:0];
-        lo_v_q <= dv_q[3:0];
+        hzg_u_q <= hzg_u;
+        hog_u_q <= hog_u;
+        hzg_v_q <= hzg_v;
+        hog_v_q <= hog_v;
+        lo1_u_q <= du_q[3:0];
+        lo1_v_q <= dv_q[3:0];
+        hz_u_q <= &hzg_u_q;
+        ho_u_q <= &hog_u_q;
+        hz_v_q <= &hzg_v_q;
+        ho_v_q <= &hog_v_q;
+        lo_u_q <= lo1_u_q;
+        lo_v_q <= lo1_v_q;
         near_u_q <= near_u_w;
         near_v_q <= near_v_w;
         lt_all_q <= lt_all;
         loaded_q <= loading;
         du0_q <= add1_u(u_q, ~u1_q);
         dv0_q <= add1_u(v_q, ~v1_q);
+        dot_small_q <= dot_small_w;
+        szg_u_q <= equal_groups({u1_q[UW-1:2], 2'b00}, zero);
+        sog_u_q <= equal_groups({u1_q[UW-1:2], 2'b11}, ~zero);
+        szg_v_q <= equal_groups({v1_q[UW-1:2], 2'b00}, zero);
+        sog_v_q <= equal_groups({v1_q[UW-1:2], 2'b11}, ~zero);
         oct1_q <= oct1;
         oct2_q <= oct2;
+        lt0_q <= lt_all_q[18 * {xm_q, mjn_q, mnn_q} +: 18];   // the first octant's (loading)
         lt1_q <= lt_all_q[18 * oct1_q +: 18];
         lt2_q <= lt_all_q[18 * oct2_q +: 18];
         if (loading) begin                    // the command's tables; the first octant, p and q
@@ -573,22 +627,23 @@ module arc_stepper #(
             dneg_q  <= {r7[UW-1], r6[UW-1], r5[UW-1], u1_q[UW-1], r3[UW-1], r2[UW-1], r1[UW-1], v1_q[UW-1]};
             dzero_q <= {r7 == {UW{1'b0}}, r6 == {UW{1'b0}}, r5 == {UW{1'b0}}, u1_q == {UW{1'b0}},
                         r3 == {UW{1'b0}}, r2 == {UW{1'b0}}, r1 == {UW{1'b0}}, v1_q == {UW{1'b0}}};
-            small_q <= (small_eq(u1_q) & 7'b0111110) != 7'd0 && (small_eq(v1_q) & 7'b0111110) != 7'd0;
+            small_q <= small2(&szg_u_q, &sog_u_q, u1_q[1:0]) && small2(&szg_v_q, &sog_v_q, v1_q[1:0]);
             pos_q   <= pos_w;
             dot_q   <= dot_w;
-            s1_q    <= u_q + v_q;
-            s3_q    <= v_q - u_q;
+            s1_q    <= add_u(u_q, v_q);
+            s3_q    <= add1_u(v_q, ~u_q);
             uz_q    <= u_q == {UW{1'b0}};
             vz_q    <= v_q == {UW{1'b0}};
-            s1z_q   <= s1_q == {UW{1'b0}};
-            s3z_q   <= s3_q == {UW{1'b0}};
+            s1z_q   <= uv_x == {uv_o, 1'b0};
+            s3z_q   <= uv_x == {UW{1'b0}};
+            oct_p_q <= oct_p;
             {xm_q, mjn_q, mnn_q} <= oct_0;
             pa_q    <= (xm_q ? u_q : v_q) ^ {UW{mjn_q}};
             pb_q    <= (xm_q ? v_q : u_q) ^ {UW{mnn_q}};
             qpos_l_q <= !pb_q[UW-1];            // q = P.b > 0 (never 0)
             p_q     <= add_u(pa_q, {{(UW-1){1'b0}}, mjn_q});    // P.a
             q_q     <= add_u(pb_q, {{(UW-1){1'b0}}, mnn_q});    // P.b
-            lt_q    <= lt_all_q[18 * {xm_q, mjn_q, mnn_q} +: 18];
+            lt_q    <= lt0_q;
         end else if (step) begin
             done_q  <= last;
             e_q     <= e_w;

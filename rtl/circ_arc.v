@@ -20,8 +20,8 @@
 //           of the command ......................................... arc_stepper
 //
 // Timing: `start` in an idle cycle captures the command (cycle 0); the set-up checks
-// it in cycle 2*WIDTH + 17; from cycle 2*WIDTH + 18 one step per `tick`, its strobes
-// and dir levels registered together a cycle later (the first in cycle 2*WIDTH + 19),
+// it in cycle 2*WIDTH + 17; from cycle 2*WIDTH + 19 one step per `tick`, its strobes
+// and dir levels registered together a cycle later (the first in cycle 2*WIDTH + 20),
 // except that the four cycles after a step into a new octant reload the stepper (at
 // most 9 octants per arc) and take no step (`tick` is an enable).  `done` one cycle
 // after the last step's strobes.  Bad
@@ -140,8 +140,10 @@ module circ_arc #(
     wire          fin;
     wire [UW-1:0] pos_u, pos_v;             // current point (benches)
     wire [UW:0]   e;                        // E (benches)
-    // The stepper registers `run`: it gets the next cycle's state RUN (its `rst` clears it).
-    wire run_d = begin_run || (state_q == RUN && !fin);
+    // The stepper registers `run`: it follows RUN from the cycle after the check (its `rst`
+    // clears it), so the check's band flag and command flags stay off the path into its
+    // step enable.
+    wire run_d = state_q == RUN && !fin;
     arc_stepper #(.WIDTH(WIDTH), .CARRY_SELECT(CARRY_SELECT)) u_stepper (
         .clk(clk), .rst(rst), .run(run_d), .tick(tick), .u0(u0_q), .v0(v0_q), .u1(u1_q), .v1(v1_q),
         .ccw(ccw_q), .step_x(step_x), .step_y(step_y), .dir_x(dir_x), .dir_y(dir_y), .fin(fin),

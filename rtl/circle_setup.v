@@ -51,7 +51,8 @@ module circle_setup #(
     reg  [2:0]    state_q;
     reg           sub_q;                    // second cycle of a two-cycle sum
     reg           check_q;                  // state CHECK, as a flag of its own
-    reg  [SW-1:0] a_q, b_q;                 // R^2 (then min(a, b)), |End|^2
+    reg  [SW-1:0] a_q, b_q;                 // R^2, |End|^2
+    reg  [SW-1:0] s_q;                      // min(a, b) (a register of its own: a_q's input is a sum)
     reg  [SW-1:0] d_q, nd_q, t_q;           // b - a, a - b, min(a, b) + (m - 1) div 2 - m^2
     reg           ca_q, cb_q, cd_q, cnd_q, ct_q;   // chunk carries of the two-cycle sums
     reg  [SW-1:0] tcs_s_q, tcs_c_q;         // ADD3's carry-save step (sum, carries)
@@ -138,8 +139,8 @@ module circle_setup #(
     assign d_sum = sum2(b_q, ~a_q, 1'b1, cd_q);                               // ADD2
     assign nd_sum = sum2(a_q, ~b_q, 1'b1, cnd_q);
     wire [SW-1:0] h_w = {{(SW-MW){1'b0}}, h_q};                               // ADD3: s + h - m^2
-    wire [SW-1:0] tcs_s = a_q ^ h_w ^ ~msq;
-    wire [SW-1:0] tcs_c = {(a_q[SW-2:0] & h_w[SW-2:0]) | (a_q[SW-2:0] & ~msq[SW-2:0]) |
+    wire [SW-1:0] tcs_s = s_q ^ h_w ^ ~msq;
+    wire [SW-1:0] tcs_c = {(s_q[SW-2:0] & h_w[SW-2:0]) | (s_q[SW-2:0] & ~msq[SW-2:0]) |
                            (h_w[SW-2:0] & ~msq[SW-2:0]), 1'b1};               // + 1: -m^2 = ~m^2 + 1
     wire [SW:0] t_sum = sum2(tcs_s_q, tcs_c_q, 1'b0, ct_q);
 
@@ -159,6 +160,7 @@ module circle_setup #(
             sub_q    <= 1'b0;
             a_q      <= {SW{1'b0}};
             b_q      <= {SW{1'b0}};
+            s_q      <= {SW{1'b0}};
             d_q      <= {SW{1'b0}};
             nd_q     <= {SW{1'b0}};
             t_q      <= {SW{1'b0}};
@@ -197,7 +199,7 @@ module circle_setup #(
                 end
                 MUL2: begin                     // round 2 starts in the first cycle
                     if (sub_q) begin
-                        a_q <= d_q[SW-1] ? b_q : a_q;           // s = min(a, b)
+                        s_q <= d_q[SW-1] ? b_q : a_q;           // s = min(a, b)
                         m_q <= m_abs;
                     end
                     h_q      <= (m_q - 1'b1) >> 1;

@@ -3,11 +3,16 @@
 // products that must not cost a combinational multiplier.
 // The multiplicand, sign-extended, shifts left one place per cycle and is added
 // to the accumulator when the multiplier's next bit (LSB first) is 1; the last
-// (sign) bit subtracts it (two's complement: inverted operand plus a carry-in).
-// The 2*WIDTH-bit accumulator is three chunks of CW bits, each with its own short
-// carry chain; a chunk's carry out is registered and enters the next chunk one
-// cycle later (carry-save at the chunk borders), so no carry chain is longer
-// than CW = ceil(2*WIDTH / 3) bits.  Two flush cycles settle those carries.
+// (sign) bit subtracts it: -(A * 2^(WIDTH-1)) = ~A * 2^(WIDTH-1) + 2^(WIDTH-1), the
+// inverted operand with zeros below bit WIDTH-1 and a + 1 at bit WIDTH-1.
+// The 2*WIDTH-bit accumulator is four chunks, each with its own short carry chain;
+// a chunk's carry out is registered and enters the next chunk one cycle later
+// (carry-save at the chunk borders), so no carry chain is longer than
+// ceil((WIDTH+1) / 2) bits.  A border lies at bit WIDTH-1: the + 1 is the carry
+// into chunk 2 preset at the start, and no partial product reaches below it after
+// the chunks there have settled, so two flush cycles (one would do) settle the last
+// carries.  Every accumulator bit is a plain sum bit (no preset), so each chain
+// stays in one piece on iCE40 (a carry that also feeds fabric logic splits it).
 // The partial product is registered a cycle ahead, so the chains start at
 // registers; while idle the operand registers follow a and b (no clock enable).
 //
@@ -17,7 +22,7 @@
 // holds until the next start (it shows partial sums while busy).  `start` while
 // busy is ignored; `rst` clears everything.
 module seq_mult #(
-    parameter integer WIDTH = 33    // operand width, signed (>= 2)
+    parameter integer WIDTH = 33    // operand width, signed (>= 3)
 ) (
     input  wire               clk,
     input  wire               rst,
@@ -29,20 +34,17 @@ module seq_mult #(
     output wire [2*WIDTH-1:0] product   // signed a * b, held until the next start
 );
     initial begin
-        if (WIDTH < 2) $error("%m: WIDTH must be at least 2");
+        if (WIDTH < 3) $error("%m: WIDTH must be at least 3");
     end
 
     localparam integer PW = 2 * WIDTH;          // product width
-    localparam integer CW = (PW + 2) / 3;       // chunk width
-    localparam integer AW = 3 * CW;             // accumulator (PW rounded up to three chunks)
     localparam integer NW = $clog2(WIDTH + 2);  // cycle counter 0 .. WIDTH+1
 
-    reg  [AW-1:0]    acc_q;        // partial sum (plus the pending chunk carries)
-    reg  [AW-1:0]    mcand_q;      // multiplicand, sign-extended, shifted left i places
+    reg  [PW-1:0]    acc_q;        // partial sum (plus the pending chunk carries)
+    reg  [PW-1:0]    mcand_q;      // multiplicand, sign-extended, shifted left i places
     reg  [WIDTH-1:0] mplier_q;     // multiplier, shifted right: bit i in bit 0 (zeros follow)
-    reg  [1:0]       carry_q;      // pending carries into chunks 1 and 2
-    reg  [AW-1:0]    addend_q;     // this cycle's partial product: 0, mcand_q or ~mcand_q
-    reg              cin0_q;       // + 1 with ~mcand_q (b's sign bit subtracts)
+    reg  [2:0]       carry_q;      // pending carries into chunks 1, 2 and 3
+    reg  [PW-1:0]    addend_q;     // this cycle's partial product: 0, mcand_q or ~mcand_q's top
     reg              sign_next_q;  // mplier_q[1] is b's sign bit (busy cycle WIDTH - 2)
     reg  [NW-1:0]    count_q;      // busy cycle index
     reg              last_q;       // the last busy cycle (count_q = WIDTH + 1)
@@ -52,27 +54,39 @@ module seq_mult #(
     assign product = acc_q[PW-1:0];
 
     // The partial product is registered a cycle ahead (the chunk chains start at
-    // registers): 0, the multiplicand, or (b's sign bit) its inverse + 1.
-    function automatic [AW:0] partial(input bit_i, sign_i, input [AW-1:0] m);   // {+1, addend}
-        partial = !bit_i ? {(AW+1){1'b0}} : sign_i ? {1'b1, ~m} : {1'b0, m};
+    // registers): 0, the multiplicand, or (b's sign bit) its inverse from bit WIDTH-1 up.
+    localparam [PW-1:0] SIGN_MASK = {{(PW-WIDTH+1){1'b1}}, {(WIDTH-1){1'b0}}};
+    function automatic [PW-1:0] partial(input bit_i, sign_i, input [PW-1:0] m);
+        partial = !bit_i ? {PW{1'b0}} : sign_i ? ~m & SIGN_MASK : m;
     endfunction
-    wire [AW-1:0] a_ext = {{(AW-WIDTH){a[WIDTH-1]}}, a};
-    wire [AW:0]   first = partial(b[0], 1'b0, a_ext);                               // for cycle 1
-    wire [AW:0]   next = partial(mplier_q[1], sign_next_q, {mcand_q[AW-2:0], 1'b0});
-    wire [CW:0]   sum0 = {1'b0, acc_q[CW-1:0]}        + {1'b0, addend_q[CW-1:0]}        + {{CW{1'b0}}, cin0_q};
-    wire [CW:0]   sum1 = {1'b0, acc_q[2*CW-1:CW]}     + {1'b0, addend_q[2*CW-1:CW]}     + {{CW{1'b0}}, carry_q[0]};
-    wire [CW:0]   sum2 = {1'b0, acc_q[3*CW-1:2*CW]}   + {1'b0, addend_q[3*CW-1:2*CW]}   + {{CW{1'b0}}, carry_q[1]};
+    wire [PW-1:0] a_ext = {{(PW-WIDTH){a[WIDTH-1]}}, a};
+    wire [PW-1:0] first = partial(b[0], 1'b0, a_ext);                               // for cycle 1
+    wire [PW-1:0] next = partial(mplier_q[1], sign_next_q, {mcand_q[PW-2:0], 1'b0});
+    // Chunk borders: the low WIDTH-1 bits in two chunks, the rest in two.
+    function integer border(input integer k);
+        border = k == 0 ? 0 : k == 1 ? (WIDTH - 1) / 2 : k == 2 ? WIDTH - 1 : k == 3 ? WIDTH - 1 + (WIDTH + 2) / 2 : PW;
+    endfunction
+    wire [PW-1:0] acc_next;         // the chunks' sums
+    wire [3:0]    carry_out;        // and their carries out
+    wire [3:0]    carry_in = {carry_q, 1'b0};
+    genvar j;
+    generate
+        for (j = 0; j < 4; j = j + 1) begin : g_chunk
+            localparam integer LO = border(j), N = border(j + 1) - border(j);
+            assign {carry_out[j], acc_next[LO +: N]} = {1'b0, acc_q[LO +: N]} + {1'b0, addend_q[LO +: N]} +
+                                                       {{N{1'b0}}, carry_in[j]};
+        end
+    endgenerate
     localparam [31:0] BEFORE_LAST32 = WIDTH;       // busy cycle index before the last one
     localparam [NW-1:0] BEFORE_LAST = BEFORE_LAST32[NW-1:0];
 
     always @(posedge clk) begin
         if (rst) begin
-            acc_q      <= {AW{1'b0}};
-            mcand_q    <= {AW{1'b0}};
+            acc_q      <= {PW{1'b0}};
+            mcand_q    <= {PW{1'b0}};
             mplier_q   <= {WIDTH{1'b0}};
-            carry_q    <= 2'b00;
-            addend_q   <= {AW{1'b0}};
-            cin0_q     <= 1'b0;
+            carry_q    <= 3'b000;
+            addend_q   <= {PW{1'b0}};
             count_q    <= {NW{1'b0}};
             sign_next_q <= 1'b0;
             last_q     <= 1'b0;
@@ -85,20 +99,20 @@ module seq_mult #(
                 // the enable nets of the parent's loops keep the global buffers).
                 mcand_q  <= a_ext;
                 mplier_q <= b;
-                {cin0_q, addend_q} <= first;
+                addend_q <= first;
                 if (start) begin
-                    acc_q      <= {AW{1'b0}};
-                    carry_q    <= 2'b00;
+                    acc_q      <= {PW{1'b0}};
+                    carry_q    <= {1'b0, b[WIDTH-1], 1'b0};   // the + 1 of -A * 2^(WIDTH-1)
                     count_q    <= {NW{1'b0}};
-                    sign_next_q <= WIDTH == 2;
+                    sign_next_q <= 1'b0;
                     busy_q     <= 1'b1;
                 end
             end else begin
-                acc_q      <= {sum2[CW-1:0], sum1[CW-1:0], sum0[CW-1:0]};
-                carry_q    <= {sum1[CW], sum0[CW]};
-                mcand_q    <= {mcand_q[AW-2:0], 1'b0};
+                acc_q      <= acc_next;
+                carry_q    <= carry_out[2:0];
+                mcand_q    <= {mcand_q[PW-2:0], 1'b0};
                 mplier_q   <= {1'b0, mplier_q[WIDTH-1:1]};
-                {cin0_q, addend_q} <= next;
+                addend_q   <= next;
                 sign_next_q <= {{(32-NW){1'b0}}, count_q} + 32'd3 == WIDTH;
                 count_q    <= count_q + 1'b1;
                 last_q     <= count_q == BEFORE_LAST;
@@ -110,8 +124,8 @@ module seq_mult #(
         end
     end
 
-    // Chunk 2's carry out falls off the top; bits above PW are padding; the operand
-    // registers are read a cycle ahead (the partial product is registered).
-    wire unused = &{1'b0, sum2[CW], acc_q[AW-1:PW-1], mcand_q[AW-1], mplier_q[0]};
+    // Chunk 3's carry out falls off the top; the operand registers are read a cycle
+    // ahead (the partial product is registered).
+    wire unused = &{1'b0, carry_out[3], mcand_q[PW-1], mplier_q[0]};
 endmodule
 `default_nettype wire

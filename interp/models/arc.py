@@ -75,8 +75,8 @@ def arc_steps(cx, cy, x0, y0, x1, y1, ccw: bool, full: bool = False) -> list[Ste
 def arc_setup_cycles(width: int = 32) -> int:
     """Cycles from `start` to the check of rtl/circ_arc.v: load, two multiplier
     rounds (seq_mult at WIDTH + 1 bits: WIDTH + 4 cycles each) and three
-    two-cycle sums; the check is in cycle 2 * WIDTH + 17, the first step is taken in the
-    next and its strobes come a cycle later."""
+    two-cycle sums; the check is in cycle 2 * WIDTH + 17, the first step is taken two
+    cycles later (the stepper registers `run`) and its strobes come a cycle after it."""
     return 2 * width + 17
 
 
@@ -185,9 +185,10 @@ class CircArc(CycleModel):
         fin = self.stepper.fin
         stepper_inputs = {"rst": inputs.get("rst"), "tick": inputs.get("tick"), "u0": self.u0,
                           "v0": self.v0, "u1": self.u1, "v1": self.v1, "ccw": self.ccw}
+        # The stepper registers `run`: RUN of this cycle, until the last step is out.
+        run = int(self.state == self.RUN and not fin)
         self.update(inputs, fin)
-        # The stepper registers `run`: it gets the state RUN of the next cycle.
-        self.stepper.clock({**stepper_inputs, "run": int(self.state == self.RUN)})
+        self.stepper.clock({**stepper_inputs, "run": run})
 
     def update(self, inputs, fin) -> None:
         if inputs.get("rst"):

@@ -125,51 +125,57 @@ def increment_former(axial: int, diagonal: int, x_is_long: int) -> dict:
 
 
 class SeqMult(CycleModel):
-    """rtl/seq_mult.v: sequential signed a * b, radix 2, three carry-saved chunks.
+    """rtl/seq_mult.v: sequential signed a * b, radix 2, four carry-saved chunks.
 
     Cycle 0: start captures a, b.  Busy cycles k = 0 .. WIDTH+1: for k < WIDTH the
-    partial product b_k * A * 2^k (k = WIDTH-1: subtracted, as ~(A * 2^k) + 1) is
-    added chunk by chunk, each chunk's carry entering the next chunk one cycle
-    later; the last two cycles only settle those carries.  `done` follows.
+    partial product b_k * A * 2^k (k = WIDTH-1: subtracted, as ~A * 2^k plus a carry
+    into the chunk from bit k, preset at the start) is added chunk by chunk, each
+    chunk's carry entering the next chunk one cycle later; the last two cycles only
+    settle those carries.  `done` follows.
     """
 
     watch = {"busy": False, "done": False, "product": False}
 
     def __init__(self, width: int):
         self.width = width
-        self.cw = (2 * width + 2) // 3
+        w = width
+        self.borders = [0, (w - 1) // 2, w - 1, w - 1 + (w + 2) // 2, 2 * w]
         self.reset()
 
     def reset(self) -> None:
         self.acc = self.mcand = self.mplier = self.count = 0
-        self.carry = [0, 0]
+        self.carry = [0, 0, 0]
         self.sign_bit = self.busy = self.done = 0
 
     @property
     def product(self) -> int:
-        return self.acc & ((1 << 2 * self.width) - 1)
+        return self.acc
 
     def clock(self, inputs) -> None:
         if inputs.get("rst"):
             self.reset()
             return
-        w, cw = self.width, self.cw
-        aw, cmask = 3 * cw, (1 << cw) - 1
+        w, pmask = self.width, (1 << 2 * self.width) - 1
         self.done = 0
         if not self.busy:
             if inputs.get("start"):
                 a = inputs["a"] & ((1 << w) - 1)
                 a -= (a >> (w - 1)) << w                          # signed
-                self.acc, self.mcand, self.mplier = 0, a & ((1 << aw) - 1), inputs["b"] & ((1 << w) - 1)
-                self.carry, self.sign_bit, self.count, self.busy = [0, 0], 0, 0, 1
+                self.acc, self.mcand, self.mplier = 0, a & pmask, inputs["b"] & ((1 << w) - 1)
+                self.carry = [0, self.mplier >> (w - 1), 0]      # the + 1 of -A * 2^(w-1)
+                self.sign_bit, self.count, self.busy = 0, 0, 1
             return
-        add_it = self.mplier & 1
-        addend = (~self.mcand if self.sign_bit else self.mcand) & ((1 << aw) - 1) if add_it else 0
-        cins = [add_it & self.sign_bit, *self.carry]
-        sums = [((self.acc >> (cw * j)) & cmask) + ((addend >> (cw * j)) & cmask) + cins[j] for j in range(3)]
-        self.acc = sum((s & cmask) << (cw * j) for j, s in enumerate(sums))
-        self.carry = [sums[0] >> cw, sums[1] >> cw]
-        self.mcand = (self.mcand << 1) & ((1 << aw) - 1)
+        addend = 0
+        if self.mplier & 1:
+            addend = (~self.mcand & -(1 << (w - 1)) & pmask) if self.sign_bit else self.mcand
+        cins = [0, *self.carry]
+        sums = []
+        for j, (lo, hi) in enumerate(zip(self.borders, self.borders[1:])):
+            mask = (1 << (hi - lo)) - 1
+            sums.append((((self.acc >> lo) & mask) + ((addend >> lo) & mask) + cins[j], lo, hi - lo))
+        self.acc = sum((s & ((1 << n) - 1)) << lo for s, lo, n in sums)
+        self.carry = [s >> n for s, _, n in sums[:3]]
+        self.mcand = (self.mcand << 1) & pmask
         self.mplier >>= 1
         self.sign_bit = int(self.count == w - 2)
         self.count += 1
