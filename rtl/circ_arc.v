@@ -113,7 +113,7 @@ module circ_arc #(
     reg [3:0]      fit_q;                                // stage 2
     reg            zero_u0_q, zero_v0_q;
     reg            fits_q, at_centre_q, at_start_q;      // stage 3 (at_start_q: 2)
-    reg            cmd_ok_q, steps_q;                    // stage 4: fits and off the centre; and steps too
+    reg            cmd_ok_q;                             // stage 4: fits and off the centre
     // (continuous assignments: simulators evaluate the functions only when the command changes)
     wire [NG+1:0]   rf_u0 = range_flags(u0_q), rf_v0 = range_flags(v0_q);
     wire [NG+1:0]   rf_u1 = range_flags(u1_q), rf_v1 = range_flags(v1_q);
@@ -131,10 +131,8 @@ module circ_arc #(
         fits_q      <= &fit_q;
         at_centre_q <= zero_u0_q && zero_v0_q;
         cmd_ok_q    <= fits_q && !at_centre_q;
-        steps_q     <= fits_q && !at_centre_q && !(at_start_q && !full_q);
     end
     wire bad = !cmd_ok_q || !on_band;
-    wire begin_run = check && on_band && steps_q;
 
     // The stepper follows the command's registers through the set-up and steps in RUN.
     wire          fin;
@@ -172,7 +170,7 @@ module circ_arc #(
                     full_q  <= full;
                     state_q <= SETUP;
                 end
-                SETUP: if (check) state_q <= bad ? IDLE : begin_run ? RUN : LAST;
+                SETUP: if (check) state_q <= bad ? IDLE : at_start_q && !full_q ? LAST : RUN;
                 RUN:   if (fin) state_q <= IDLE;
                 default: state_q <= IDLE;       // LAST: done
             endcase

@@ -51,7 +51,7 @@ module seq_mult #(
     reg              busy_q;
 
     assign busy = busy_q;
-    assign product = acc_q[PW-1:0];
+    assign product = acc_q;
 
     // The partial product is registered a cycle ahead (the chunk chains start at
     // registers): 0, the multiplicand, or (b's sign bit) its inverse from bit WIDTH-1 up.
