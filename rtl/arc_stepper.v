@@ -73,6 +73,7 @@ module arc_stepper #(
 
     // The decision loop: T, p + 1 and p + q + 2 (complemented while q < 0), q's sign.
     reg               reload_q, reload2_q, reload3_q;   // the first reload cycles after a step into a new octant
+    reg               reloading_q;                 // one of them
     reg               run_q, ok_q, ld_q;            // run; running and no reload cycle; loading or the fourth
     reg  [NW-1:0]     t_q;                         // T (-T - 1 when q < 0: the decision is its sign)
     reg  [UW-1:0]     p1x_q, g2x_q;                // p + 1, p + q + 2 (complemented when q < 0)
@@ -90,7 +91,7 @@ module arc_stepper #(
     reg  [UW-1:0]     u1_q, v1_q;                  // End (read while loading)
     reg  [UW-1:0]     s1_q, s3_q;                  // u + v, v - u (first octant only)
     reg               uz_q, vz_q, s1z_q, s3z_q;    // == 0
-    reg  [UW-1:0]     ua_q, ud_q, va_q, vd_q;      // the axial and the diagonal step (-1, 0, +1)
+    reg  [4:0]        ua_q, ud_q, va_q, vd_q;      // the axial and the diagonal step's low bits (-1, 0, +1)
     reg  [UW-1:0]     pa_q, pb_q;                  // P.a, P.b less the + 1 of a negation (loading)
     reg  [UW-1:0]     p_q, q_q;                    // P.a, P.b (loading)
     reg  [NW-1:0]     e_q;                         // E (for the benches)
@@ -134,9 +135,9 @@ module arc_stepper #(
     reg  [4:0] oct_p_q;
     wire [4:0] oct_p = octant(u_q[UW-1], uz_q, v_q[UW-1], vz_q, s1_q[UW-1], s1z_q, s3_q[UW-1], s3z_q, ccw);
     wire [2:0] oct_0 = {oct_p_q[4], oct_p_q[4] ? oct_p_q[3:2] : oct_p_q[1:0]};
-    // u + v = 0 without the sum (a carry-free test: u ^ v = (u | v) << 1), and v - u = 0.
-    wire [UW-1:0] uv_x = u_q ^ v_q;
-    wire [UW-2:0] uv_o = u_q[UW-2:0] | v_q[UW-2:0];
+    // u + v = 0 without the sum (a carry-free test: u ^ v = (u | v) << 1), v - u = 0, u = 0
+    // and v = 0, as 4-bit group flags registered with u_q, v_q (from the inputs), ANDed a
+    // cycle later.
 
     // ---------------------------------------------------------------- end tables
     // The eight directions d of the grid (upper half plane) and cross(d, End) = du v1 - dv u1:
@@ -289,8 +290,20 @@ module arc_stepper #(
     wire [UW-1:0] one = {{(UW-1){1'b0}}, 1'b1}, two = {{(UW-2){1'b0}}, 2'b10}, zero = {UW{1'b0}};
     // With q < 0 the register holds ~T, and ~(T + {x, 1}) = ~T + {~x, 1}; p + 1 and
     // p + q + 2 count down then.
-    wire [NW-1:0] t_a = add_n(t_q, {p1x_q, 1'b1}), t_d = add_n(t_q, {g2x_q, 1'b1});
-    wire [UW-1:0] p1x_1 = add_u(p1x_q, inc1p_q), g2x_1 = add_u(g2x_q, inc1_q), g2x_2 = add_u(g2x_q, inc2_q);
+    // The next values: the step's (the decision selects) or the reload value's (its
+    // carry-save form).  With fast carry chains (ECP5) one adder per register, its operands
+    // selected in front, so the sums go straight into the register (the loop is the
+    // decision bit, one LUT and the chain); with slow ones (iCE40) every candidate has its
+    // own carry-select adder and the selects come after the chains.
+    wire [NW-1:0] t_next   = CARRY_SELECT == 0
+        ? add_n(ld_q ? t_s_q : t_q, ld_q ? t_c_q : {td ? g2x_q : p1x_q, 1'b1})
+        : ld_q ? add_n(t_s_q, t_c_q) : td ? add_n(t_q, {g2x_q, 1'b1}) : add_n(t_q, {p1x_q, 1'b1});
+    wire [UW-1:0] p1x_next = CARRY_SELECT == 0
+        ? add_u(ld_q ? p1_s_q : p1x_q, ld_q ? p1_c_q : inc1p_q)
+        : ld_q ? add_u(p1_s_q, p1_c_q) : add_u(p1x_q, inc1p_q);
+    wire [UW-1:0] g2x_next = CARRY_SELECT == 0
+        ? add_u(ld_q ? g2_s_q : g2x_q, ld_q ? g2_c_q : td ? inc2_q : inc1_q)
+        : ld_q ? add_u(g2_s_q, g2_c_q) : td ? add_u(g2x_q, inc2_q) : add_u(g2x_q, inc1_q);
     // The octant ends: p' >= 0 (q > 0) or p' + q' >= 0 (q < 0), i.e. p + 1 >= 0, or
     // p + q + 2 >= 0 after a diagonal step and p + q + 1 >= 0 after an axial one.
     // p + q + 1 < 0 <=> p + q + 2 <= 0: its sign and a registered zero flag.
@@ -402,14 +415,16 @@ module arc_stepper #(
             reload_q  <= 1'b0;
             reload2_q <= 1'b0;
             reload3_q <= 1'b0;
+            reloading_q <= 1'b0;
             ok_q      <= 1'b0;
         end else begin
             reload_q  <= go && bound;
             reload2_q <= reload_q;
             reload3_q <= reload2_q;
+            reloading_q <= (go && bound) || reload_q || reload2_q;
             run_q     <= run;
             ld_q      <= !run || reload3_q;
-            ok_q      <= run && !reload_q && !reload2_q && !reload3_q;
+            ok_q      <= run && !reloading_q;
         end
     end
     always @(posedge clk) begin
@@ -442,17 +457,15 @@ module arc_stepper #(
         p1_c_q  <= p1_cs[NW+UW-1:NW];
         g2_s_q  <= g2_cs[UW-1:0];
         g2_c_q  <= g2_cs[NW+UW-1:NW];
-        if (ld_q) begin                           // (ld_q is set by rst)
-            t_q    <= add_n(t_s_q, t_c_q);
-            p1x_q  <= add_u(p1_s_q, p1_c_q);
-            g2x_q  <= add_u(g2_s_q, g2_c_q);
+        if (ld_q || go) begin                     // (ld_q is set by rst)
+            t_q    <= t_next;
+            p1x_q  <= p1x_next;
+            g2x_q  <= g2x_next;
+        end
+        if (ld_q) begin
             qpos_q <= !nqn;
             inc1_q <= nqn ? ~zero : one;
             inc2_q <= nqn ? ~one : two;
-        end else if (go) begin
-            t_q    <= td ? t_d : t_a;
-            p1x_q  <= p1x_1;
-            g2x_q  <= td ? g2x_2 : g2x_1;
         end
         // The same as inc1_q (ld_q is set whenever run_q is not), under an enable that Yosys
         // does not see as the same, so the copies stay apart and each sits by its adder.
@@ -473,9 +486,11 @@ module arc_stepper #(
     wire act_y = step && (last ? !zv_q : my);
     wire neg_x = last ? pu_q : nx;
     wire neg_y = last ? pv_q : ny;
-    // Both candidate values of D are summed from registers (the octant's step vectors,
-    // registered from the octant) and the decision selects late, after the carry chains.
-    wire [UW-1:0] du_a = add_u(du_q, ua_q), du_d = add_u(du_q, ud_q), dv_a = add_u(dv_q, va_q), dv_d = add_u(dv_q, vd_q);
+    // D moves by the step's vector, registered a cycle ahead from the loop's decision and
+    // the octant's step vectors, so registers feed the chain and the decision is off D's path.
+    reg  [UW-1:0] su_q, sv_q;
+    wire [UW-1:0] du_next = loading ? du0_q : add_u(du_q, su_q);
+    wire [UW-1:0] dv_next = loading ? dv0_q : add_u(dv_q, sv_q);
     function automatic [UW-1:0] unit(input move, neg);      // -1, 0, +1
         unit = {{(UW-1){move && neg}}, move};
     endfunction
@@ -491,7 +506,8 @@ module arc_stepper #(
     // Inputs of the registers that take a new value every cycle, as continuous
     // assignments (simulators evaluate the functions only when their inputs change).
     wire          last_a_w = hit(wau_q, wav_q, lt_q[8:0]), last_d_w = hit(wau_q, wav_q, lt_q[17:9]);
-    wire [4:0]    dau_w = dau_q + (td ? ud_q[4:0] : ua_q[4:0]), dav_w = dav_q + (td ? vd_q[4:0] : va_q[4:0]);
+    wire [4:0]    dau_a = dau_q + ua_q, dau_d = dau_q + ud_q, dav_a = dav_q + va_q, dav_d = dav_q + vd_q;
+    wire [4:0]    dau_w = td ? dau_d : dau_a, dav_w = td ? dav_d : dav_a;   // (the decision after the sums)
     wire [UW-1:0] ua_w = unit(xm_q, nxa), ud_w = unit(1'b1, nxd), va_w = unit(!xm_q, nya), vd_w = unit(1'b1, nyd);
     wire          near_u_w = near6(hz_u_q, ho_u_q, lo_u_q), near_v_w = near6(hz_v_q, ho_v_q, lo_v_q);
     // E = T - (p + 1) - (p + q + 2) + 2, from the decision loop, which is a step ahead.
@@ -554,6 +570,7 @@ module arc_stepper #(
     // group compares constants), and D's low bits.
     reg  [QG-1:0] hzg_u_q, hog_u_q, hzg_v_q, hog_v_q;
     reg  [QG-1:0] szg_u_q, sog_u_q, szg_v_q, sog_v_q;     // the same for End's bits above 1 (|End| <= 2)
+    reg  [QG-1:0] s1z_g_q, s3z_g_q, uz_g_q, vz_g_q;       // u + v = 0, v - u = 0, u = 0, v = 0 (groups of the inputs)
     reg  [3:0]    lo1_u_q, lo1_v_q;
     wire [QG-1:0] hzg_u = equal_groups({du_q[UW-1:4], 4'h0}, zero), hog_u = equal_groups({du_q[UW-1:4], 4'hf}, ~zero),
                   hzg_v = equal_groups({dv_q[UW-1:4], 4'h0}, zero), hog_v = equal_groups({dv_q[UW-1:4], 4'hf}, ~zero);
@@ -583,10 +600,12 @@ module arc_stepper #(
             wau_q <= window(mx_f, nx_f, eau);
             wav_q <= window(my_f, ny_f, eav);
         end
-        ua_q  <= ua_w;
-        ud_q  <= ud_w;
-        va_q  <= va_w;
-        vd_q  <= vd_w;
+        su_q  <= td ? ud_w : ua_w;
+        sv_q  <= td ? vd_w : va_w;
+        ua_q  <= ua_w[4:0];
+        ud_q  <= ud_w[4:0];
+        va_q  <= va_w[4:0];
+        vd_q  <= vd_w[4:0];
         hzg_u_q <= hzg_u;
         hog_u_q <= hog_u;
         hzg_v_q <= hzg_v;
@@ -615,6 +634,14 @@ module arc_stepper #(
         lt0_q <= lt_all_q[18 * {xm_q, mjn_q, mnn_q} +: 18];   // the first octant's (loading)
         lt1_q <= lt_all_q[18 * oct1_q +: 18];
         lt2_q <= lt_all_q[18 * oct2_q +: 18];
+        if (loading || step) begin            // (after the last step u, v show End)
+            du_q    <= du_next;
+            dv_q    <= dv_next;
+        end
+        s1z_g_q <= equal_groups(u0 ^ v0, {u0[UW-2:0] | v0[UW-2:0], 1'b0});
+        s3z_g_q <= equal_groups(u0, v0);
+        uz_g_q  <= equal_groups(u0, zero);
+        vz_g_q  <= equal_groups(v0, zero);
         if (loading) begin                    // the command's tables; the first octant, p and q
             done_q  <= 1'b0;
             u1_q    <= u1;
@@ -622,8 +649,6 @@ module arc_stepper #(
             u_q     <= u0;
             v_q     <= v0;
             e_q     <= {NW{1'b0}};
-            du_q    <= du0_q;
-            dv_q    <= dv0_q;
             dneg_q  <= {r7[UW-1], r6[UW-1], r5[UW-1], u1_q[UW-1], r3[UW-1], r2[UW-1], r1[UW-1], v1_q[UW-1]};
             dzero_q <= {r7 == {UW{1'b0}}, r6 == {UW{1'b0}}, r5 == {UW{1'b0}}, u1_q == {UW{1'b0}},
                         r3 == {UW{1'b0}}, r2 == {UW{1'b0}}, r1 == {UW{1'b0}}, v1_q == {UW{1'b0}}};
@@ -632,10 +657,10 @@ module arc_stepper #(
             dot_q   <= dot_w;
             s1_q    <= add_u(u_q, v_q);
             s3_q    <= add1_u(v_q, ~u_q);
-            uz_q    <= u_q == {UW{1'b0}};
-            vz_q    <= v_q == {UW{1'b0}};
-            s1z_q   <= uv_x == {uv_o, 1'b0};
-            s3z_q   <= uv_x == {UW{1'b0}};
+            uz_q    <= &uz_g_q;
+            vz_q    <= &vz_g_q;
+            s1z_q   <= &s1z_g_q;
+            s3z_q   <= &s3z_g_q;
             oct_p_q <= oct_p;
             {xm_q, mjn_q, mnn_q} <= oct_0;
             pa_q    <= (xm_q ? u_q : v_q) ^ {UW{mjn_q}};
@@ -647,8 +672,6 @@ module arc_stepper #(
         end else if (step) begin
             done_q  <= last;
             e_q     <= e_w;
-            du_q    <= td_l_q ? du_d : du_a;      // (after the last step u, v show End)
-            dv_q    <= td_l_q ? dv_d : dv_a;
         end
         // The new octant, in the second reload cycle (the kind, SWAP_TURN or not, is
         // found in the first); the step stage's next step comes after the reload.

@@ -10,16 +10,18 @@
 // (carry-save at the chunk borders), so no carry chain is longer than
 // ceil((WIDTH+1) / 2) bits.  A border lies at bit WIDTH-1: the + 1 is the carry
 // into chunk 2 preset at the start, and no partial product reaches below it after
-// the chunks there have settled, so two flush cycles (one would do) settle the last
-// carries.  Every accumulator bit is a plain sum bit (no preset), so each chain
-// stays in one piece on iCE40 (a carry that also feeds fabric logic splits it).
-// The partial product is registered a cycle ahead, so the chains start at
-// registers; while idle the operand registers follow a and b (no clock enable).
+// the chunks there have settled, so one flush cycle settles the last carries.  Every
+// accumulator bit is a plain sum bit (no preset), so each chain stays in one piece on
+// iCE40 (a carry that also feeds fabric logic splits it).
+// The partial product is registered, from the operand registers only, so the chains
+// start at registers and no path runs from a, b to the accumulator: the first busy
+// cycle clears the accumulator while the first partial product is registered.  While
+// idle the operand registers follow a and b (no clock enable).
 //
 // Timing: `start` in a cycle with busy low captures a, b (cycle 0); busy is high
-// in cycles 1 .. WIDTH+2 (WIDTH partial products, two carry flushes); `done` is
-// a one-cycle strobe in cycle WIDTH+3, when `product` becomes valid; product
-// holds until the next start (it shows partial sums while busy).  `start` while
+// in cycles 1 .. WIDTH+2 (a clearing cycle, WIDTH partial products, a carry flush);
+// `done` is a one-cycle strobe in cycle WIDTH+3, when `product` becomes valid; product
+// holds until the first busy cycle of the next product (it shows partial sums while busy).  `start` while
 // busy is ignored; `rst` clears everything.
 module seq_mult #(
     parameter integer WIDTH = 33    // operand width, signed (>= 3)
@@ -44,8 +46,9 @@ module seq_mult #(
     reg  [PW-1:0]    mcand_q;      // multiplicand, sign-extended, shifted left i places
     reg  [WIDTH-1:0] mplier_q;     // multiplier, shifted right: bit i in bit 0 (zeros follow)
     reg  [2:0]       carry_q;      // pending carries into chunks 1, 2 and 3
-    reg  [PW-1:0]    addend_q;     // this cycle's partial product: 0, mcand_q or ~mcand_q's top
-    reg              sign_next_q;  // mplier_q[1] is b's sign bit (busy cycle WIDTH - 2)
+    reg  [PW-1:0]    addend_q;     // this cycle's partial product: 0, mcand or ~mcand's top (a cycle old)
+    reg              sign_q;       // mplier_q[0] is b's sign bit (busy cycle WIDTH)
+    reg              first_q;      // the first busy cycle
     reg  [NW-1:0]    count_q;      // busy cycle index
     reg              last_q;       // the last busy cycle (count_q = WIDTH + 1)
     reg              busy_q;
@@ -53,15 +56,11 @@ module seq_mult #(
     assign busy = busy_q;
     assign product = acc_q;
 
-    // The partial product is registered a cycle ahead (the chunk chains start at
-    // registers): 0, the multiplicand, or (b's sign bit) its inverse from bit WIDTH-1 up.
+    // The partial product, registered (the chunk chains start at registers): 0, the
+    // multiplicand, or (b's sign bit) its inverse from bit WIDTH-1 up.
     localparam [PW-1:0] SIGN_MASK = {{(PW-WIDTH+1){1'b1}}, {(WIDTH-1){1'b0}}};
-    function automatic [PW-1:0] partial(input bit_i, sign_i, input [PW-1:0] m);
-        partial = !bit_i ? {PW{1'b0}} : sign_i ? ~m & SIGN_MASK : m;
-    endfunction
+    wire [PW-1:0] partial = !mplier_q[0] ? {PW{1'b0}} : sign_q ? ~mcand_q & SIGN_MASK : mcand_q;
     wire [PW-1:0] a_ext = {{(PW-WIDTH){a[WIDTH-1]}}, a};
-    wire [PW-1:0] first = partial(b[0], 1'b0, a_ext);                               // for cycle 1
-    wire [PW-1:0] next = partial(mplier_q[1], sign_next_q, {mcand_q[PW-2:0], 1'b0});
     // Chunk borders: the low WIDTH-1 bits in two chunks, the rest in two.
     function integer border(input integer k);
         border = k == 0 ? 0 : k == 1 ? (WIDTH - 1) / 2 : k == 2 ? WIDTH - 1 : k == 3 ? WIDTH - 1 + (WIDTH + 2) / 2 : PW;
@@ -81,14 +80,15 @@ module seq_mult #(
     localparam [NW-1:0] BEFORE_LAST = BEFORE_LAST32[NW-1:0];
 
     always @(posedge clk) begin
+        addend_q <= partial;        // every cycle: a register with no enable and no reset
         if (rst) begin
             acc_q      <= {PW{1'b0}};
             mcand_q    <= {PW{1'b0}};
             mplier_q   <= {WIDTH{1'b0}};
             carry_q    <= 3'b000;
-            addend_q   <= {PW{1'b0}};
             count_q    <= {NW{1'b0}};
-            sign_next_q <= 1'b0;
+            first_q    <= 1'b0;
+            sign_q     <= 1'b0;
             last_q     <= 1'b0;
             busy_q     <= 1'b0;
             done       <= 1'b0;
@@ -99,21 +99,21 @@ module seq_mult #(
                 // the enable nets of the parent's loops keep the global buffers).
                 mcand_q  <= a_ext;
                 mplier_q <= b;
-                addend_q <= first;
                 if (start) begin
-                    acc_q      <= {PW{1'b0}};
-                    carry_q    <= {1'b0, b[WIDTH-1], 1'b0};   // the + 1 of -A * 2^(WIDTH-1)
                     count_q    <= {NW{1'b0}};
-                    sign_next_q <= 1'b0;
+                    sign_q     <= 1'b0;
+                    first_q    <= 1'b1;
                     busy_q     <= 1'b1;
                 end
             end else begin
-                acc_q      <= acc_next;
-                carry_q    <= carry_out[2:0];
+                // The first busy cycle clears the accumulator (the partial product
+                // registered while idle is not this product's) and presets the + 1.
+                acc_q      <= first_q ? {PW{1'b0}} : acc_next;
+                carry_q    <= first_q ? {1'b0, mplier_q[WIDTH-1], 1'b0} : carry_out[2:0];  // + 1 of -A * 2^(WIDTH-1)
+                first_q    <= 1'b0;
                 mcand_q    <= {mcand_q[PW-2:0], 1'b0};
                 mplier_q   <= {1'b0, mplier_q[WIDTH-1:1]};
-                addend_q   <= next;
-                sign_next_q <= {{(32-NW){1'b0}}, count_q} + 32'd3 == WIDTH;
+                sign_q     <= {{(32-NW){1'b0}}, count_q} + 32'd2 == WIDTH;
                 count_q    <= count_q + 1'b1;
                 last_q     <= count_q == BEFORE_LAST;
                 if (last_q) begin
@@ -124,8 +124,7 @@ module seq_mult #(
         end
     end
 
-    // Chunk 3's carry out falls off the top; the operand registers are read a cycle
-    // ahead (the partial product is registered).
-    wire unused = &{1'b0, carry_out[3], mcand_q[PW-1], mplier_q[0]};
+    // Chunk 3's carry out falls off the top.
+    wire unused = &{1'b0, carry_out[3]};
 endmodule
 `default_nettype wire

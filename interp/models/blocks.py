@@ -127,11 +127,12 @@ def increment_former(axial: int, diagonal: int, x_is_long: int) -> dict:
 class SeqMult(CycleModel):
     """rtl/seq_mult.v: sequential signed a * b, radix 2, four carry-saved chunks.
 
-    Cycle 0: start captures a, b.  Busy cycles k = 0 .. WIDTH+1: for k < WIDTH the
+    Cycle 0: start captures a, b.  Busy cycles k = 0 .. WIDTH+1: in cycle k the
     partial product b_k * A * 2^k (k = WIDTH-1: subtracted, as ~A * 2^k plus a carry
-    into the chunk from bit k, preset at the start) is added chunk by chunk, each
-    chunk's carry entering the next chunk one cycle later; the last two cycles only
-    settle those carries.  `done` follows.
+    into the chunk from bit k, preset in cycle 0) is registered, and the one registered
+    a cycle before is added chunk by chunk (cycle 0 clears the sum instead), each
+    chunk's carry entering the next chunk one cycle later; the last cycle only settles
+    those carries.  `done` follows.
     """
 
     watch = {"busy": False, "done": False, "product": False}
@@ -143,7 +144,7 @@ class SeqMult(CycleModel):
         self.reset()
 
     def reset(self) -> None:
-        self.acc = self.mcand = self.mplier = self.count = 0
+        self.acc = self.mcand = self.mplier = self.count = self.addend = 0
         self.carry = [0, 0, 0]
         self.sign_bit = self.busy = self.done = 0
 
@@ -161,20 +162,23 @@ class SeqMult(CycleModel):
             if inputs.get("start"):
                 a = inputs["a"] & ((1 << w) - 1)
                 a -= (a >> (w - 1)) << w                          # signed
-                self.acc, self.mcand, self.mplier = 0, a & pmask, inputs["b"] & ((1 << w) - 1)
-                self.carry = [0, self.mplier >> (w - 1), 0]      # the + 1 of -A * 2^(w-1)
+                self.mcand, self.mplier = a & pmask, inputs["b"] & ((1 << w) - 1)
                 self.sign_bit, self.count, self.busy = 0, 0, 1
             return
-        addend = 0
+        addend = self.addend
+        self.addend = 0
         if self.mplier & 1:
-            addend = (~self.mcand & -(1 << (w - 1)) & pmask) if self.sign_bit else self.mcand
-        cins = [0, *self.carry]
-        sums = []
-        for j, (lo, hi) in enumerate(zip(self.borders, self.borders[1:])):
-            mask = (1 << (hi - lo)) - 1
-            sums.append((((self.acc >> lo) & mask) + ((addend >> lo) & mask) + cins[j], lo, hi - lo))
-        self.acc = sum((s & ((1 << n) - 1)) << lo for s, lo, n in sums)
-        self.carry = [s >> n for s, _, n in sums[:3]]
+            self.addend = (~self.mcand & -(1 << (w - 1)) & pmask) if self.sign_bit else self.mcand
+        if self.count == 0:
+            self.acc, self.carry = 0, [0, self.mplier >> (w - 1), 0]    # the + 1 of -A * 2^(w-1)
+        else:
+            cins = [0, *self.carry]
+            sums = []
+            for j, (lo, hi) in enumerate(zip(self.borders, self.borders[1:])):
+                mask = (1 << (hi - lo)) - 1
+                sums.append((((self.acc >> lo) & mask) + ((addend >> lo) & mask) + cins[j], lo, hi - lo))
+            self.acc = sum((s & ((1 << n) - 1)) << lo for s, lo, n in sums)
+            self.carry = [s >> n for s, _, n in sums[:3]]
         self.mcand = (self.mcand << 1) & pmask
         self.mplier >>= 1
         self.sign_bit = int(self.count == w - 2)
