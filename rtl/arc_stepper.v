@@ -28,13 +28,15 @@
 //
 // Two stages, for the clock.  The decision loop holds only T, p + 1 and p + q + 2
 // (complemented while q < 0, so that the decision (T < 0) == (q > 0) is T's top bit);
-// both candidate values are summed from registers and the decision selects after the
-// carry chains.  The step stage, a cycle behind, takes the loop's decisions as tokens:
-// the point (kept as D; u, v = End + D for the benches), E, the octant, the last-step
-// test and the outputs.  The end test's window runs a step ahead, with the loop's
-// decision (D's low five bits and a |D| <= 6 flag four steps old tell D = -2 .. 2, no
-// wide compare), so the last-step flags are a registered lookup.  `run` and the
-// enables' terms are registered, so each enable is one LUT.
+// with iCE40's slow carry chains both candidate values are summed from registers and
+// the decision selects after the chains, with ECP5's fast ones it selects the operands
+// in front of one chain per register.  The step stage, a cycle behind, takes the loop's
+// decisions as tokens: the point (kept as D, whose step is registered with the decision;
+// u, v = End + D for the benches), E, the octant, the last-step test and the outputs.
+// The end test's window runs a step ahead, with the loop's decision (D's low five bits
+// and a |D| <= 6 flag four steps old tell D = -2 .. 2, no wide compare), so the
+// last-step flags are a registered lookup.  `run` and the enables' terms are
+// registered, so each enable is one LUT.
 //
 // Timing: `run` is registered: the stepper follows it from the next cycle.  While not
 // running the registers follow the inputs; they settle within 9 cycles.  Running, the
@@ -43,7 +45,7 @@
 // octant; `fin` comes with the last step's strobes.  Used by circ_arc.
 module arc_stepper #(
     parameter integer WIDTH = 32,           // circ_arc's coordinate width (>= 6); |u|, |v| < 2^(WIDTH-3)
-    parameter integer CARRY_SELECT = 1      // 1: loop adders cut in two (iCE40); 0: one chain (ECP5)
+    parameter integer CARRY_SELECT = 1      // 1: adders cut in two, selects after (iCE40); 0: one chain, selects in front (ECP5)
 ) (
     input  wire             clk,
     input  wire             rst,
@@ -135,9 +137,6 @@ module arc_stepper #(
     reg  [4:0] oct_p_q;
     wire [4:0] oct_p = octant(u_q[UW-1], uz_q, v_q[UW-1], vz_q, s1_q[UW-1], s1z_q, s3_q[UW-1], s3z_q, ccw);
     wire [2:0] oct_0 = {oct_p_q[4], oct_p_q[4] ? oct_p_q[3:2] : oct_p_q[1:0]};
-    // u + v = 0 without the sum (a carry-free test: u ^ v = (u | v) << 1), v - u = 0, u = 0
-    // and v = 0, as 4-bit group flags registered with u_q, v_q (from the inputs), ANDed a
-    // cycle later.
 
     // ---------------------------------------------------------------- end tables
     // The eight directions d of the grid (upper half plane) and cross(d, End) = du v1 - dv u1:
@@ -638,6 +637,8 @@ module arc_stepper #(
             du_q    <= du_next;
             dv_q    <= dv_next;
         end
+        // u + v = 0 without the sum (a carry-free test: u ^ v = (u | v) << 1), v - u = 0,
+        // u = 0, v = 0: 4-bit group flags of the inputs (as u_q, v_q take them), ANDed next.
         s1z_g_q <= equal_groups(u0 ^ v0, {u0[UW-2:0] | v0[UW-2:0], 1'b0});
         s3z_g_q <= equal_groups(u0, v0);
         uz_g_q  <= equal_groups(u0, zero);
