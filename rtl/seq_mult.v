@@ -21,8 +21,8 @@
 // Timing: `start` in a cycle with busy low captures a, b (cycle 0); busy is high
 // in cycles 1 .. WIDTH+2 (a clearing cycle, WIDTH partial products, a carry flush);
 // `done` is a one-cycle strobe in cycle WIDTH+3, when `product` becomes valid; product
-// holds until the first busy cycle of the next product (it shows partial sums while busy).  `start` while
-// busy is ignored; `rst` clears everything.
+// holds until the next product's first busy cycle (it shows partial sums while busy).
+// `start` while busy is ignored; `rst` clears everything.
 module seq_mult #(
     parameter integer WIDTH = 33    // operand width, signed (>= 3)
 ) (
@@ -33,7 +33,7 @@ module seq_mult #(
     input  wire [WIDTH-1:0]   b,
     output wire               busy,     // high from the cycle after start until the product is ready
     output reg                done,     // one-cycle strobe: product valid from this cycle on
-    output wire [2*WIDTH-1:0] product   // signed a * b, held until the next start
+    output wire [2*WIDTH-1:0] product   // signed a * b, held until the cycle after the next start
 );
     initial begin
         if (WIDTH < 3) $error("%m: WIDTH must be at least 3");
