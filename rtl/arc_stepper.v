@@ -12,9 +12,10 @@
 // never 0; p runs from -q to 0 (q > 0) or from 0 to |q| (q < 0).  The octant ends when the
 // next point has p >= 0 (q > 0: b turns, q = -q) or |p| >= |q| (q < 0: a and b swap, and
 // b turns as well if q reaches 0): the signs of p + 1, p + q + 1, p + q + 2 (p + q + 1 < 0
-// is p + q + 2 <= 0, with a registered zero flag).  The four
+// is p + q + 2 <= 0, with a registered zero flag).  The six
 // cycles after a step into a new octant reload T and the counters (the new octant's kind,
-// the operands, a carry-save step, the carry chain) and take no step (`tick` is an enable).
+// the operands, a carry-save step, the carry chains, then the loads through the loop's
+// own adders) and take no step (`tick` is an enable).
 //
 // End.  The last step goes to the end point End when the next point P' reaches or
 // passes the ray from the centre through End with dot(P', End) > 0, which happens only
@@ -27,10 +28,12 @@
 // one-hot window -1 .. 1 per axis.
 //
 // Two stages, for the clock.  The decision loop holds only T, p + 1 and p + q + 2
-// (complemented while q < 0, so that the decision (T < 0) == (q > 0) is T's top bit);
-// with iCE40's slow carry chains both candidate values are summed from registers and
-// the decision selects after the chains, with ECP5's fast ones it selects the operands
-// in front of one chain per register.  The step stage, a cycle behind, takes the loop's
+// (complemented while q < 0, so that the decision (T < 0) == (q > 0) is T's top bit),
+// each with one adder and no load select (T and p + q + 2 are cleared and loaded
+// through their sums); with iCE40's slow carry chains both candidate values are summed
+// from registers and the decision selects after the chains, with ECP5's carry cells
+// (mux_add) the decision selects the operand inside the chain's own LUTs, so a step is
+// the decision bit, its route and the chain.  The step stage, a cycle behind, takes the loop's
 // decisions as tokens: the point (kept as D, whose step is registered with the decision;
 // u, v = End + D for the benches), E, the octant, the last-step test and the outputs.
 // The end test's window runs a step ahead, with the loop's decision (D's low five bits
@@ -38,14 +41,15 @@
 // last-step flags are a registered lookup.  `run` and the enables' terms are
 // registered, so each enable is one LUT.
 //
-// Timing: `run` is registered: the stepper follows it from the next cycle.  While not
-// running the registers follow the inputs; they settle within 9 cycles.  Running, the
-// loop decides one step per `tick` and the step's strobes and dir levels come out a
-// cycle later (registered together), plus four reload cycles after each step into a new
-// octant; `fin` comes with the last step's strobes.  Used by circ_arc.
+// Timing: `run` is registered: the stepper follows it from the next cycle, loading the
+// loop in two cycles (reload cycles 5 and 6).  While not running the registers follow
+// the inputs; they settle within 9 cycles.  Running, the loop decides one step per
+// `tick` and the step's strobes and dir levels come out a cycle later (registered
+// together), plus six reload cycles after each step into a new octant; `fin` comes
+// with the last step's strobes.  Used by circ_arc.
 module arc_stepper #(
     parameter integer WIDTH = 32,           // circ_arc's coordinate width (>= 6); |u|, |v| < 2^(WIDTH-3)
-    parameter integer CARRY_SELECT = 1      // 1: adders cut in two, selects after (iCE40); 0: one chain, selects in front (ECP5)
+    parameter integer CARRY_SELECT = 1      // 1: adders cut in two, selects after (iCE40); 0: one chain, selects in front; 2: as 0 in ECP5 carry cells
 ) (
     input  wire             clk,
     input  wire             rst,
@@ -67,21 +71,26 @@ module arc_stepper #(
 );
     initial begin
         if (WIDTH < 6) $error("%m: WIDTH must be at least 6");
-        if (CARRY_SELECT != 0 && CARRY_SELECT != 1) $error("%m: CARRY_SELECT must be 0 or 1");
+        if (CARRY_SELECT < 0 || CARRY_SELECT > 2) $error("%m: CARRY_SELECT must be 0, 1 or 2");
     end
 
     localparam integer UW = WIDTH + 1;      // coordinates, p, q and their sums
     localparam integer NW = WIDTH + 2;      // E and T
 
     // The decision loop: T, p + 1 and p + q + 2 (complemented while q < 0), q's sign.
-    reg               reload_q, reload2_q, reload3_q;   // the first reload cycles after a step into a new octant
-    reg               reloading_q;                 // one of them
-    reg               run_q, ok_q, ld_q;            // run; running and no reload cycle; loading or the fourth
+    reg               reload_q, reload2_q, reload3_q, reload4_q, reload5_q;   // reload cycles 1 .. 5
+    reg               ld_t_q;                      // reload cycle 6: T loads
+    reg               reloading_q;                 // reload cycles 1 .. 5, or not running
+    reg               run_q, ok_q;                 // run; running and no reload cycle
+    reg               clr_q;                       // T and p + q + 2 clear (reload cycle 4, not running)
+    reg               ld_p_q;                      // p + 1 loads (reload cycles 5, 6, not running)
+    reg               idle_q;                      // not running (= !run_q; `loading` adds the reset)
     reg  [NW-1:0]     t_q;                         // T (-T - 1 when q < 0: the decision is its sign)
     reg  [UW-1:0]     p1x_q, g2x_q;                // p + 1, p + q + 2 (complemented when q < 0)
     reg               qpos_q;                      // q > 0
-    reg  [UW-1:0]     inc1_q, inc2_q;              // +1, +2 (-1, -2 when q < 0): the counters' steps
-    reg  [UW-1:0]     inc1p_q;                     // inc1_q's copy for p + 1's adder (fanout)
+    reg  [UW-1:0]     inc1_q, inc2_q;              // +1, +2 (-1, -2 when q < 0): p + q + 2's steps
+    reg  [UW-1:0]     inc1p_q;                     // +1 (-1): p + 1's step
+    reg  [UW-1:0]     p1_load_q, g2_ld_q;          // the reload values: p + 1's (T's high bits first), p + q + 2's
     reg  [NW-1:0]     t_s_q, t_c_q;                // reload values in carry-save form (sum, carries)
     reg  [UW-1:0]     p1_s_q, p1_c_q, g2_s_q, g2_c_q;
     // The step stage, a cycle behind: the step's decision and octant's end as tokens.
@@ -112,6 +121,8 @@ module arc_stepper #(
     reg  [8*18-1:0]   lt_all_q;                    // lt_all, registered
     reg  [17:0]       lt_q, lt0_q, lt1_q, lt2_q;   // {diagonal, axial} last-step tables: octant; first, next ones
     reg  [2:0]        oct1_q, oct2_q;              // the next octants (a cycle old)
+    reg  [3:0]        oct_n_q;                     // the new octant and q > 0 (a reload's third cycle)
+    reg  [17:0]       lt_n_q;                      // and its tables
     reg               last_a_q, last_d_q;          // the axial / diagonal step is the last
 
     reg               loaded_q;                    // loading a cycle ago: u_q, v_q hold P
@@ -257,7 +268,7 @@ module arc_stepper #(
         reg [LN:0] lo;
         begin
             lo = {1'b0, a[LN-1:0]} + {1'b0, b[LN-1:0]};
-            add_n = CARRY_SELECT == 0 ? a + b
+            add_n = CARRY_SELECT != 1 ? a + b
                                       : {lo[LN] ? a[NW-1:LN] - ~b[NW-1:LN] : a[NW-1:LN] + b[NW-1:LN], lo[LN-1:0]};
         end
     endfunction
@@ -274,51 +285,56 @@ module arc_stepper #(
         reg [LU:0] lo;
         begin
             lo = {1'b0, a[LU-1:0]} - {1'b1, ~b[LU-1:0]};
-            add1_u = CARRY_SELECT == 0 ? a - ~b
+            add1_u = CARRY_SELECT != 1 ? a - ~b
                                        : {lo[LU] ? a[UW-1:LU] - ~b[UW-1:LU] : a[UW-1:LU] + b[UW-1:LU], lo[LU-1:0]};
         end
     endfunction
     // ---------------------------------------------------------------- the decision loop
     wire td   = t_q[NW-1];                       // take the diagonal: (T < 0) == (q > 0)
     // `run` is registered (run_q), and so are the enables' terms: ok_q (running, no reload
-    // cycle but the first, whose reload_q is a term of its own) and ld_q (not running, or
-    // the last reload cycle), so each enable is one LUT.
+    // cycle but the first, whose reload_q is a term of its own), ld_t_q, ld_p_q and
+    // reload5_q, so each enable is one LUT.
     wire go   = ok_q && !reload_q && tick;
-    wire loading = !run_q || rst;
+    wire loading = idle_q || rst;                // (idle_q = !run_q: run_q's loads are few)
     wire nqo  = !qpos_q;                         // the registers hold complements
     wire [UW-1:0] one = {{(UW-1){1'b0}}, 1'b1}, two = {{(UW-2){1'b0}}, 2'b10}, zero = {UW{1'b0}};
     // With q < 0 the register holds ~T, and ~(T + {x, 1}) = ~T + {~x, 1}; p + 1 and
     // p + q + 2 count down then.
-    // The next values: the step's (the decision selects) or the reload value's (its
-    // carry-save form).  With fast carry chains (ECP5) one adder per register, its operands
-    // selected in front, so the sums go straight into the register (the loop is the
-    // decision bit, one LUT and the chain); with slow ones (iCE40) every candidate has its
-    // own carry-select adder and the selects come after the chains.
-    wire [NW-1:0] t_next   = CARRY_SELECT == 0
-        ? add_n(ld_q ? t_s_q : t_q, ld_q ? t_c_q : {td ? g2x_q : p1x_q, 1'b1})
-        : ld_q ? add_n(t_s_q, t_c_q) : td ? add_n(t_q, {g2x_q, 1'b1}) : add_n(t_q, {p1x_q, 1'b1});
-    wire [UW-1:0] p1x_next = CARRY_SELECT == 0
-        ? add_u(ld_q ? p1_s_q : p1x_q, ld_q ? p1_c_q : inc1p_q)
-        : ld_q ? add_u(p1_s_q, p1_c_q) : add_u(p1x_q, inc1p_q);
-    wire [UW-1:0] g2x_next = CARRY_SELECT == 0
-        ? add_u(ld_q ? g2_s_q : g2x_q, ld_q ? g2_c_q : td ? inc2_q : inc1_q)
-        : ld_q ? add_u(g2_s_q, g2_c_q) : td ? add_u(g2x_q, inc2_q) : add_u(g2x_q, inc1_q);
+    // One adder per register, x + y: T + {p + q + 2 or p + 1, 1} by the decision, p + 1 +
+    // its step or its load value (x cleared), p + q + 2 + its step by the decision.  T and
+    // p + q + 2 take their reload values through the same sums: cleared, they add a
+    // register holding the value (T = 0 decides axial, so y is then p + 1's, or inc1_q).
+    // So each loop is the decision bit or a register, the select, and the chain, with no
+    // load select: with ECP5's carry cells (CARRY_SELECT = 2) the select sits in the
+    // cells' LUTs.  With iCE40's slow carry chains (1) every candidate has its own
+    // carry-select adder and the selects come after the chains.
+    wire [NW-1:0] t_next, t_mux;
+    wire [UW-1:0] p1x_next, p1x_mux, g2x_next, g2x_mux;
+    mux_add #(.WIDTH(NW), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_t_add (
+        .a(t_q), .sel({{(NW-1){td}}, ld_t_q}), .c({g2x_q, t_s_q[0]}), .d({p1x_q, 1'b1}), .sum(t_mux));
+    mux_add #(.WIDTH(UW), .LOAD(1), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_p1_add (
+        .a(p1x_q), .sel({UW{ld_p_q}}), .c(p1_load_q), .d(inc1p_q), .sum(p1x_mux));
+    mux_add #(.WIDTH(UW), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_g2_add (
+        .a(g2x_q), .sel({UW{td}}), .c(inc2_q), .d(inc1_q), .sum(g2x_mux));
+    assign t_next   = CARRY_SELECT != 1 ? t_mux : ld_t_q ? {p1x_q, t_s_q[0]}
+                    : td ? add_n(t_q, {g2x_q, 1'b1}) : add_n(t_q, {p1x_q, 1'b1});
+    assign p1x_next = CARRY_SELECT != 1 ? p1x_mux : ld_p_q ? p1_load_q : add_u(p1x_q, inc1p_q);
+    assign g2x_next = CARRY_SELECT != 1 ? g2x_mux : reload5_q ? g2_ld_q : td ? add_u(g2x_q, inc2_q) : add_u(g2x_q, inc1_q);
     // The octant ends: p' >= 0 (q > 0) or p' + q' >= 0 (q < 0), i.e. p + 1 >= 0, or
     // p + q + 2 >= 0 after a diagonal step and p + q + 1 >= 0 after an axial one.
     // p + q + 1 < 0 <=> p + q + 2 <= 0: its sign and a registered zero flag.
     wire [UW-1:0] p1t = p1x_q ^ {UW{nqo}}, g2t = g2x_q ^ {UW{nqo}};   // p + 1, p + q + 2
     wire p1_neg = p1t[UW-1], g2_neg = g2t[UW-1];
     // p + q + 2 = 0 without a wide compare in the loop: it grows by 1 (axial step) or 2
-    // (diagonal) per step, so flags of its values 0, -1, -2 registered with the step (and
-    // a carry-free zero test of the reload value) give it.
+    // (diagonal) per step, so flags of its values 0, -1, -2 registered with the step give
+    // it (p + q + 2 is loaded two cycles before the first step after a reload).
     reg           g2_is0_q, g2_ism1_q, g2_ism2_q;  // p + q + 2 = 0, -1, -2 (a cycle ago)
-    reg           g2_ld0_q, ld_d_q;                // the reload value's p + q + 2 = 0; ld_q, a cycle ago
-    wire g2_zero = ld_d_q ? g2_ld0_q : tok_q ? (td_l_q ? g2_ism2_q : g2_ism1_q) : g2_is0_q;
+    wire g2_zero = tok_q ? (td_l_q ? g2_ism2_q : g2_ism1_q) : g2_is0_q;
     wire g1_neg = g2_neg || g2_zero;
     wire bound = qpos_q ? !p1_neg : td ? !g2_neg : !g1_neg;
 
-    // Reload, in four cycles after a step into a new octant (the registers it reads hold
-    // still through them).  After the step p' = (p + 1) - 1 and q' = (p + q + 2) - (p + 1) - 1,
+    // Reload, in six cycles after a step into a new octant (the registers it reads hold
+    // still through the first four).  After the step p' = (p + 1) - 1 and q' = (p + q + 2) - (p + 1) - 1,
     // and the new octant's T = E + 2p + q + 1 changes by -2p' - q' + 2p_new + q_new:
     //   TURN (q > 0, b turns; p_new = p', q_new = -q'):  T - 2q', p + 1, 2(p + 1) - (p + q + 2) + 2;
     //   SWAP (q < 0, a and b swap; p_new = q', q_new = p'):  T - p' + q', q' + 1, p + q + 2;
@@ -328,7 +344,8 @@ module arc_stepper #(
     // 2 - k).  Cycle 1 finds the kind (SWAP_TURN: q = -1 before a diagonal step; with q < 0
     // the registers hold complements, so q + 1 = p1x - g2x, and q = -1 <=> p1x = g2x);
     // cycle 2 registers the operands a, b, c, complemented (the kind fixes both polarities,
-    // except LOAD's); cycle 3 sums them with k in carry-save form; cycle 4 is the carry chain.
+    // except LOAD's); cycle 3 sums them with k in carry-save form; cycle 4 resolves the
+    // sums, and cycles 5 and 6 load them through the loop's adders (below).
     reg               k_load_q, k_turn_q, k_swap_q, k_st_q;   // the kind, one-hot
     reg               nqn_load_q;                  // LOAD: q < 0
     // q = -1 (q + 1 = p1x - g2x = 0 while q < 0), a cycle old: 4-bit groups of p1x = g2x
@@ -393,36 +410,38 @@ module arc_stepper #(
     wire [2*NW-1:0] g2_cs = csa(sx(g2_a1_q), sx(g2_b1_q), pick_k(ksel, nqn_load_q, 2, -1, -2, 0, -3));
     /* verilator lint_on UNUSEDSIGNAL */
     wire          nqn = k_load_q ? nqn_load_q : !k_swap_q;          // q_new < 0
-    // The reload value of p + q + 2 is 0: its operands a + b = kt, the constant that makes
-    // the value 0 (~0 while q_new < 0), tested without a carry chain (a sum equal to kt has
-    // the carries c = ((a & b) | ((a ^ b) & ~kt)) << 1, and a ^ b ^ kt = c), as 4-bit group
-    // flags in the third reload cycle, their AND in the fourth (kt registered with the
-    // operands).
-    /* verilator lint_off UNUSEDSIGNAL */        // the constant's and the carries' top bits
-    wire [NW-1:0] g2_kt_n = pick_k(ksel, nqn_load_q, -2, 0, 1, 0, 2);
-    reg  [UW-1:0] g2_kt_q;
-    wire [UW-1:0] g2_ab = g2_a1_q ^ g2_b1_q;
-    wire [UW-1:0] g2_cy = (g2_a1_q & g2_b1_q) | (g2_ab & ~g2_kt_q);
+    // Cycle 4 resolves the values (T's and p + q + 2's; p + 1's in cycle 5).
+    /* verilator lint_off UNUSEDSIGNAL */        // T's low bit: t_s_q's, read in cycle 6
+    wire [NW-1:0] t_ld = add_n(t_s_q, t_c_q);
     /* verilator lint_on UNUSEDSIGNAL */
-    wire [QG-1:0] g2_ld0_g = equal_groups(g2_ab ^ g2_kt_q, {g2_cy[UW-2:0], 1'b0});
-    reg  [QG-1:0] g2_ld0_g_q;
+    wire [UW-1:0] p1_ld = add_u(p1_s_q, p1_c_q), g2_ld = add_u(g2_s_q, g2_c_q);
 
     always @(posedge clk) begin
         if (rst) begin
             run_q     <= 1'b0;
-            ld_q      <= 1'b1;
+            clr_q     <= 1'b1;
+            ld_p_q    <= 1'b1;
+            ld_t_q    <= 1'b0;
+            idle_q    <= 1'b1;
             reload_q  <= 1'b0;
             reload2_q <= 1'b0;
             reload3_q <= 1'b0;
-            reloading_q <= 1'b0;
+            reload4_q <= 1'b0;
+            reload5_q <= 1'b0;
+            reloading_q <= 1'b1;
             ok_q      <= 1'b0;
         end else begin
             reload_q  <= go && bound;
             reload2_q <= reload_q;
             reload3_q <= reload2_q;
-            reloading_q <= (go && bound) || reload_q || reload2_q;
+            reload4_q <= reload3_q;
+            reload5_q <= reload4_q || (run && !run_q);   // a start begins here: cleared, resolved
+            ld_t_q    <= reload5_q;
+            reloading_q <= (go && bound) || reload_q || reload2_q || reload3_q || reload4_q || !run || !run_q;
             run_q     <= run;
-            ld_q      <= !run || reload3_q;
+            clr_q     <= !run || reload3_q;
+            ld_p_q    <= !run_q || reload4_q || reload5_q;
+            idle_q    <= !run;
             ok_q      <= run && !reloading_q;
         end
     end
@@ -432,15 +451,11 @@ module arc_stepper #(
         g2_is0_q   <= g2t == zero;
         g2_ism1_q  <= g2t == ~zero;
         g2_ism2_q  <= g2t == ~one;
-        g2_kt_q    <= g2_kt_n[UW-1:0];
-        g2_ld0_g_q <= g2_ld0_g;
-        g2_ld0_q   <= &g2_ld0_g_q;
-        ld_d_q     <= ld_q;
-        if (loading || reload_q) begin            // held through the reload
-            k_load_q <= loading;
-            k_turn_q <= !loading && qpos_q;
-            k_swap_q <= !loading && !qpos_q && !st;
-            k_st_q   <= !loading && !qpos_q && st;
+        if (idle_q || reload_q) begin             // held through the reload
+            k_load_q <= idle_q;
+            k_turn_q <= !idle_q && qpos_q;
+            k_swap_q <= !idle_q && !qpos_q && !st;
+            k_st_q   <= !idle_q && !qpos_q && st;
         end
         nqn_load_q <= pb_q[UW-1];                   // the sign of q = P.b (loading)
         t_a1_q  <= t_a0;
@@ -456,19 +471,28 @@ module arc_stepper #(
         p1_c_q  <= p1_cs[NW+UW-1:NW];
         g2_s_q  <= g2_cs[UW-1:0];
         g2_c_q  <= g2_cs[NW+UW-1:NW];
-        if (ld_q || go) begin                     // (ld_q is set by rst)
-            t_q    <= t_next;
-            p1x_q  <= p1x_next;
-            g2x_q  <= g2x_next;
+        // The loop registers: cycle 4 clears T and p + q + 2 and resolves the reload values;
+        // cycle 5 loads p + 1 with T's value (its high bits) and p + q + 2 with its own
+        // (0 + inc1_q), cycle 6 loads T (0 + {p + 1, low bit}) and p + 1 with its own.  Not
+        // running, T and p + q + 2 stay clear and p + 1 holds T's value, so a start is
+        // cycles 5 and 6.  (A clear wins over an enable: the flip-flops' reset input.)
+        if (clr_q) t_q <= {NW{1'b0}};
+        else if (ld_t_q || go) t_q <= t_next;
+        if (ld_p_q || go) p1x_q <= p1x_next;
+        if (clr_q) g2x_q <= zero;
+        else if (reload5_q || go) g2x_q <= g2x_next;
+        // p + 1's load value: T's high bits in cycle 5, its own in 6 (an AND-OR, so that
+        // Yosys does not share one adder between the two).
+        p1_load_q <= ({UW{reload5_q}} & p1_ld) | ({UW{!reload5_q}} & t_ld[NW-1:1]);
+        g2_ld_q <= g2_ld;
+        if (reload5_q) begin
+            qpos_q  <= !nqn;
+            inc1_q  <= nqn ? ~zero : one;
+            inc2_q  <= nqn ? ~one : two;
+            inc1p_q <= nqn ? ~zero : one;
+        end else if (clr_q && CARRY_SELECT != 1) begin
+            inc1_q  <= g2_ld;                   // (cycle 5: p + q + 2 = 0 + inc1_q; iCE40 selects after)
         end
-        if (ld_q) begin
-            qpos_q <= !nqn;
-            inc1_q <= nqn ? ~zero : one;
-            inc2_q <= nqn ? ~one : two;
-        end
-        // The same as inc1_q (ld_q is set whenever run_q is not), under an enable that Yosys
-        // does not see as the same, so the copies stay apart and each sits by its adder.
-        if (ld_q || !run_q) inc1p_q <= nqn ? ~zero : one;
     end
 
     // ---------------------------------------------------------------- the step stage
@@ -488,8 +512,14 @@ module arc_stepper #(
     // D moves by the step's vector, registered a cycle ahead from the loop's decision and
     // the octant's step vectors, so registers feed the chain and the decision is off D's path.
     reg  [UW-1:0] su_q, sv_q;
-    wire [UW-1:0] du_next = loading ? du0_q : add_u(du_q, su_q);
-    wire [UW-1:0] dv_next = loading ? dv0_q : add_u(dv_q, sv_q);
+    // Not running (idle_q) D takes its load value: x cleared, y the value (mux_add LOAD).
+    wire [UW-1:0] du_next, dv_next, du_mux, dv_mux;
+    mux_add #(.WIDTH(UW), .LOAD(1), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_du_add (
+        .a(du_q), .sel({UW{idle_q}}), .c(du0_q), .d(su_q), .sum(du_mux));
+    mux_add #(.WIDTH(UW), .LOAD(1), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_dv_add (
+        .a(dv_q), .sel({UW{idle_q}}), .c(dv0_q), .d(sv_q), .sum(dv_mux));
+    assign du_next = CARRY_SELECT != 1 ? du_mux : idle_q ? du0_q : add_u(du_q, su_q);
+    assign dv_next = CARRY_SELECT != 1 ? dv_mux : idle_q ? dv0_q : add_u(dv_q, sv_q);
     function automatic [UW-1:0] unit(input move, neg);      // -1, 0, +1
         unit = {{(UW-1){move && neg}}, move};
     endfunction
@@ -535,7 +565,7 @@ module arc_stepper #(
             reg [UW-1:0] r_q;
             reg          carry_q;
             always @(posedge clk) begin
-                if (loading) begin
+                if (idle_q) begin
                     {carry_q, r_q[RL-1:0]} <= {1'b0, r_x[gr*UW +: RL]} + {1'b0, r_y[gr*UW +: RL]} +
                                               {{RL{1'b0}}, r_c[gr]};
                     r_q[UW-1:RL] <= r_x[gr*UW+RL +: UW-RL] + r_y[gr*UW+RL +: UW-RL] + {{(UW-RL-1){1'b0}}, carry_q};
@@ -569,6 +599,7 @@ module arc_stepper #(
     // group compares constants), and D's low bits.
     reg  [QG-1:0] hzg_u_q, hog_u_q, hzg_v_q, hog_v_q;
     reg  [QG-1:0] szg_u_q, sog_u_q, szg_v_q, sog_v_q;     // the same for End's bits above 1 (|End| <= 2)
+    reg           sz_u_q, so_u_q, sz_v_q, so_v_q;         // and their ANDs
     reg  [QG-1:0] s1z_g_q, s3z_g_q, uz_g_q, vz_g_q;       // u + v = 0, v - u = 0, u = 0, v = 0 (groups of the inputs)
     reg  [3:0]    lo1_u_q, lo1_v_q;
     wire [QG-1:0] hzg_u = equal_groups({du_q[UW-1:4], 4'h0}, zero), hog_u = equal_groups({du_q[UW-1:4], 4'hf}, ~zero),
@@ -588,7 +619,7 @@ module arc_stepper #(
         zv_q  <= wav_q[1];
         pu_q  <= wau_q[2];
         pv_q  <= wav_q[2];
-        if (loading) begin
+        if (idle_q) begin                     // (a register in front of the window logic, not a LUT)
             dau_q <= du_q[4:0];
             dav_q <= dv_q[4:0];
             wau_q <= window(1'b0, 1'b0, eau);
@@ -626,6 +657,10 @@ module arc_stepper #(
         dot_small_q <= dot_small_w;
         szg_u_q <= equal_groups({u1_q[UW-1:2], 2'b00}, zero);
         sog_u_q <= equal_groups({u1_q[UW-1:2], 2'b11}, ~zero);
+        sz_u_q  <= &szg_u_q;
+        so_u_q  <= &sog_u_q;
+        sz_v_q  <= &szg_v_q;
+        so_v_q  <= &sog_v_q;
         szg_v_q <= equal_groups({v1_q[UW-1:2], 2'b00}, zero);
         sog_v_q <= equal_groups({v1_q[UW-1:2], 2'b11}, ~zero);
         oct1_q <= oct1;
@@ -633,7 +668,7 @@ module arc_stepper #(
         lt0_q <= lt_all_q[18 * {xm_q, mjn_q, mnn_q} +: 18];   // the first octant's (loading)
         lt1_q <= lt_all_q[18 * oct1_q +: 18];
         lt2_q <= lt_all_q[18 * oct2_q +: 18];
-        if (loading || step) begin            // (after the last step u, v show End)
+        if (idle_q || step) begin             // (after the last step u, v show End)
             du_q    <= du_next;
             dv_q    <= dv_next;
         end
@@ -643,17 +678,24 @@ module arc_stepper #(
         s3z_g_q <= equal_groups(u0, v0);
         uz_g_q  <= equal_groups(u0, zero);
         vz_g_q  <= equal_groups(v0, zero);
-        if (loading) begin                    // the command's tables; the first octant, p and q
+        // What the benches see follows the inputs from a reset on (loading); the rest from
+        // the next cycle (idle_q: a register, not the reset's LUT, in front of the enables).
+        if (loading) begin
             done_q  <= 1'b0;
-            u1_q    <= u1;
-            v1_q    <= v1;
             u_q     <= u0;
             v_q     <= v0;
             e_q     <= {NW{1'b0}};
+        end else if (step) begin
+            done_q  <= last;
+            e_q     <= e_w;
+        end
+        if (idle_q) begin                     // the command's tables; the first octant, p and q
+            u1_q    <= u1;
+            v1_q    <= v1;
             dneg_q  <= {r7[UW-1], r6[UW-1], r5[UW-1], u1_q[UW-1], r3[UW-1], r2[UW-1], r1[UW-1], v1_q[UW-1]};
             dzero_q <= {r7 == {UW{1'b0}}, r6 == {UW{1'b0}}, r5 == {UW{1'b0}}, u1_q == {UW{1'b0}},
                         r3 == {UW{1'b0}}, r2 == {UW{1'b0}}, r1 == {UW{1'b0}}, v1_q == {UW{1'b0}}};
-            small_q <= small2(&szg_u_q, &sog_u_q, u1_q[1:0]) && small2(&szg_v_q, &sog_v_q, v1_q[1:0]);
+            small_q <= small2(sz_u_q, so_u_q, u1_q[1:0]) && small2(sz_v_q, so_v_q, v1_q[1:0]);
             pos_q   <= pos_w;
             dot_q   <= dot_w;
             s1_q    <= add_u(u_q, v_q);
@@ -670,17 +712,15 @@ module arc_stepper #(
             p_q     <= add_u(pa_q, {{(UW-1){1'b0}}, mjn_q});    // P.a
             q_q     <= add_u(pb_q, {{(UW-1){1'b0}}, mnn_q});    // P.b
             lt_q    <= lt0_q;
-        end else if (step) begin
-            done_q  <= last;
-            e_q     <= e_w;
+        end else if (reload3_q) begin
+            {xm_q, mjn_q, mnn_q, qpos_l_q} <= oct_n_q;
+            lt_q    <= lt_n_q;
         end
-        // The new octant, in the second reload cycle (the kind, SWAP_TURN or not, is
-        // found in the first); the step stage's next step comes after the reload.
-        if (!loading && reload2_q) begin
-            {xm_q, mjn_q, mnn_q} <= k_st_q ? oct2 : oct1;
-            qpos_l_q <= !qpos_l_q && !k_st_q;
-            lt_q     <= k_st_q ? lt2_q : lt1_q;
-        end
+        // The new octant, in the third reload cycle (the kind, SWAP_TURN or not, is found
+        // in the first, the new values registered in the second); the step stage's next
+        // step comes after the reload.
+        oct_n_q  <= {k_st_q ? oct2 : oct1, !qpos_l_q && !k_st_q};
+        lt_n_q   <= k_st_q ? lt2_q : lt1_q;
     end
 endmodule
 `default_nettype wire

@@ -20,11 +20,12 @@
 //           of the command ......................................... arc_stepper
 //
 // Timing: `start` in an idle cycle captures the command (cycle 0); the set-up checks
-// it in cycle 2*WIDTH + 17; from cycle 2*WIDTH + 19 one step per `tick`, its strobes
-// and dir levels registered together a cycle later (the first in cycle 2*WIDTH + 20),
-// except that the four cycles after a step into a new octant reload the stepper (at
-// most 9 octants per arc) and take no step (`tick` is an enable).  `done` one cycle
-// after the last step's strobes.  Bad
+// it in cycle 2*WIDTH + 17; the stepper loads its loop in the next three cycles; from
+// cycle 2*WIDTH + 21 one step per `tick`, its strobes and dir levels registered
+// together a cycle later (the first in cycle 2*WIDTH + 22), except that the six cycles
+// after a step into a new octant reload the stepper (at most 9 octants per arc) and
+// take no step (`tick` is an enable).  `done` one cycle after the last step's
+// strobes.  Bad
 // command (error strobe instead of done, no steps): start = centre (R = 0); end
 // point more than half a step off the circle; a start or end coordinate relative
 // to the centre outside -2^(WIDTH-3) < u < 2^(WIDTH-3) (radius limit of the
@@ -32,7 +33,7 @@
 // step.  `start` while busy is ignored; `rst` returns to idle at once.
 module circ_arc #(
     parameter integer WIDTH = 32,   // width of the signed absolute coordinates (>= 6)
-    parameter integer CARRY_SELECT = 1  // long adders: 1 cut in two (iCE40), 0 one chain (ECP5)
+    parameter integer CARRY_SELECT = 1  // long adders: 1 cut in two (iCE40), 0 one chain, 2 one chain of ECP5 carry cells
 ) (
     input  wire             clk,
     input  wire             rst,
@@ -70,7 +71,7 @@ module circ_arc #(
     assign busy = state_q != IDLE;
 
     wire check, on_band, setup_busy;
-    circle_setup #(.MW(UW), .SW(SW), .CARRY_SELECT(CARRY_SELECT)) u_setup (
+    circle_setup #(.MW(UW), .SW(SW), .CARRY_SELECT(CARRY_SELECT == 1 ? 1 : 0)) u_setup (
         .clk(clk), .rst(rst), .start(load), .x0(u0_q), .y0(v0_q), .x1(u1_q), .y1(v1_q),
         .busy(setup_busy), .check(check), .on_band(on_band)
     );

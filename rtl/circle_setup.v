@@ -83,8 +83,9 @@ module circle_setup #(
     // ---- multipliers: round 1 in PREP, round 2 in MUL2's first cycle ----
     wire [SW:0]   d_sum, nd_sum;
     wire [MW-1:0] m_abs = d_q[SW-1] ? nd_q[MW-1:0] : d_q[MW-1:0];            // |d|
-    wire          round1 = state_q == PREP;
-    wire          round2 = state_q == MUL2 && sub_q;
+    // Round 1 in PREP, round 2 in MUL2's first cycle, as registers set on the way in (the
+    // starts reach every multiplier's control flags).
+    reg           round1_q, round12_q;          // round 1; round 1 or 2
     wire [3*MW-1:0] op1 = {x1, y0, x0};      // round 1 of multipliers 2, 1, 0
     wire [4*PW-1:0] p;                      // products of multipliers 3, 2, 1, 0
     wire          mdone;
@@ -93,7 +94,7 @@ module circle_setup #(
     genvar k;
     generate
         for (k = 0; k < 3; k = k + 1) begin : g_mul
-            seq_mult #(.WIDTH(MW)) u_mul (.clk(clk), .rst(rst), .start(round1),
+            seq_mult #(.WIDTH(MW)) u_mul (.clk(clk), .rst(rst), .start(round1_q),
                                           .a(op1[k*MW +: MW]), .b(op1[k*MW +: MW]), .busy(mbusy[k]),
                                           .done(mdone_other[k]), .product(p[k*PW +: PW]));
         end
@@ -103,7 +104,7 @@ module circle_setup #(
     // Its operand: y1 until ADD2, d from then on (a register selects: the select fans out).
     reg           sq_d_q;
     wire [MW-1:0] mop3 = sq_d_q ? d_q[MW-1:0] : y1;
-    seq_mult #(.WIDTH(MW)) u_mul3 (.clk(clk), .rst(rst), .start(round1 || round2), .a(mop3), .b(mop3),
+    seq_mult #(.WIDTH(MW)) u_mul3 (.clk(clk), .rst(rst), .start(round12_q), .a(mop3), .b(mop3),
                                    .busy(mbusy[3]), .done(mdone), .product(p[3*PW +: PW]));
     wire [SW-1:0] msq = p[3*PW +: SW];
 
@@ -158,6 +159,8 @@ module circle_setup #(
             check_q  <= 1'b0;
             sq_d_q   <= 1'b0;
             sub_q    <= 1'b0;
+            round1_q  <= 1'b0;
+            round12_q <= 1'b0;
             a_q      <= {SW{1'b0}};
             b_q      <= {SW{1'b0}};
             s_q      <= {SW{1'b0}};
@@ -177,6 +180,8 @@ module circle_setup #(
             sub_q   <= 1'b0;
             check_q <= state_q == ADD3 && sub_q;
             sq_d_q  <= state_q == ADD2 || state_q == MUL2;
+            round1_q  <= state_q == IDLE && start;             // PREP is next
+            round12_q <= (state_q == IDLE && start) || (state_q == ADD2 && sub_q);   // or MUL2's first cycle
             case (state_q)
                 IDLE: if (start) state_q <= PREP;
                 PREP: state_q <= MUL1;          // round 1 starts

@@ -75,10 +75,14 @@ def arc_steps(cx, cy, x0, y0, x1, y1, ccw: bool, full: bool = False) -> list[Ste
 def arc_setup_cycles(width: int = 32) -> int:
     """Cycles from `start` to the check of rtl/circ_arc.v: load, two multiplier
     rounds (seq_mult at WIDTH + 1 bits: WIDTH + 4 cycles each) and three
-    two-cycle sums; the check is in cycle 2 * WIDTH + 17, the first step is taken two
-    cycles later (the stepper registers `run`) and its strobes come a cycle after it."""
+    two-cycle sums; the check is in cycle 2 * WIDTH + 17, the first step is taken four
+    cycles later (the stepper registers `run`, then loads its loop in two cycles) and its
+    strobes come a cycle after it."""
     return 2 * width + 17
 
+
+RELOAD_CYCLES = 6       # after a step into a new octant, no step (rtl/arc_stepper.v)
+START_CYCLES = 2        # after `run` is registered, no step: reload cycles 5 and 6
 
 STEP_OUTPUTS = {"step_x": False, "step_y": False, "dir_x": False, "dir_y": False}
 
@@ -88,7 +92,8 @@ class ArcStepper(CycleModel):
 
     `run` is registered: what follows holds from the cycle after it.
     While `run` is low the point follows the inputs (u0, v0) and E = 0.  With `run`, one
-    step of `arc_steps` per tick; a step into a new octant is followed by four reload
+    step of `arc_steps` per tick from the third cycle on (the loop loads in the first two);
+    a step into a new octant is followed by six reload
     cycles, which take no step (`tick` is an enable, as the synchronization buffer's ~STOP).
     The decision is taken a cycle before the step is out: the strobes, dir levels, `fin`
     and the point and E they lead to show a cycle after the tick that took the step.
@@ -123,6 +128,7 @@ class ArcStepper(CycleModel):
         if not run:
             self.point = shown = (inputs["u0"], inputs["v0"], 0)
             self.done = False
+            reload = START_CYCLES               # a start: the loop's last two reload cycles
         elif go:
             (u, v, e), u1, v1, ccw = self.point, inputs["u1"], inputs["v1"], inputs["ccw"]
             octant = _octant(u, v, ccw)
@@ -141,7 +147,7 @@ class ArcStepper(CycleModel):
             self.point = (u + sx, v + sy, axial_e + (2 * pb + 1 if take_diagonal else 0))
             fin = int(last)
             self.done = last
-            reload = 4 if not last and _octant(u + sx, v + sy, ccw) != octant else 0
+            reload = RELOAD_CYCLES if not last and _octant(u + sx, v + sy, ccw) != octant else 0
         self.u, self.v, self.e = shown
         p_act_x, p_act_y, p_neg_x, p_neg_y, p_fin = self.pending
         if p_act_x:
