@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import importlib
 import pkgutil
+from pathlib import Path
 
 from .. import benches
 
@@ -40,6 +41,6 @@ def run(args) -> int:
             print(text, flush=True)
             out.append(text)
     if args.md:
-        with open(args.md, "w") as f:
-            f.write("\n".join(out))
+        Path(args.md).parent.mkdir(parents=True, exist_ok=True)     # (out/ on a fresh clone)
+        Path(args.md).write_text("\n".join(out))
     return 0
