@@ -42,7 +42,7 @@
 // registered, so each enable is one LUT.
 //
 // Timing: `run` is registered: the stepper follows it from the next cycle, loading the
-// loop in two cycles (reload cycles 5 and 6).  While not running the registers follow
+// loop in three cycles (reload cycles 4 to 6).  While not running the registers follow
 // the inputs; they settle within 9 cycles.  Running, the loop decides one step per
 // `tick` and the step's strobes and dir levels come out a cycle later (registered
 // together), plus six reload cycles after each step into a new octant; `fin` comes
@@ -91,8 +91,9 @@ module arc_stepper #(
     reg  [UW-1:0]     inc1_q, inc2_q;              // +1, +2 (-1, -2 when q < 0): p + q + 2's steps
     reg  [UW-1:0]     inc1p_q;                     // +1 (-1): p + 1's step
     reg  [UW-1:0]     p1_load_q, g2_ld_q;          // the reload values: p + 1's (T's high bits first), p + q + 2's
-    reg  [NW-1:0]     t_s_q, t_c_q;                // reload values in carry-save form (sum, carries)
-    reg  [UW-1:0]     p1_s_q, p1_c_q, g2_s_q, g2_c_q;
+    reg               t0_q;                        // T's reload value's low bit
+    reg  [UW-1:0]     ls_q, lc_q;                  // p + 1's load value in carry-save form (T's high bits first)
+    reg  [UW-1:0]     g2_s_q, g2_c_q;              // p + q + 2's reload value in carry-save form
     // The step stage, a cycle behind: the step's decision and octant's end as tokens.
     reg               tok_q, td_l_q;
     reg               done_q;                      // the last step is out: later tokens are dropped
@@ -120,7 +121,7 @@ module arc_stepper #(
     reg  [24:0]       dot_small_q;                 // dot > 0 for |End|^2 <= 8, from End's low bits
     reg  [8*18-1:0]   lt_all_q;                    // lt_all, registered
     reg  [17:0]       lt_q, lt0_q, lt1_q, lt2_q;   // {diagonal, axial} last-step tables: octant; first, next ones
-    reg  [2:0]        oct1_q, oct2_q;              // the next octants (a cycle old)
+    reg  [7:0]        oct0_oh_q, oct1_oh_q, oct2_oh_q;   // the first and the next octants, one-hot (a cycle old)
     reg  [3:0]        oct_n_q;                     // the new octant and q > 0 (a reload's third cycle)
     reg  [17:0]       lt_n_q;                      // and its tables
     reg               last_a_q, last_d_q;          // the axial / diagonal step is the last
@@ -235,6 +236,18 @@ module arc_stepper #(
             assign lt_all[18 * go_i +: 18] = tables_for(AU, AV, BU, BV, pos_q, dot_q);
         end
     endgenerate
+    // An octant's tables by a one-hot select (registered, so the 8:1 select is an AND-OR
+    // of two LUT levels).
+    function automatic [7:0] one_hot(input [2:0] o);
+        one_hot = 8'd1 << o;
+    endfunction
+    function automatic [17:0] table_of(input [7:0] oh, input [8*18-1:0] all);
+        integer i;
+        begin
+            table_of = 18'd0;
+            for (i = 0; i < 8; i = i + 1) table_of = table_of | ({18{oh[i]}} & all[18 * i +: 18]);
+        end
+    endfunction
     // |x| <= 2 from x's parts: its bits above 1 all 0 or all 1, and its low bits.
     function automatic small2(input hz, ho, input [1:0] lo);
         small2 = (hz && lo != 2'd3) || (ho && lo[1]);
@@ -311,12 +324,12 @@ module arc_stepper #(
     wire [NW-1:0] t_next, t_mux;
     wire [UW-1:0] p1x_next, p1x_mux, g2x_next, g2x_mux;
     mux_add #(.WIDTH(NW), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_t_add (
-        .a(t_q), .sel({{(NW-1){td}}, ld_t_q}), .c({g2x_q, t_s_q[0]}), .d({p1x_q, 1'b1}), .sum(t_mux));
+        .a(t_q), .sel({{(NW-1){td}}, ld_t_q}), .c({g2x_q, t0_q}), .d({p1x_q, 1'b1}), .sum(t_mux));
     mux_add #(.WIDTH(UW), .LOAD(1), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_p1_add (
         .a(p1x_q), .sel({UW{ld_p_q}}), .c(p1_load_q), .d(inc1p_q), .sum(p1x_mux));
     mux_add #(.WIDTH(UW), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_g2_add (
         .a(g2x_q), .sel({UW{td}}), .c(inc2_q), .d(inc1_q), .sum(g2x_mux));
-    assign t_next   = CARRY_SELECT != 1 ? t_mux : ld_t_q ? {p1x_q, t_s_q[0]}
+    assign t_next   = CARRY_SELECT != 1 ? t_mux : ld_t_q ? {p1x_q, t0_q}
                     : td ? add_n(t_q, {g2x_q, 1'b1}) : add_n(t_q, {p1x_q, 1'b1});
     assign p1x_next = CARRY_SELECT != 1 ? p1x_mux : ld_p_q ? p1_load_q : add_u(p1x_q, inc1p_q);
     assign g2x_next = CARRY_SELECT != 1 ? g2x_mux : reload5_q ? g2_ld_q : td ? add_u(g2x_q, inc2_q) : add_u(g2x_q, inc1_q);
@@ -395,6 +408,7 @@ module arc_stepper #(
         pick_k = pick(sel, nl ? k_n(kl1) : k_n(kl0), k_n(kt), k_n(ks), k_n(kst));
     endfunction
     reg  [NW-1:0] t_a1_q, t_b1_q, t_c1_q;          // cycle 2: the operands
+    reg  [NW-1:0] t_k_q, p1_k_q, g2_k_q;           // and the constants
     reg  [UW-1:0] p1_a1_q, p1_b1_q, g2_a1_q, g2_b1_q;
     /* verilator lint_off UNUSEDSIGNAL */        // the carries' top bits
     function automatic [2*NW-1:0] csa(input [NW-1:0] a, b, c);      // {carries, sum} of a + b + c
@@ -405,16 +419,15 @@ module arc_stepper #(
         end
     endfunction
     wire [2*NW-1:0] t_cs1 = csa(t_a1_q, t_b1_q, t_c1_q);
-    wire [2*NW-1:0] t_cs  = csa(t_cs1[NW-1:0], t_cs1[2*NW-1:NW], pick_k(ksel, nqn_load_q, 1, 1, -1, 1, -3));
-    wire [2*NW-1:0] p1_cs = csa(sx(p1_a1_q), sx(p1_b1_q), pick_k(ksel, nqn_load_q, 1, 0, 1, 1, 0));
-    wire [2*NW-1:0] g2_cs = csa(sx(g2_a1_q), sx(g2_b1_q), pick_k(ksel, nqn_load_q, 2, -1, -2, 0, -3));
+    wire [2*NW-1:0] t_cs  = csa(t_cs1[NW-1:0], t_cs1[2*NW-1:NW], t_k_q);
+    wire [2*NW-1:0] p1_cs = csa(sx(p1_a1_q), sx(p1_b1_q), p1_k_q);
+    wire [2*NW-1:0] g2_cs = csa(sx(g2_a1_q), sx(g2_b1_q), g2_k_q);
     /* verilator lint_on UNUSEDSIGNAL */
     wire          nqn = k_load_q ? nqn_load_q : !k_swap_q;          // q_new < 0
-    // Cycle 4 resolves the values (T's and p + q + 2's; p + 1's in cycle 5).
-    /* verilator lint_off UNUSEDSIGNAL */        // T's low bit: t_s_q's, read in cycle 6
-    wire [NW-1:0] t_ld = add_n(t_s_q, t_c_q);
-    /* verilator lint_on UNUSEDSIGNAL */
-    wire [UW-1:0] p1_ld = add_u(p1_s_q, p1_c_q), g2_ld = add_u(g2_s_q, g2_c_q);
+    // Cycle 4 resolves the values: p + q + 2's, and T's high bits for p + 1 (T's low bit
+    // needs no sum: the carries' is 0), which takes its own in cycle 5.  One adder for
+    // the two, its operands picked as they are registered, so no LUT follows its chain.
+    wire [UW-1:0] p1_ld = add_u(ls_q, lc_q), g2_ld = add_u(g2_s_q, g2_c_q);
 
     always @(posedge clk) begin
         if (rst) begin
@@ -434,8 +447,8 @@ module arc_stepper #(
             reload_q  <= go && bound;
             reload2_q <= reload_q;
             reload3_q <= reload2_q;
-            reload4_q <= reload3_q;
-            reload5_q <= reload4_q || (run && !run_q);   // a start begins here: cleared, resolved
+            reload4_q <= reload3_q || (run && !run_q);   // a start begins here (cleared, resolved)
+            reload5_q <= reload4_q;
             ld_t_q    <= reload5_q;
             reloading_q <= (go && bound) || reload_q || reload2_q || reload3_q || reload4_q || !run || !run_q;
             run_q     <= run;
@@ -459,31 +472,31 @@ module arc_stepper #(
         end
         nqn_load_q <= pb_q[UW-1];                   // the sign of q = P.b (loading)
         t_a1_q  <= t_a0;
+        t_k_q   <= pick_k(ksel, nqn_load_q, 1, 1, -1, 1, -3);
+        p1_k_q  <= pick_k(ksel, nqn_load_q, 1, 0, 1, 1, 0);
+        g2_k_q  <= pick_k(ksel, nqn_load_q, 2, -1, -2, 0, -3);
         t_b1_q  <= t_b0;
         t_c1_q  <= t_c0;
         p1_a1_q <= p1_a0[UW-1:0];
         p1_b1_q <= p1_b0[UW-1:0];
         g2_a1_q <= g2_a0[UW-1:0];
         g2_b1_q <= g2_b0[UW-1:0];
-        t_s_q   <= t_cs[NW-1:0];
-        t_c_q   <= t_cs[2*NW-1:NW];
-        p1_s_q  <= p1_cs[UW-1:0];
-        p1_c_q  <= p1_cs[NW+UW-1:NW];
+        t0_q    <= t_cs[0];
+        ls_q    <= reload4_q ? p1_cs[UW-1:0] : t_cs[NW-1:1];
+        lc_q    <= reload4_q ? p1_cs[NW+UW-1:NW] : t_cs[2*NW-1:NW+1];
         g2_s_q  <= g2_cs[UW-1:0];
         g2_c_q  <= g2_cs[NW+UW-1:NW];
         // The loop registers: cycle 4 clears T and p + q + 2 and resolves the reload values;
         // cycle 5 loads p + 1 with T's value (its high bits) and p + q + 2 with its own
         // (0 + inc1_q), cycle 6 loads T (0 + {p + 1, low bit}) and p + 1 with its own.  Not
         // running, T and p + q + 2 stay clear and p + 1 holds T's value, so a start is
-        // cycles 5 and 6.  (A clear wins over an enable: the flip-flops' reset input.)
+        // cycles 4 to 6.  (A clear wins over an enable: the flip-flops' reset input.)
         if (clr_q) t_q <= {NW{1'b0}};
         else if (ld_t_q || go) t_q <= t_next;
         if (ld_p_q || go) p1x_q <= p1x_next;
         if (clr_q) g2x_q <= zero;
         else if (reload5_q || go) g2x_q <= g2x_next;
-        // p + 1's load value: T's high bits in cycle 5, its own in 6 (an AND-OR, so that
-        // Yosys does not share one adder between the two).
-        p1_load_q <= ({UW{reload5_q}} & p1_ld) | ({UW{!reload5_q}} & t_ld[NW-1:1]);
+        p1_load_q <= p1_ld;                     // T's high bits in cycle 5, p + 1's own in 6
         g2_ld_q <= g2_ld;
         if (reload5_q) begin
             qpos_q  <= !nqn;
@@ -663,11 +676,11 @@ module arc_stepper #(
         so_v_q  <= &sog_v_q;
         szg_v_q <= equal_groups({v1_q[UW-1:2], 2'b00}, zero);
         sog_v_q <= equal_groups({v1_q[UW-1:2], 2'b11}, ~zero);
-        oct1_q <= oct1;
-        oct2_q <= oct2;
-        lt0_q <= lt_all_q[18 * {xm_q, mjn_q, mnn_q} +: 18];   // the first octant's (loading)
-        lt1_q <= lt_all_q[18 * oct1_q +: 18];
-        lt2_q <= lt_all_q[18 * oct2_q +: 18];
+        oct1_oh_q <= one_hot(oct1);
+        oct2_oh_q <= one_hot(oct2);
+        lt0_q <= table_of(oct0_oh_q, lt_all_q);    // the first octant's (loading)
+        lt1_q <= table_of(oct1_oh_q, lt_all_q);
+        lt2_q <= table_of(oct2_oh_q, lt_all_q);
         if (idle_q || step) begin             // (after the last step u, v show End)
             du_q    <= du_next;
             dv_q    <= dv_next;
@@ -706,6 +719,7 @@ module arc_stepper #(
             s3z_q   <= &s3z_g_q;
             oct_p_q <= oct_p;
             {xm_q, mjn_q, mnn_q} <= oct_0;
+            oct0_oh_q <= one_hot(oct_0);
             pa_q    <= (xm_q ? u_q : v_q) ^ {UW{mjn_q}};
             pb_q    <= (xm_q ? v_q : u_q) ^ {UW{mnn_q}};
             qpos_l_q <= !pb_q[UW-1];            // q = P.b > 0 (never 0)

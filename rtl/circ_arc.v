@@ -20,9 +20,9 @@
 //           of the command ......................................... arc_stepper
 //
 // Timing: `start` in an idle cycle captures the command (cycle 0); the set-up checks
-// it in cycle 2*WIDTH + 17; the stepper loads its loop in the next three cycles; from
-// cycle 2*WIDTH + 21 one step per `tick`, its strobes and dir levels registered
-// together a cycle later (the first in cycle 2*WIDTH + 22), except that the six cycles
+// it in cycle 2*WIDTH + 17; the stepper loads its loop in the next four cycles; from
+// cycle 2*WIDTH + 22 one step per `tick`, its strobes and dir levels registered
+// together a cycle later (the first in cycle 2*WIDTH + 23), except that the six cycles
 // after a step into a new octant reload the stepper (at most 9 octants per arc) and
 // take no step (`tick` is an enable).  `done` one cycle after the last step's
 // strobes.  Bad
@@ -63,12 +63,13 @@ module circ_arc #(
     localparam integer SW = 2 * WIDTH - 2;  // set-up sums: R^2, |End|^2 < 2^(2*WIDTH-5)
     localparam [1:0] IDLE = 2'd0, SETUP = 2'd1, RUN = 2'd2, LAST = 2'd3;  // SETUP ends with `check`
 
-    reg  [1:0]    state_q;
+    reg  [1:0]    state_q, state_d;
+    reg           idle_q;                   // state IDLE, as a flag of its own (the start's path)
     reg  [UW-1:0] u0_q, v0_q, u1_q, v1_q;   // start and end point relative to the centre
     reg           ccw_q, full_q;
 
-    wire load = start & (state_q == IDLE);
-    assign busy = state_q != IDLE;
+    wire load = start & idle_q;
+    assign busy = !idle_q;
 
     wire check, on_band, setup_busy;
     circle_setup #(.MW(UW), .SW(SW), .CARRY_SELECT(CARRY_SELECT == 1 ? 1 : 0)) u_setup (
@@ -149,9 +150,18 @@ module circ_arc #(
         .u(pos_u), .v(pos_v), .e(e)
     );
 
+    always @(*) begin
+        case (state_q)
+            IDLE:    state_d = load ? SETUP : IDLE;
+            SETUP:   state_d = !check ? SETUP : bad ? IDLE : at_start_q && !full_q ? LAST : RUN;
+            RUN:     state_d = fin ? IDLE : RUN;
+            default: state_d = IDLE;            // LAST: done
+        endcase
+    end
     always @(posedge clk) begin
         if (rst) begin
             state_q <= IDLE;
+            idle_q  <= 1'b1;
             u0_q    <= {UW{1'b0}};
             v0_q    <= {UW{1'b0}};
             u1_q    <= {UW{1'b0}};
@@ -161,20 +171,16 @@ module circ_arc #(
             done    <= 1'b0;
             error   <= 1'b0;
         end else begin
-            case (state_q)
-                IDLE: if (load) begin
-                    u0_q    <= {x0[WIDTH-1], x0} - {cx[WIDTH-1], cx};
-                    v0_q    <= {y0[WIDTH-1], y0} - {cy[WIDTH-1], cy};
-                    u1_q    <= {x1[WIDTH-1], x1} - {cx[WIDTH-1], cx};
-                    v1_q    <= {y1[WIDTH-1], y1} - {cy[WIDTH-1], cy};
-                    ccw_q   <= ccw;
-                    full_q  <= full;
-                    state_q <= SETUP;
-                end
-                SETUP: if (check) state_q <= bad ? IDLE : at_start_q && !full_q ? LAST : RUN;
-                RUN:   if (fin) state_q <= IDLE;
-                default: state_q <= IDLE;       // LAST: done
-            endcase
+            if (load) begin
+                u0_q    <= {x0[WIDTH-1], x0} - {cx[WIDTH-1], cx};
+                v0_q    <= {y0[WIDTH-1], y0} - {cy[WIDTH-1], cy};
+                u1_q    <= {x1[WIDTH-1], x1} - {cx[WIDTH-1], cx};
+                v1_q    <= {y1[WIDTH-1], y1} - {cy[WIDTH-1], cy};
+                ccw_q   <= ccw;
+                full_q  <= full;
+            end
+            state_q <= state_d;
+            idle_q  <= state_d == IDLE;
             done  <= state_q == LAST || fin;
             error <= check && bad;
         end

@@ -49,6 +49,7 @@ module circle_setup #(
                      ADD3 = 3'd6, CHECK = 3'd7;
 
     reg  [2:0]    state_q;
+    reg           idle_q;                   // state IDLE, as a flag of its own (the start's path)
     reg           sub_q;                    // second cycle of a two-cycle sum
     reg           check_q;                  // state CHECK, as a flag of its own
     reg  [SW-1:0] a_q, b_q;                 // R^2, |End|^2
@@ -76,7 +77,8 @@ module circle_setup #(
     wire [NZ-1:0] dhz_w = zero_groups({{(SK-1){1'b0}}, d_q[SW-1:SK-1]}),
                   ndhz_w = zero_groups({{(SK-1){1'b0}}, nd_q[SW-1:SK-1]});
 
-    assign busy = state_q != IDLE;
+    wire go = idle_q && start;
+    assign busy = !idle_q;
     assign check = check_q;
     assign on_band = dzero_q || (msmall_q && !t_q[SW-1]);
 
@@ -135,10 +137,25 @@ module circle_setup #(
         end
     endfunction
     /* verilator lint_on UNUSEDSIGNAL */
+    // Two-cycle difference x - y, as x + ~y + 1; with ECP5's carry cells (CARRY_SELECT = 0)
+    // as subtractions, which invert y inside the cells (~y would be a LUT in front of
+    // the chain), so the chunks pass a borrow instead of a carry.
+    /* verilator lint_off UNUSEDSIGNAL */        // the high chunk's borrow bits
+    function automatic [SW:0] dif2;          // {borrow or carry out of the low chunk, x - y}
+        input [SW-1:0] x, y;
+        input hb;                            // the low chunk's borrow or carry, registered
+        reg [SK:0] lo, hi;
+        begin
+            lo = {1'b0, x[SK-1:0]} - {1'b0, y[SK-1:0]};
+            hi = {x[SW-1:SK], 1'b0} - {y[SW-1:SK], hb};
+            dif2 = CARRY_SELECT == 0 ? {lo[SK], hi[SK:1], lo[SK-1:0]} : sum2(x, ~y, 1'b1, hb);
+        end
+    endfunction
+    /* verilator lint_on UNUSEDSIGNAL */
     wire [SW:0] a_sum = sum2(p[0 +: SW], p[PW +: SW], 1'b0, ca_q);          // ADD1
     wire [SW:0] b_sum = sum2(p[2*PW +: SW], msq, 1'b0, cb_q);
-    assign d_sum = sum2(b_q, ~a_q, 1'b1, cd_q);                               // ADD2
-    assign nd_sum = sum2(a_q, ~b_q, 1'b1, cnd_q);
+    assign d_sum = dif2(b_q, a_q, cd_q);                                      // ADD2
+    assign nd_sum = dif2(a_q, b_q, cnd_q);
     wire [SW-1:0] h_w = {{(SW-MW){1'b0}}, h_q};                               // ADD3: s + h - m^2
     wire [SW-1:0] tcs_s = s_q ^ h_w ^ ~msq;
     wire [SW-1:0] tcs_c = {(s_q[SW-2:0] & h_w[SW-2:0]) | (s_q[SW-2:0] & ~msq[SW-2:0]) |
@@ -156,6 +173,7 @@ module circle_setup #(
     always @(posedge clk) begin
         if (rst) begin
             state_q  <= IDLE;
+            idle_q   <= 1'b1;
             check_q  <= 1'b0;
             sq_d_q   <= 1'b0;
             sub_q    <= 1'b0;
@@ -180,10 +198,11 @@ module circle_setup #(
             sub_q   <= 1'b0;
             check_q <= state_q == ADD3 && sub_q;
             sq_d_q  <= state_q == ADD2 || state_q == MUL2;
-            round1_q  <= state_q == IDLE && start;             // PREP is next
-            round12_q <= (state_q == IDLE && start) || (state_q == ADD2 && sub_q);   // or MUL2's first cycle
+            idle_q  <= idle_q ? !start : state_q == CHECK;
+            round1_q  <= go;                                   // PREP is next
+            round12_q <= go || (state_q == ADD2 && sub_q);     // or MUL2's first cycle
             case (state_q)
-                IDLE: if (start) state_q <= PREP;
+                IDLE: if (go) state_q <= PREP;
                 PREP: state_q <= MUL1;          // round 1 starts
                 MUL1: if (mdone) state_q <= ADD1;
                 ADD1: begin

@@ -8,11 +8,12 @@
 // The 2*WIDTH-bit accumulator is four chunks, each with its own short carry chain;
 // a chunk's carry out is registered and enters the next chunk one cycle later
 // (carry-save at the chunk borders), so no carry chain is longer than
-// ceil((WIDTH+1) / 2) bits.  A border lies at bit WIDTH-1: the + 1 is the carry
-// into chunk 2 preset at the start, and no partial product reaches below it after
-// the chunks there have settled, so one flush cycle settles the last carries.  Every
-// accumulator bit is a plain sum bit (no preset), so each chain stays in one piece on
-// iCE40 (a carry that also feeds fabric logic splits it).
+// ceil((WIDTH+1) / 2) bits.  A border lies at bit WIDTH-1: the + 1 is preset there
+// (chunk 2's first bit) at the start, and no partial product reaches below it after
+// the chunks there have settled, so one flush cycle settles the last carries.  The
+// start clears the sums and carries with the flip-flops' synchronous reset, so the
+// chains' sums and carries go straight into flip-flops (no LUT after a chain; a
+// carry that also fed fabric logic would split an iCE40 chain).
 // The partial product is registered, from the operand registers only, so the chains
 // start at registers and no path runs from a, b to the accumulator: the first busy
 // cycle clears the accumulator while the first partial product is registered.  While
@@ -22,7 +23,7 @@
 // in cycles 1 .. WIDTH+2 (a clearing cycle, WIDTH partial products, a carry flush);
 // `done` is a one-cycle strobe in cycle WIDTH+3, when `product` becomes valid; product
 // holds until the next product's first busy cycle (it shows partial sums while busy).
-// `start` while busy is ignored; `rst` clears everything.
+// `start` while busy is ignored; `rst` returns to idle and clears the product.
 module seq_mult #(
     parameter integer WIDTH = 33    // operand width, signed (>= 3)
 ) (
@@ -81,11 +82,26 @@ module seq_mult #(
 
     always @(posedge clk) begin
         addend_q <= partial;        // every cycle: a register with no enable and no reset
+        // The first busy cycle clears the sum and the carries (the partial product
+        // registered while idle is not this product's) and presets the + 1 of
+        // -A * 2^(WIDTH-1); the other bits' clear is the flip-flops' synchronous reset.
+        if (rst || first_q) begin
+            acc_q   <= {{(PW-WIDTH){1'b0}}, !rst && mplier_q[WIDTH-1], {(WIDTH-1){1'b0}}};
+            carry_q <= 3'b000;
+        end else if (busy_q) begin
+            acc_q   <= acc_next;
+            carry_q <= carry_out[2:0];
+        end
+        // The operands: data registers (no reset), following a and b while idle (no
+        // clock enable: the enable nets of the parent's loops keep the global buffers).
+        if (!busy_q) begin
+            mcand_q  <= a_ext;
+            mplier_q <= b;
+        end else begin
+            mcand_q  <= {mcand_q[PW-2:0], 1'b0};
+            mplier_q <= {1'b0, mplier_q[WIDTH-1:1]};
+        end
         if (rst) begin
-            acc_q      <= {PW{1'b0}};
-            mcand_q    <= {PW{1'b0}};
-            mplier_q   <= {WIDTH{1'b0}};
-            carry_q    <= 3'b000;
             count_q    <= {NW{1'b0}};
             first_q    <= 1'b0;
             sign_q     <= 1'b0;
@@ -95,10 +111,6 @@ module seq_mult #(
         end else begin
             done <= 1'b0;
             if (!busy_q) begin
-                // The operand registers follow a and b while idle (no clock enable:
-                // the enable nets of the parent's loops keep the global buffers).
-                mcand_q  <= a_ext;
-                mplier_q <= b;
                 if (start) begin
                     count_q    <= {NW{1'b0}};
                     sign_q     <= 1'b0;
@@ -106,13 +118,7 @@ module seq_mult #(
                     busy_q     <= 1'b1;
                 end
             end else begin
-                // The first busy cycle clears the accumulator (the partial product
-                // registered while idle is not this product's) and presets the + 1.
-                acc_q      <= first_q ? {PW{1'b0}} : acc_next;
-                carry_q    <= first_q ? {1'b0, mplier_q[WIDTH-1], 1'b0} : carry_out[2:0];  // + 1 of -A * 2^(WIDTH-1)
                 first_q    <= 1'b0;
-                mcand_q    <= {mcand_q[PW-2:0], 1'b0};
-                mplier_q   <= {1'b0, mplier_q[WIDTH-1:1]};
                 sign_q     <= {{(32-NW){1'b0}}, count_q} + 32'd2 == WIDTH;
                 count_q    <= count_q + 1'b1;
                 last_q     <= count_q == BEFORE_LAST;

@@ -75,14 +75,14 @@ def arc_steps(cx, cy, x0, y0, x1, y1, ccw: bool, full: bool = False) -> list[Ste
 def arc_setup_cycles(width: int = 32) -> int:
     """Cycles from `start` to the check of rtl/circ_arc.v: load, two multiplier
     rounds (seq_mult at WIDTH + 1 bits: WIDTH + 4 cycles each) and three
-    two-cycle sums; the check is in cycle 2 * WIDTH + 17, the first step is taken four
-    cycles later (the stepper registers `run`, then loads its loop in two cycles) and its
+    two-cycle sums; the check is in cycle 2 * WIDTH + 17, the first step is taken five
+    cycles later (the stepper registers `run`, then loads its loop in three cycles) and its
     strobes come a cycle after it."""
     return 2 * width + 17
 
 
 RELOAD_CYCLES = 6       # after a step into a new octant, no step (rtl/arc_stepper.v)
-START_CYCLES = 2        # after `run` is registered, no step: reload cycles 5 and 6
+START_CYCLES = 3        # after `run` is registered, no step: reload cycles 4 to 6
 
 STEP_OUTPUTS = {"step_x": False, "step_y": False, "dir_x": False, "dir_y": False}
 
@@ -128,7 +128,7 @@ class ArcStepper(CycleModel):
         if not run:
             self.point = shown = (inputs["u0"], inputs["v0"], 0)
             self.done = False
-            reload = START_CYCLES               # a start: the loop's last two reload cycles
+            reload = START_CYCLES               # a start: the loop's last three reload cycles
         elif go:
             (u, v, e), u1, v1, ccw = self.point, inputs["u1"], inputs["v1"], inputs["ccw"]
             octant = _octant(u, v, ccw)

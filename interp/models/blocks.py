@@ -128,8 +128,8 @@ class SeqMult(CycleModel):
     """rtl/seq_mult.v: sequential signed a * b, radix 2, four carry-saved chunks.
 
     Cycle 0: start captures a, b.  Busy cycles k = 0 .. WIDTH+1: in cycle k the
-    partial product b_k * A * 2^k (k = WIDTH-1: subtracted, as ~A * 2^k plus a carry
-    into the chunk from bit k, preset in cycle 0) is registered, and the one registered
+    partial product b_k * A * 2^k (k = WIDTH-1: subtracted, as ~A * 2^k plus 2^k,
+    preset in the sum in cycle 0) is registered, and the one registered
     a cycle before is added chunk by chunk (cycle 0 clears the sum instead), each
     chunk's carry entering the next chunk one cycle later; the last cycle only settles
     those carries.  `done` follows.
@@ -170,7 +170,7 @@ class SeqMult(CycleModel):
         if self.mplier & 1:
             self.addend = (~self.mcand & -(1 << (w - 1)) & pmask) if self.sign_bit else self.mcand
         if self.count == 0:
-            self.acc, self.carry = 0, [0, self.mplier >> (w - 1), 0]    # the + 1 of -A * 2^(w-1)
+            self.acc, self.carry = (self.mplier >> (w - 1)) << (w - 1), [0, 0, 0]   # the + 1 of -A * 2^(w-1)
         else:
             cins = [0, *self.carry]
             sums = []
