@@ -187,8 +187,8 @@ module circle_setup #(
             t_q      <= {SW{1'b0}};
             ca_q     <= 1'b0;
             cb_q     <= 1'b0;
-            cd_q     <= 1'b0;
-            cnd_q    <= 1'b0;
+            cd_q     <= CARRY_SELECT == 0;      // no carry (as a borrow: ADD2's subtractions)
+            cnd_q    <= CARRY_SELECT == 0;
             ct_q     <= 1'b0;
             m_q      <= {MW{1'b0}};
             h_q      <= {MW{1'b0}};
