@@ -93,7 +93,7 @@ module arc_stepper #(
     reg  [UW-1:0]     p1_load_q, g2_ld_q;          // the reload values: p + 1's (T's high bits first), p + q + 2's
     reg               t0_q;                        // T's reload value's low bit
     reg  [UW-1:0]     ls_q, lc_q;                  // p + 1's load value in carry-save form (T's high bits first)
-    reg  [UW-1:0]     g2_s_q, g2_c_q;              // p + q + 2's reload value in carry-save form
+    reg  [UW-1:0]     gs_q, gc_q;                  // p + q + 2's reload value in carry-save form, then +1 (-1)
     // The step stage, a cycle behind: the step's decision and octant's end as tokens.
     reg               tok_q, td_l_q;
     reg               done_q;                      // the last step is out: later tokens are dropped
@@ -120,7 +120,8 @@ module arc_stepper #(
     reg  [24:0]       pos_q, dot_q;                // pos(D), dot(End + D, End) > 0 on the 5x5 grid
     reg  [24:0]       dot_small_q;                 // dot > 0 for |End|^2 <= 8, from End's low bits
     reg  [8*18-1:0]   lt_all_q;                    // lt_all, registered
-    reg  [17:0]       lt_q, lt0_q, lt1_q, lt2_q;   // {diagonal, axial} last-step tables: octant; first, next ones
+    reg  [17:0]       lt_q;                        // {diagonal, axial} last-step tables of the octant
+    reg  [35:0]       lt0_q, lt1_q, lt2_q;         // the first and the next ones, as two halves to OR
     reg  [7:0]        oct0_oh_q, oct1_oh_q, oct2_oh_q;   // the first and the next octants, one-hot (a cycle old)
     reg  [3:0]        oct_n_q;                     // the new octant and q > 0 (a reload's third cycle)
     reg  [17:0]       lt_n_q;                      // and its tables
@@ -236,16 +237,17 @@ module arc_stepper #(
             assign lt_all[18 * go_i +: 18] = tables_for(AU, AV, BU, BV, pos_q, dot_q);
         end
     endgenerate
-    // An octant's tables by a one-hot select (registered, so the 8:1 select is an AND-OR
-    // of two LUT levels).
+    // An octant's tables by a one-hot select (registered): two halves of four octants,
+    // each an AND-OR of two LUT levels, ORed where they are taken.
     function automatic [7:0] one_hot(input [2:0] o);
         one_hot = 8'd1 << o;
     endfunction
-    function automatic [17:0] table_of(input [7:0] oh, input [8*18-1:0] all);
+    function automatic [35:0] table_of(input [7:0] oh, input [8*18-1:0] all);   // {octants 4-7, 0-3}
         integer i;
         begin
-            table_of = 18'd0;
-            for (i = 0; i < 8; i = i + 1) table_of = table_of | ({18{oh[i]}} & all[18 * i +: 18]);
+            table_of = 36'd0;
+            for (i = 0; i < 8; i = i + 1)
+                table_of[18 * (i / 4) +: 18] = table_of[18 * (i / 4) +: 18] | ({18{oh[i]}} & all[18 * i +: 18]);
         end
     endfunction
     // |x| <= 2 from x's parts: its bits above 1 all 0 or all 1, and its low bits.
@@ -426,8 +428,14 @@ module arc_stepper #(
     wire          nqn = k_load_q ? nqn_load_q : !k_swap_q;          // q_new < 0
     // Cycle 4 resolves the values: p + q + 2's, and T's high bits for p + 1 (T's low bit
     // needs no sum: the carries' is 0), which takes its own in cycle 5.  One adder for
-    // the two, its operands picked as they are registered, so no LUT follows its chain.
-    wire [UW-1:0] p1_ld = add_u(ls_q, lc_q), g2_ld = add_u(g2_s_q, g2_c_q);
+    // the two, its operands picked as they are registered, so no LUT follows its chain;
+    // so also p + q + 2's adder, whose operands are its step (+1 or -1) from cycle 5 on,
+    // as the step register inc1_q is its load value in cycle 5.
+    wire [UW-1:0] p1_ld = add_u(ls_q, lc_q), g2_ld = add_u(gs_q, gc_q);
+    // The kind's next value and constants (registered with the kind, from its inputs: no
+    // logic shared with the operands' selects behind the kind's registers).
+    wire [3:0] ksel_d = {!idle_q && !qpos_q && st, !idle_q && !qpos_q && !st, !idle_q && qpos_q, idle_q};
+    wire       nqn_d  = pb_q[UW-1];
 
     always @(posedge clk) begin
         if (rst) begin
@@ -465,16 +473,13 @@ module arc_stepper #(
         g2_ism1_q  <= g2t == ~zero;
         g2_ism2_q  <= g2t == ~one;
         if (idle_q || reload_q) begin             // held through the reload
-            k_load_q <= idle_q;
-            k_turn_q <= !idle_q && qpos_q;
-            k_swap_q <= !idle_q && !qpos_q && !st;
-            k_st_q   <= !idle_q && !qpos_q && st;
+            {k_st_q, k_swap_q, k_turn_q, k_load_q} <= ksel_d;
+            t_k_q    <= pick_k(ksel_d, nqn_d, 1, 1, -1, 1, -3);
+            p1_k_q   <= pick_k(ksel_d, nqn_d, 1, 0, 1, 1, 0);
+            g2_k_q   <= pick_k(ksel_d, nqn_d, 2, -1, -2, 0, -3);
         end
-        nqn_load_q <= pb_q[UW-1];                   // the sign of q = P.b (loading)
+        nqn_load_q <= nqn_d;                        // the sign of q = P.b (loading)
         t_a1_q  <= t_a0;
-        t_k_q   <= pick_k(ksel, nqn_load_q, 1, 1, -1, 1, -3);
-        p1_k_q  <= pick_k(ksel, nqn_load_q, 1, 0, 1, 1, 0);
-        g2_k_q  <= pick_k(ksel, nqn_load_q, 2, -1, -2, 0, -3);
         t_b1_q  <= t_b0;
         t_c1_q  <= t_c0;
         p1_a1_q <= p1_a0[UW-1:0];
@@ -484,8 +489,8 @@ module arc_stepper #(
         t0_q    <= t_cs[0];
         ls_q    <= reload4_q ? p1_cs[UW-1:0] : t_cs[NW-1:1];
         lc_q    <= reload4_q ? p1_cs[NW+UW-1:NW] : t_cs[2*NW-1:NW+1];
-        g2_s_q  <= g2_cs[UW-1:0];
-        g2_c_q  <= g2_cs[NW+UW-1:NW];
+        gs_q    <= idle_q || reload3_q ? g2_cs[UW-1:0] : nqn ? ~zero : one;
+        gc_q    <= idle_q || reload3_q ? g2_cs[NW+UW-1:NW] : zero;
         // The loop registers: cycle 4 clears T and p + q + 2 and resolves the reload values;
         // cycle 5 loads p + 1 with T's value (its high bits) and p + q + 2 with its own
         // (0 + inc1_q), cycle 6 loads T (0 + {p + 1, low bit}) and p + 1 with its own.  Not
@@ -497,14 +502,13 @@ module arc_stepper #(
         if (clr_q) g2x_q <= zero;
         else if (reload5_q || go) g2x_q <= g2x_next;
         p1_load_q <= p1_ld;                     // T's high bits in cycle 5, p + 1's own in 6
-        g2_ld_q <= g2_ld;
+        g2_ld_q <= g2_ld;                       // (iCE40: p + q + 2's load value in cycle 5)
+        if (CARRY_SELECT != 1) inc1_q <= g2_ld; // cycle 5: p + q + 2 = 0 + inc1_q; then its step
+        else if (reload5_q) inc1_q <= nqn ? ~zero : one;
         if (reload5_q) begin
             qpos_q  <= !nqn;
-            inc1_q  <= nqn ? ~zero : one;
             inc2_q  <= nqn ? ~one : two;
             inc1p_q <= nqn ? ~zero : one;
-        end else if (clr_q && CARRY_SELECT != 1) begin
-            inc1_q  <= g2_ld;                   // (cycle 5: p + q + 2 = 0 + inc1_q; iCE40 selects after)
         end
     end
 
@@ -725,7 +729,7 @@ module arc_stepper #(
             qpos_l_q <= !pb_q[UW-1];            // q = P.b > 0 (never 0)
             p_q     <= add_u(pa_q, {{(UW-1){1'b0}}, mjn_q});    // P.a
             q_q     <= add_u(pb_q, {{(UW-1){1'b0}}, mnn_q});    // P.b
-            lt_q    <= lt0_q;
+            lt_q    <= lt0_q[35:18] | lt0_q[17:0];
         end else if (reload3_q) begin
             {xm_q, mjn_q, mnn_q, qpos_l_q} <= oct_n_q;
             lt_q    <= lt_n_q;
@@ -734,7 +738,7 @@ module arc_stepper #(
         // in the first, the new values registered in the second); the step stage's next
         // step comes after the reload.
         oct_n_q  <= {k_st_q ? oct2 : oct1, !qpos_l_q && !k_st_q};
-        lt_n_q   <= k_st_q ? lt2_q : lt1_q;
+        lt_n_q   <= k_st_q ? lt2_q[35:18] | lt2_q[17:0] : lt1_q[35:18] | lt1_q[17:0];
     end
 endmodule
 `default_nettype wire

@@ -30,7 +30,9 @@
 // point more than half a step off the circle; a start or end coordinate relative
 // to the centre outside -2^(WIDTH-3) < u < 2^(WIDTH-3) (radius limit of the
 // internal widths).  End = start: a full circle when `full`, else `done` with no
-// step.  `start` while busy is ignored; `rst` returns to idle at once.
+// step.  `start` while busy is ignored; `rst` returns to idle at once.  While idle the
+// command's registers follow the inputs (the stepper shows the start point as its
+// position); `start` keeps the command of its cycle.
 module circ_arc #(
     parameter integer WIDTH = 32,   // width of the signed absolute coordinates (>= 6)
     parameter integer CARRY_SELECT = 1  // long adders: 1 cut in two (iCE40), 0 one chain, 2 one chain of ECP5 carry cells
@@ -171,7 +173,7 @@ module circ_arc #(
             done    <= 1'b0;
             error   <= 1'b0;
         end else begin
-            if (load) begin
+            if (idle_q) begin                   // (idle: the command follows the inputs)
                 u0_q    <= {x0[WIDTH-1], x0} - {cx[WIDTH-1], cx};
                 v0_q    <= {y0[WIDTH-1], y0} - {cy[WIDTH-1], cy};
                 u1_q    <= {x1[WIDTH-1], x1} - {cx[WIDTH-1], cx};

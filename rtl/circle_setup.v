@@ -60,10 +60,20 @@ module circle_setup #(
     reg  [MW-1:0] m_q, h_q;                 // m = |d|, (m - 1) div 2
     reg           dzero_q, msmall_q;
     // Their first stage, zero flags of 4-bit groups (d, and the bits of d and -d that
-    // msmall reads): the wide compares take two cycles of MUL2 (d holds still in it).
-    localparam integer NZ = (SW + 3) / 4, NS = (SK + 4) / 4;
+    // msmall reads), then ANDs of four: the wide compares take three cycles of MUL2 (d
+    // holds still in it).
+    localparam integer NZ = (SW + 3) / 4, NS = (SK + 4) / 4, NZ2 = (NZ + 3) / 4;
     reg  [NZ-1:0] dz_q;
     reg  [NS-1:0] dhz_q, ndhz_q;
+    reg  [NZ2-1:0] dz2_q, dhz2_q, ndhz2_q;  // their second stage: ANDs of four
+    function automatic [NZ2-1:0] all_groups(input [NZ-1:0] f);
+        integer i;
+        reg [4*NZ2-1:0] w;
+        begin
+            w = {{(4*NZ2-NZ){1'b1}}, f};
+            for (i = 0; i < NZ2; i = i + 1) all_groups[i] = &w[4*i +: 4];
+        end
+    endfunction
     function automatic [NZ-1:0] zero_groups(input [SW-1:0] x);
         integer i;
         reg [4*NZ-1:0] w;
@@ -168,6 +178,9 @@ module circle_setup #(
         dz_q    <= dz_w;
         dhz_q   <= dhz_w[NS-1:0];
         ndhz_q  <= ndhz_w[NS-1:0];
+        dz2_q   <= all_groups(dz_q);
+        dhz2_q  <= all_groups({{(NZ-NS){1'b1}}, dhz_q});
+        ndhz2_q <= all_groups({{(NZ-NS){1'b1}}, ndhz_q});
     end
 
     always @(posedge clk) begin
@@ -227,8 +240,8 @@ module circle_setup #(
                         m_q <= m_abs;
                     end
                     h_q      <= (m_q - 1'b1) >> 1;
-                    dzero_q  <= &dz_q;
-                    msmall_q <= d_q[SW-1] ? &ndhz_q : &dhz_q;
+                    dzero_q  <= &dz2_q;
+                    msmall_q <= d_q[SW-1] ? &ndhz2_q : &dhz2_q;
                     if (mdone) state_q <= ADD3;
                 end
                 ADD3: begin

@@ -203,12 +203,13 @@ class CircArc(CycleModel):
         error = 0
         w = self.width
         state = self.state
-        if state == self.IDLE and inputs.get("start"):
+        if state == self.IDLE:                  # the command follows the inputs; `start` keeps it
             cx, cy = wrap(inputs["cx"], w), wrap(inputs["cy"], w)
             self.u0, self.v0 = wrap(inputs["x0"], w) - cx, wrap(inputs["y0"], w) - cy
             self.u1, self.v1 = wrap(inputs["x1"], w) - cx, wrap(inputs["y1"], w) - cy
             self.ccw, self.full = int(bool(inputs.get("ccw"))), int(bool(inputs.get("full")))
-            self.state, self.count = self.SETUP, arc_setup_cycles(w) - 1
+            if inputs.get("start"):
+                self.state, self.count = self.SETUP, arc_setup_cycles(w) - 1
         elif state == self.SETUP:
             self.count -= 1
             if self.count == 0:

@@ -210,7 +210,7 @@ class CircleSetup(CycleModel):
     def reset(self) -> None:
         self.state = self.sub = self.a = self.b = self.d = self.nd = self.t = 0
         self.m = self.h = self.dzero = self.msmall = self.tcs_s = self.tcs_c = 0
-        self.zeros = (0, 0, 0)          # d == 0, d's and -d's bits from SW/2 - 1 up == 0
+        self.zeros = self.zeros2 = (0, 0, 0)   # d == 0, d's and -d's bits from SW/2 - 1 up == 0 (two stages)
         self.carry = {"a": 0, "b": 0, "d": 0, "nd": 0, "t": 0}
         for mult in self.mults:
             mult.reset()
@@ -257,7 +257,8 @@ class CircleSetup(CycleModel):
         self.mults[3].clock({"start": int(round1 or round2), "a": op3, "b": op3})
         # Registers.  ADD3's carry-save step and the first stage of the wide zero tests,
         # every cycle (-m^2 = ~m^2 + 1).
-        d_zero, dhi_zero, ndhi_zero = self.zeros
+        d_zero, dhi_zero, ndhi_zero = self.zeros2
+        self.zeros2 = self.zeros
         self.zeros = (int(self.d == 0), int(self.d >> (self.sk - 1) == 0), int(self.nd >> (self.sk - 1) == 0))
         nsq = ~p[3] & mask
         self.tcs_s = self.a ^ self.h ^ nsq
