@@ -90,7 +90,7 @@ module arc_stepper #(
     reg               qpos_q;                      // q > 0
     reg  [UW-1:0]     inc1_q, inc2_q;              // +1, +2 (-1, -2 when q < 0): p + q + 2's steps
     reg  [UW-1:0]     inc1p_q;                     // +1 (-1): p + 1's step
-    reg  [UW-1:0]     p1_load_q, g2_ld_q;          // the reload values: p + 1's (T's high bits first), p + q + 2's
+    reg  [UW-1:0]     p1_load_q;                   // p + 1's reload value (T's high bits first)
     reg               t0_q;                        // T's reload value's low bit
     reg  [UW-1:0]     ls_q, lc_q;                  // p + 1's load value in carry-save form (T's high bits first)
     reg  [UW-1:0]     gs_q, gc_q;                  // p + q + 2's reload value in carry-save form, then +1 (-1)
@@ -334,7 +334,7 @@ module arc_stepper #(
     assign t_next   = CARRY_SELECT != 1 ? t_mux : ld_t_q ? {p1x_q, t0_q}
                     : td ? add_n(t_q, {g2x_q, 1'b1}) : add_n(t_q, {p1x_q, 1'b1});
     assign p1x_next = CARRY_SELECT != 1 ? p1x_mux : ld_p_q ? p1_load_q : add_u(p1x_q, inc1p_q);
-    assign g2x_next = CARRY_SELECT != 1 ? g2x_mux : reload5_q ? g2_ld_q : td ? add_u(g2x_q, inc2_q) : add_u(g2x_q, inc1_q);
+    assign g2x_next = CARRY_SELECT != 1 ? g2x_mux : reload5_q ? inc1_q : td ? add_u(g2x_q, inc2_q) : add_u(g2x_q, inc1_q);
     // The octant ends: p' >= 0 (q > 0) or p' + q' >= 0 (q < 0), i.e. p + 1 >= 0, or
     // p + q + 2 >= 0 after a diagonal step and p + q + 1 >= 0 after an axial one.
     // p + q + 1 < 0 <=> p + q + 2 <= 0: its sign and a registered zero flag.
@@ -502,9 +502,7 @@ module arc_stepper #(
         if (clr_q) g2x_q <= zero;
         else if (reload5_q || go) g2x_q <= g2x_next;
         p1_load_q <= p1_ld;                     // T's high bits in cycle 5, p + 1's own in 6
-        g2_ld_q <= g2_ld;                       // (iCE40: p + q + 2's load value in cycle 5)
-        if (CARRY_SELECT != 1) inc1_q <= g2_ld; // cycle 5: p + q + 2 = 0 + inc1_q; then its step
-        else if (reload5_q) inc1_q <= nqn ? ~zero : one;
+        inc1_q  <= g2_ld;                       // cycle 5: p + q + 2's value (0 + inc1_q), then its step
         if (reload5_q) begin
             qpos_q  <= !nqn;
             inc2_q  <= nqn ? ~one : two;
