@@ -109,9 +109,16 @@ def _tokens(path: Path) -> set[str]:
     return set(_TOKEN.findall(_COMMENT.sub(" ", path.read_text())))
 
 
-def sources(toplevel: str, rtl: Path = RTL) -> list[Path]:
-    """The top's file and, transitively, every rtl/ module it names (like -y rtl)."""
+def sources(toplevel: str, family: str | None = None, rtl: Path = RTL) -> list[Path]:
+    """The top's file and, transitively, every rtl/ module it names (like -y rtl).
+
+    `family` ("ice40", "ecp5") picks the file list of that FPGA family: a module
+    with a form in rtl/<family>/ (same name and ports, proved equivalent to the
+    portable one by `make formal`) is read from there instead of rtl/.
+    """
     files = {p.stem: p for p in rtl.glob("*.v")}
+    if family:
+        files.update({p.stem: p for p in (rtl / family).glob("*.v")})
     if toplevel not in files:
         raise FileNotFoundError(f"rtl/{toplevel}.v")
     todo, seen = [toplevel], []
@@ -255,7 +262,7 @@ def implement(target: Target, family: Family, force: bool = False, log=print) ->
     """Synthesize and place-and-route one target; return (and cache) its row."""
     extra = target.per_family.get(family.name, {})
     target = Target(target.name, target.toplevel, {**target.parameters, **extra}, target.seeds)
-    files = sources(target.toplevel)
+    files = sources(target.toplevel, family.name)
     work = run_dir(target, family)
     key = _key(target, family, files)
     cached = work / "result.json"
@@ -374,7 +381,7 @@ def gate_netlist(target: Target, family: str = "ice40", keep: list[str] = ()) ->
     `keep`: internal nets the bench watches; Yosys would trim their
     unobservable bits (such as F's LSB), so they are marked keep.
     """
-    files = sources(target.toplevel)
+    files = sources(target.toplevel, family if family in FAMILIES else None)
     work = BUILD / "gate" / f"{target.name.replace('/', '-')}_{family}"
     key = _key(target, FAMILIES.get(family, FAMILIES["ice40"]), files) + family + ",".join(keep)
     kept = f"setattr -set keep 1 {' '.join('w:' + k for k in keep)}; " if keep else ""
@@ -415,7 +422,7 @@ def bitstream(board: str, out: Path, log=print) -> Path:
     """constraints/board_top.v (the linear core, step/dir pins, command port) to a bitstream."""
     family, clk_hz, device, pins, packer, ext = BOARDS[board]
     wrapper = CONSTRAINTS / "board_top.v"
-    files = sources("su1571551") + [wrapper]
+    files = sources("su1571551", family) + [wrapper]
     cmd = [str(verilator_bin() / "verilator"), "--lint-only", "-Wall", "--quiet", f"-I{RTL}", str(wrapper)]
     lint = subprocess.run(cmd, capture_output=True, text=True)
     if lint.returncode != 0:
