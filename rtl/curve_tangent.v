@@ -17,7 +17,7 @@
 // after it, both in the orientation before the step; d = 1 when E < 0):
 //   literal:  E' = E + L' - 4S' - L + 2S + 2L'·d;   major axis changes: E' += 3S' - 3L'
 //   improved: E' = E + L' - 3S' - L +  S + 2L'·d;   major axis changes: E' := -E' - L' - S'
-// (improved: trapezoid slope, and the deviation changes sign with the axis; README).
+// (improved: trapezoid slope, and the deviation changes sign with the axis; docs/algorithms.md).
 //
 // Ports beyond the standard ones (all sampled with `start` while idle):
 //   x0, y0        start node (signed WIDTH)

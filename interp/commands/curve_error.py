@@ -1,7 +1,7 @@
 """`interp curve-error [--csv FILE]`: the paper's error experiment, through the RTL.
 
 The four curves at the paper's four scalings (A, B), each over a fixed range
-(README, section curve), in three modes: literal (the paper's points 1-9),
+(docs/algorithms.md, section 4), in three modes: literal (the paper's points 1-9),
 improved, and improved with E re-anchored to the true curve every 8 steps.
 """
 from __future__ import annotations

@@ -29,7 +29,7 @@ class CurveCore(Core):
         parser.add_argument("--count", type=int, help="number of steps, or the step budget with --end-x/--end-y")
         parser.add_argument("--reverse", action="store_true", help="travel against the tangent")
         parser.add_argument("--mode", choices=["literal", "improved"], default="literal",
-                            help="literal: the paper's points 1-9; improved: see README")
+                            help="literal: the paper's points 1-9; improved: see docs/algorithms.md")
         parser.add_argument("--reanchor", type=int, default=0, metavar="N",
                             help="restart every N steps with E from the true curve (0: never)")
         parser.add_argument("--width", type=int, default=16, help="coordinate width WIDTH (default 16)")

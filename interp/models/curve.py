@@ -17,7 +17,7 @@ The merged formula of point 7 (garbled in the OCR), derived from 5 + 6:
     E' = E + L' − 4S' − L + 2S + (2L' if E < 0 else 0)
 and with 8 folded in (major axis changes): E' += 3S' − 3L'.
 
-`improved` mode (not in the paper; see README): the step uses the mean of the
+`improved` mode (not in the paper; see docs/algorithms.md): the step uses the mean of the
 old and new minor projections (trapezoid slope, S + S' instead of 2S'), and on a
 change of major axis the deviation part of E changes sign (a node above the
 curve is behind it horizontally), so E := −E − L' − S'.  Merged:
