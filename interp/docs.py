@@ -104,6 +104,56 @@ def rtl_parameters(module: str, rtl: Path = RTL) -> list[Parameter]:
             re.findall(r"parameter\s+(?:integer\s+)?(\w+)\s*=\s*([^,/\n]+),?\s*(?://\s*(.*))?", header)]
 
 
+def verilator_ports(module: str, rtl: Path = RTL) -> list[tuple[str, str, int]]:
+    """(name, direction, width) of the module's ports at its default parameters, as
+    Verilator elaborates them (--json-only): an independent check of rtl_ports."""
+    import subprocess
+
+    from .sim import verilator_bin
+
+    with tempfile.TemporaryDirectory() as tmp:
+        run = subprocess.run([str(verilator_bin() / "verilator"), "--json-only", "-Wno-fatal", "-Wno-lint",
+                              "-Wno-style", f"-I{rtl}", "--top-module", module, str(rtl / f"{module}.v"),
+                              "-Mdir", tmp], capture_output=True, text=True)
+        trees = list(Path(tmp).glob("*.tree.json"))
+        if run.returncode or not trees:
+            raise RuntimeError(f"verilator --json-only failed on rtl/{module}.v: {run.stderr.strip()[:300]}")
+        tree = json.loads(trees[0].read_text())
+    types, ports = {}, []
+
+    def walk(node):
+        if isinstance(node, dict):
+            if node.get("type") == "BASICDTYPE":
+                types[node["addr"]] = node.get("range")
+            if node.get("type") == "VAR" and node.get("isPrimaryIO"):
+                ports.append((node["name"], node["direction"].lower(), node["dtypep"]))
+            for value in node.values():
+                walk(value)
+        elif isinstance(node, list):
+            for value in node:
+                walk(value)
+
+    walk(tree)
+    out = []
+    for name, direction, dtype in ports:
+        rng = types.get(dtype)
+        msb, lsb = (int(v) for v in rng.split(":")) if rng else (0, 0)
+        out.append((name, direction, abs(msb - lsb) + 1))
+    return out
+
+
+def width_value(width: str, parameters: dict[str, int]) -> int:
+    """A width expression of rtl_ports ("WIDTH", "PW+4", ...) at the given parameter values."""
+    expr = re.sub(r"[A-Za-z_]\w*", lambda m: str(parameters[m.group(0)]), width)
+    if not re.fullmatch(r"[\d+\-*() ]+", expr):
+        raise ValueError(f"width expression {width!r}")
+    return int(eval(expr))      # digits and + - * ( ) only
+
+
+def default_parameters(module: str, rtl: Path = RTL) -> dict[str, int]:
+    return {p.name: int(p.default) for p in rtl_parameters(module, rtl)}
+
+
 def _cells(line: str) -> list[str]:
     return [c.strip().strip("`").strip() for c in line.strip().strip("|").split("|")]
 

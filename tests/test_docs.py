@@ -85,6 +85,17 @@ def test_ports_check_catches_changes(tmp_path):
         assert len(diff) >= 1 and all("\n" not in line for line in diff), what
 
 
+@pytest.mark.parametrize("module", docs.MODULES)
+def test_port_parser_agrees_with_verilator(module):
+    """The header parser the ports check uses, against Verilator's elaboration
+    (names, directions, widths at the default parameters)."""
+    source = docs.port_source(module)
+    defaults = docs.default_parameters(source)
+    mine = [(p.name, p.direction, docs.width_value(p.width, defaults)) for p in docs.rtl_ports(source)]
+    theirs = docs.verilator_ports(source)
+    assert mine == theirs, f"rtl/{source}.v: header parser {mine} != verilator {theirs}"
+
+
 @pytest.mark.parametrize("rng, width", [(None, "1"), ("[7:0]", "8"), ("[WIDTH-1:0]", "WIDTH"),
                                         ("[PW+3:0]", "PW+4"), ("[W-1:0]", "W"), ("[QLW-1:0]", "QLW")])
 def test_width_expressions(rng, width):
