@@ -595,23 +595,25 @@ def _start_signal(d: Diagram) -> str:
     return f"{d.signals[0].path.rsplit('.', 1)[0]}.start"
 
 
-def regenerate_wave(module: str) -> Path:
+def simulated_wave(module: str) -> dict:
+    """The module's diagram as WaveDrom data, from a fresh Icarus simulation."""
     d = diagrams()[module]
+    scope = d.signals[0].path.rsplit(".", 1)[0]
+    events = [(ev if ev == "start" else f"{scope}.{ev}", b, a) for ev, b, a in d.windows]
+    start = _start_signal(d)
+    wanted = {s.path for s in d.signals} | {d.clock, start} | {ev for ev, _, _ in events if ev != "start"}
     with tempfile.TemporaryDirectory() as tmp:
         vcd = Path(tmp) / "w.vcd"
         simulate(d, vcd)
-        start = _start_signal(d)
-        wanted = {s.path for s in d.signals} | {d.clock, start}
-        for ev, _, _ in d.windows:
-            if ev != "start":
-                wanted.add(f"{d.signals[0].path.rsplit('.', 1)[0]}.{ev}")
         samples = read_vcd(vcd, wanted, d.clock)
-    scope = d.signals[0].path.rsplit(".", 1)[0]
-    d.windows = [(ev if ev == "start" else f"{scope}.{ev}", b, a) for ev, b, a in d.windows]
-    wave = to_wavedrom(d, samples, start)
+    d.windows = events
+    return to_wavedrom(d, samples, start)
+
+
+def regenerate_wave(module: str) -> Path:
     WAVES.mkdir(parents=True, exist_ok=True)
     out = WAVES / f"{module}.json"
-    out.write_text(dump_wavedrom(wave))
+    out.write_text(dump_wavedrom(simulated_wave(module)))
     return out
 
 

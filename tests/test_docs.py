@@ -11,6 +11,7 @@ Regenerate with `make docs`.
 from __future__ import annotations
 
 import csv
+import json
 import shutil
 
 import pytest
@@ -52,6 +53,17 @@ def test_svg_check_catches_a_stale_svg(tmp_path):
     text = (tmp_path / src.name).read_text()
     (tmp_path / src.name).write_text(text.replace('"wave": "p', '"wave": "n', 1))
     assert len(docs.stale_svgs(tmp_path)) == 1
+
+
+@pytest.mark.parametrize("module", docs.MODULES)
+def test_diagram_is_the_simulation(module):
+    """Each diagram's JSON is what the RTL does now: re-simulated on Icarus (about 2 s each)."""
+    if shutil.which("iverilog") is None:
+        pytest.skip("iverilog not installed (make deps installs it)")
+    committed = json.loads((docs.WAVES / f"{module}.json").read_text())
+    fresh = docs.simulated_wave(module)
+    assert committed == fresh, (f"docs/cores/wavedrom/{module}.json differs from a fresh simulation: "
+                                f"DOCS_WAVES=1 make docs (then check the page's timing text)")
 
 
 # ---------------------------------------------------------------- (b) ports
