@@ -221,6 +221,11 @@ ALIASES = {"su1665343": "circ_su1665343", "curve": "curve_tangent",
            "circ_std": "circ_quadrant", "circ_accel": "circ_quadrant"}
 
 
+# Modules the synthesis flow does not build on their own, and why.
+NOT_SYNTHESIZED = {"sync_fifo": "the synthesis flow does not build it on its own; "
+                                "it is counted inside `step_sync` and `motion_top`"}
+
+
 def module_of(core: str) -> str | None:
     base = core.split("/")[0].replace("-", "_")
     base = ALIASES.get(base, base)
@@ -239,12 +244,16 @@ def resources_table(module: str, rows: list[dict]) -> str:
     if not mine:
         if not rows:
             return "_No figures yet: docs/resources.csv is missing. Run `make synth` and `make docs`._"
-        return ("_No row for this module in docs/resources.csv (the synthesis flow does not build it "
-                "on its own); it is counted inside the cores that instance it._")
+        if module in NOT_SYNTHESIZED:
+            return f"_No row in docs/resources.csv: {NOT_SYNTHESIZED[module]}._"
+        return ("_No row for this module in docs/resources.csv yet: `make synth`, copy out/synth.csv "
+                "to docs/resources.csv, `make docs`._")
     lines = ["| build (flow name) | family | device | Fmax (MHz) | LUTs | FFs |", "|---|---|---|---|---|---|"]
     for r in mine:
         fmax = r.get("fmax_mhz") or "—"
         lines.append(f"| `{r['core']}` | {r['family']} | {r['device']} | {fmax} | {r['luts']} | {r['ffs']} |")
+    if any(not r.get("fmax_mhz") for r in mine):
+        lines.append("\n— : does not fit that device (the flow reports its area after synthesis, no Fmax).")
     return "\n".join(lines)
 
 
