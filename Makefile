@@ -20,7 +20,7 @@ $(VENV)/.installed: pyproject.toml
 	touch $@
 
 test: deps lint
-	$(VENV)/bin/pytest -n $(JOBS) tb
+	$(VENV)/bin/pytest -n $(JOBS) tb tests
 
 demo: deps
 	$(INTERP) demo --out out/demo
@@ -61,7 +61,7 @@ test-synth: fpga-deps
 
 # SymbiYosys proofs of formal/*.sby (PASS stamps: a proof re-runs when its sources change).
 formal: fpga-deps
-	$(PY) -m interp.formal
+	$(PY) -m interp.flows.formal
 
 clean:
 	rm -rf sim_build out .pytest_cache

@@ -22,7 +22,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    from .. import synth
+    from ..flows import synth
 
     if not synth.have_tools():
         raise UsageError("the YoWASP tools are not installed: pip install -e '.[fpga]' (or make synth)")

@@ -16,7 +16,7 @@ from interp.models.base import move, steps_of
 from interp.models.su1665343 import (Su1665343, expected_per_step, move_cycles, path_string,
                                      per_step, r_max, radial_error, setup_cycles, start_error, steps,
                                      trace)
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 # Patent Table 2 (R = 12), SPEC §4: (step, kind, CT7, CT8, commutator code, F after).
 TABLE2 = [
@@ -244,7 +244,7 @@ async def reset_at_any_cycle(dut):
 
 @pytest.mark.parametrize("width", [5, 12])
 def test_circ_su1665343(sim, width):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="circ_su1665343", test_module="test_circ_su1665343", sim=sim,
                parameters={"WIDTH": width}, name=f"circ_su1665343_w{width}")
 
@@ -255,7 +255,7 @@ SWEEP = {"verilator": 2000, "icarus": 300}
 
 def test_sweep(sim, tmp_path):
     """Native harness: each R's step sequence and cycle count against the step-level model."""
-    from interp.speed import build_harness
+    from interp.simulation.speed import build_harness
     rhi = SWEEP[sim]
     out = tmp_path / "paths.txt"
     cmd = build_harness("sweep_su1665343", sim, {"SWEEP_WIDTH": 12})

@@ -6,7 +6,7 @@ import pytest
 from cocotb.triggers import Timer
 
 from interp.models.su1665343 import commutator, oc_value
-from interp.tbkit import seeded_rng
+from interp.testing.tbkit import seeded_rng
 
 
 @cocotb.test()
@@ -34,6 +34,6 @@ async def channels(dut):
 
 @pytest.mark.parametrize("width", [6])
 def test_commutator(sim, width):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="commutator", test_module="test_commutator", sim=sim,
                parameters={"WIDTH": width}, name=f"commutator_w{width}")

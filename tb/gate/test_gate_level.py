@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from interp.sim import run_cocotb
+from interp.simulation.runner import run_cocotb
 
 TB = Path(__file__).resolve().parents[1]
 pytestmark = pytest.mark.skipif(os.environ.get("INTERP_GATE") != "1",
@@ -29,7 +29,7 @@ CASES = [
 
 @pytest.mark.parametrize("case", CASES, ids=[c[0] for c in CASES])
 def test_gate_level(sim, case):
-    from interp.synth import Target, gate_netlist, resolved
+    from interp.flows.synth import Target, gate_netlist, resolved
 
     name, top, params, module, folder, cases, keep = case
     # The netlist of the iCE40 flow; Verilator gets Yosys's generic gates
@@ -42,9 +42,9 @@ def test_gate_level(sim, case):
 
 
 def test_fusesoc_core_files_are_current():
-    from interp import fusesoc
+    from interp.flows import fusesoc
 
-    assert fusesoc.main(["--check"]) == 0, "run python -m interp.fusesoc"
+    assert fusesoc.main(["--check"]) == 0, "run python -m interp.flows.fusesoc"
 
 
 @pytest.mark.parametrize("core", ["su1571551"])

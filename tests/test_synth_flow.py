@@ -1,5 +1,5 @@
 """The FPGA flow's own logic (no tools needed): source scan, parameters, report parsing."""
-from interp import fusesoc, synth
+from interp.flows import fusesoc, synth
 
 
 def test_sources_follow_instantiations():

@@ -16,7 +16,7 @@ import sys
 import time
 from pathlib import Path
 
-from .sim import ROOT
+from ..simulation.runner import ROOT
 
 FORMAL = ROOT / "formal"
 BUILD = ROOT / "build" / "formal"

@@ -26,7 +26,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .sim import ROOT, RTL, verilator_bin
+from ..simulation.runner import ROOT, RTL, verilator_bin
 
 BUILD = ROOT / "build" / "synth"
 WIDTH = 32
@@ -208,7 +208,7 @@ def flow_id(target: Target) -> str:
 def cli_names() -> dict[str, str]:
     """Verilog top -> the CLI's core name, for the cores the CLI knows."""
     try:
-        from .cores import load_all
+        from ..cores import load_all
         return {core.toplevel: core.name for core in load_all().values()}
     except Exception as exc:          # a core module in progress must not stop the flow
         print(f"synth: CLI core registry not loaded ({exc})", file=sys.stderr)
