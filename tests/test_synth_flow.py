@@ -1,4 +1,7 @@
 """The FPGA flow's own logic (no tools needed): source scan, parameters, report parsing."""
+import pytest
+
+from interp.cores import UsageError, load_all
 from interp.flows import fusesoc, synth
 
 
@@ -9,9 +12,37 @@ def test_sources_follow_instantiations():
                           "mux2", "increment_former", "start_stop", "carry_select_add", "axis_order"}
 
 
-def test_only_declared_parameters_are_passed():
-    t = synth.resolved(synth.Target("x", "mux2", {"WIDTH": 32, "EXACT": 1}))
-    assert t.parameters == {"WIDTH": 32}
+def test_a_parameter_the_module_lacks_is_an_error():
+    assert synth.checked(synth.Target("x", "mux2", {"WIDTH": 32})).parameters == {"WIDTH": 32}
+    with pytest.raises(UsageError, match="declares no parameter EXACT"):
+        synth.checked(synth.Target("x", "mux2", {"WIDTH": 32, "EXACT": 1}))
+    with pytest.raises(UsageError, match="declares no parameter WIDTH"):
+        synth.checked(synth.Target("m", "motion_top", {}), {"WIDTH": 32})
+
+
+def test_every_table_row_sets_only_declared_parameters():
+    """A row's parameter the module lacks would be dropped by Yosys: the core would be
+    synthesized at its default width."""
+    for row in synth.CORES:
+        synth.checked(row)
+        if row.width:
+            assert row.width in synth.declared_parameters(synth.RTL / f"{row.toplevel}.v"), row.name
+    motion = next(t for t in synth.CORES if t.toplevel == "motion_top")
+    assert motion.parameters["W"] == synth.WIDTH
+
+
+def test_every_cli_core_has_a_table_row():
+    tops = {t.toplevel for t in synth.CORES}
+    for name, core in load_all().items():
+        assert core.toplevel in tops, f"{name}: add rtl/{core.toplevel}.v to CORES in interp/flows/synth.py"
+
+
+def test_utilisation_parsing():
+    log = ("Info: Device utilisation:\nInfo: \t         ICESTORM_LC:     576/   7680     7%\n"
+           "Info: \t        ICESTORM_RAM:       0/     32     0%\n\nInfo: Placed 0 cells\n")
+    assert synth.utilisation(log) == {"ICESTORM_LC": (576, 7680), "ICESTORM_RAM": (0, 32)}
+    row = synth.add_utilisation({}, synth.FAMILIES["ice40"], log)
+    assert (row["lut_capacity"], row["brams"], row["bram_capacity"], row["target_mhz"]) == (7680, 0, 32, 160)
 
 
 def test_area_and_fmax_parsing():

@@ -126,8 +126,10 @@ def for_row(row: str, argv: list[str] | None = None, cycles: int = 10_000) -> tu
     core = load_all().get(row.split("/")[0])
     if row != "motion_top" and (core is None or not (argv or core.examples)):
         return None
-    target = next((t for t in synth.CORES if synth.display_name(t.name) == row), None)
-    target = synth.resolved(target or synth.Target(row, core.toplevel, {"WIDTH": synth.WIDTH}))
+    target = next((t for t in synth.table_rows() if t.name == row), None)
+    if target is None:
+        return None
+    target = synth.checked(target)
     module = module_name(row)
     if core is None:                     # motion_top: commands pushed while the queue has room
         return module, generate(module, "motion_top", target.parameters, motion_top_load(), "xyz", cycles,

@@ -29,13 +29,13 @@ CASES = [
 
 @pytest.mark.parametrize("case", CASES, ids=[c[0] for c in CASES])
 def test_gate_level(sim, case):
-    from interp.flows.synth import Target, gate_netlist, resolved
+    from interp.flows.synth import Target, checked, gate_netlist
 
     name, top, params, module, folder, cases, keep = case
     # The netlist of the iCE40 flow; Verilator gets Yosys's generic gates
     # (the iCE40 cell models use timing constructs only Icarus takes).
     family = "ice40" if sim == "icarus" else "generic"
-    files = gate_netlist(resolved(Target(name, top, params)), family, keep)
+    files = gate_netlist(checked(Target(name, top, params)), family, keep)
     sys.path.insert(0, str(TB / folder))
     run_cocotb(toplevel=top, test_module=module, sim=sim, parameters=params, testcase=cases,
                sources=files, name=f"gate_{name.replace('/', '-')}_{family}")
