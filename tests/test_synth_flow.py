@@ -65,3 +65,41 @@ def test_fusesoc_exports_every_declared_parameter():
     for path in sorted(synth.RTL.glob("*.v")):
         exported = {name for name, _, _ in fusesoc.parameters(path.read_text())}
         assert exported == synth.declared_parameters(path), path.name
+
+
+def test_family_forms_in_the_file_lists_and_core_files(tmp_path):
+    """rtl/<family>/<name>.v replaces rtl/<name>.v in that family's file list (synthesis,
+    lint, gate level, bitstream) and gets a fileset picked by the family's FuseSoC tool."""
+    for name in ("top", "leaf"):
+        (tmp_path / f"{name}.v").write_text(f"module {name}; {'leaf u();' if name == 'top' else ''} endmodule\n")
+    (tmp_path / "ice40").mkdir()
+    (tmp_path / "ice40" / "leaf.v").write_text("module leaf; endmodule\n")
+    assert synth.sources("top", "ice40", tmp_path) == [tmp_path / "top.v", tmp_path / "ice40" / "leaf.v"]
+    assert synth.sources("top", "ecp5", tmp_path) == [tmp_path / "top.v", tmp_path / "leaf.v"]
+    text = fusesoc.core_text("leaf", {"top", "leaf"}, tmp_path)
+    assert "      - ice40/leaf.v" in text and "      - leaf.v" in text
+    assert 'filesets: ["tool_icestorm? (rtl_ice40)", "!tool_icestorm? (rtl)"]' in text
+    (tmp_path / "ecp5").mkdir()
+    (tmp_path / "ecp5" / "leaf.v").write_text("module leaf; endmodule\n")
+    assert ('filesets: ["tool_icestorm? (rtl_ice40)", "tool_trellis? (rtl_ecp5)", '
+            '"!tool_icestorm? (!tool_trellis? (rtl))"]') in fusesoc.core_text("leaf", {"top", "leaf"}, tmp_path)
+    assert "filesets: [rtl]" in fusesoc.core_text("top", {"top", "leaf"}, tmp_path)
+    (tmp_path / "ice40" / "orphan.v").write_text("module orphan; endmodule\n")
+    assert fusesoc.main(["--check"], tmp_path) == 1
+
+
+def test_lint_of_a_family_form_reads_the_family_cells(tmp_path):
+    """A family form may instance the family's primitives: the lint checks its ports
+    and parameters against Yosys's cell library."""
+    from interp.flows import lint
+
+    good = tmp_path / "inv.v"
+    good.write_text("`default_nettype none\nmodule inv (input wire a, output wire y);\n"
+                    "    SB_LUT4 #(.LUT_INIT(16'h5555)) u_lut (.O(y), .I0(a), .I1(1'b0), .I2(1'b0), .I3(1'b0));\n"
+                    "endmodule\n`default_nettype wire\n")
+    assert lint.lint("inv", [good], "ice40") is None
+    bad = tmp_path / "ice40" / "inv.v"
+    bad.parent.mkdir()
+    bad.write_text(good.read_text().replace(".I3(1'b0)", ".I4(1'b0)"))
+    assert "pin" in lint.lint("inv", [bad], "ice40")
+    assert "SB_LUT4" in lint.lint("inv", [good], None)          # the portable list has no cells

@@ -169,16 +169,10 @@ def checked(target: Target, extra: dict | None = None) -> Target:
 def lint(target: Target, family: str | None) -> str | None:
     """Verilator -Wall on the family's file list at the target's parameters:
     None if clean, else the first message (one line)."""
+    from .lint import lint as verilator_lint
+
     params = {**target.parameters, **target.per_family.get(family or "", {})}
-    cmd = [str(verilator_bin() / "verilator"), "--lint-only", "-Wall", "--quiet",
-           "--top-module", target.toplevel, *[f"-G{k}={v}" for k, v in params.items()],
-           *[str(f) for f in sources(target.toplevel, family)]]
-    run = subprocess.run(cmd, capture_output=True, text=True)
-    if run.returncode == 0:
-        return None
-    lines = [ln.strip() for ln in run.stderr.splitlines() if ln.startswith("%")]
-    return (lines[0] if lines else run.stderr.strip().splitlines()[0] if run.stderr.strip()
-            else f"verilator exit status {run.returncode}").replace(str(ROOT) + "/", "")
+    return verilator_lint(target.toplevel, sources(target.toplevel, family), family, params)
 
 
 def lints(toplevel: str) -> bool:

@@ -57,3 +57,29 @@ def test_fusesoc_builds_with_dependencies(core, tmp_path):
                           "--build-root", str(tmp_path), "--setup", "--build", "--target", "default",
                           "--tool", "icarus", f"interp:rtl:{core}"], capture_output=True, text=True)
     assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
+
+
+@pytest.mark.parametrize("tool,family", [("icestorm", "ice40"), ("trellis", "ecp5"), ("icarus", None)])
+def test_fusesoc_picks_the_family_form(tool, family, tmp_path):
+    """A module's rtl/<family>/ form replaces rtl/<module>.v in the file list of the
+    family's tool, also when the module is a dependency (scratch forms of mux2 in a copy)."""
+    import shutil
+    import subprocess
+
+    from interp.flows import fusesoc
+
+    rtl = tmp_path / "rtl"
+    shutil.copytree(TB.parent / "rtl", rtl, ignore=shutil.ignore_patterns("*.core"))
+    for fam in ("ice40", "ecp5"):
+        (rtl / fam).mkdir(exist_ok=True)
+        (rtl / fam / "mux2.v").write_text((rtl / "mux2.v").read_text())
+    assert fusesoc.main([], rtl) == 0
+    fusesoc_bin = Path(sys.executable).parent / "fusesoc"
+    run = subprocess.run([str(fusesoc_bin), "--cores-root", str(rtl), "run", "--build-root", str(tmp_path / "b"),
+                          "--setup", "--target", "default", "--tool", tool, "interp:rtl:su1571551"],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
+    used = [p.relative_to(next((tmp_path / "b").glob("*/*/src"))).as_posix()
+            for p in (tmp_path / "b").rglob("mux2.v")]
+    want = f"interp_rtl_mux2_{fusesoc.VERSION}/" + (f"{family}/mux2.v" if family else "mux2.v")
+    assert used == [want], used
