@@ -18,7 +18,7 @@ from interp.models.su1665343 import (Su1665343, expected_per_step, move_cycles, 
                                      trace)
 from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
-# Patent Table 2 (R = 12), SPEC §4: (step, kind, CT7, CT8, commutator code, F after).
+# Patent Table 2 (R = 12): (step, kind, CT7, CT8, commutator code, F after).
 TABLE2 = [
     ("1", "y", 1, 10, -3, 7.75), ("2", "y", 2, 9, -5, 2.75), ("3", "y", 3, 8, -7, -4.25),
     ("4", "diagonal", 4, 6, 13, 8.75), ("5", "y", 5, 5, -11, -2.25),
@@ -31,7 +31,7 @@ TABLE2 = [
     ("16", "x", 0, -11, 1, -12.25), ("17", "x", -1, -12, None, None),
 ]
 TABLE2_PATH = "YYYDYDYDDDXDXDXXX"
-# All three sector-switch cases (SPEC §4): A after a Y step, A after a diagonal, B.
+# All three sector-switch cases of the patent: A after a Y step, A after a diagonal, B.
 SWITCH_CASES = {4: ("A", "y"), 11: ("A", "y"), 134: ("A", "y"), 3: ("A", "diagonal"),
                 6: ("A", "diagonal"), 10: ("A", "diagonal"), 1: ("B", "diagonal"),
                 5: ("B", "diagonal"), 12: ("B", "diagonal")}

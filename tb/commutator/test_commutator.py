@@ -22,7 +22,7 @@ async def channels(dut):
             getattr(dut, f"lsb{k}").value = lsb
         await Timer(1, unit="ns")
         assert int(dut.out.value) == commutator(width, sel, data), (sel, data)
-    # {v, 1} = 2v + 1 for v >= 0; {v, 0} = 2v - 1 for v < 0 (ones' complement, SPEC §4)
+    # {v, 1} = 2v + 1 for v >= 0; {v, 0} = 2v - 1 for v < 0 (the patent's ones' complement)
     dut.sel1.value, dut.sel2.value, dut.sel3.value = 1, 0, 0
     top = (1 << (width - 1)) - 1
     for v in range(-top, top + 1):
