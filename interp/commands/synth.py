@@ -25,7 +25,8 @@ def add_parser(sub) -> None:
     p.add_argument("--family", action="append", choices=["ice40", "ecp5"],
                    help="only this FPGA family (repeatable; default both)")
     p.add_argument("--width", type=int, metavar="N",
-                   help="set each chosen core's width parameter (WIDTH; W for motion_top) to N")
+                   help="set each chosen core's width parameter (WIDTH; W for motion_top) to N; "
+                   "cores without one (feed_rate, step_sync, step_dir) keep theirs unless named")
     p.add_argument("--param", action="append", metavar="NAME=VALUE",
                    help="set a Verilog parameter of the chosen cores (repeatable); "
                    "each chosen module must declare it")

@@ -175,10 +175,6 @@ def lint(target: Target, family: str | None) -> str | None:
     return verilator_lint(target.toplevel, sources(target.toplevel, family), family, params)
 
 
-def lints(toplevel: str) -> bool:
-    return lint(Target(toplevel, toplevel), None) is None
-
-
 def table_rows() -> list[Target]:
     """CORES under the names the CLI knows them by."""
     return [Target(display_name(t.name), t.toplevel, t.parameters, t.seeds, t.per_family, t.width)
@@ -212,10 +208,10 @@ def targets(names: list[str] | None = None, params: dict | None = None, width: i
     chosen = []
     for t in table:
         extra = dict(params or {})
-        if width is not None:
-            if t.width is None:
-                raise UsageError(f"core {t.name} has no width parameter: set its parameters with --param")
+        if width is not None and t.width is not None:
             extra[t.width] = width
+        elif width is not None and names:     # named: say so; the whole table: they keep their own
+            raise UsageError(f"core {t.name} has no width parameter: set its parameters with --param")
         t = checked(t, extra)
         if seeds is not None:
             t = Target(t.name, t.toplevel, t.parameters, seeds, t.per_family, t.width)
