@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+import re
 import subprocess
 import sys
 import time
@@ -86,7 +87,7 @@ def reason(work: Path) -> str:
     if not log.exists():
         return ""
     for line in log.read_text(errors="replace").splitlines():
-        text = line.split(":", 2)[-1].strip() if line.startswith("SBY") else line.strip()
+        text = re.sub(r"^SBY\s+\S+\s+\[[^\]]*\]\s*", "", line).strip()
         if any(k in text for k in ("Assert failed", "ERROR", "Error", "failed", "Unreached cover")):
             return text
     return ""
