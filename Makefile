@@ -43,10 +43,11 @@ $(VENV)/.fpga: pyproject.toml
 	$(PY) -m pip install -q -e ".[fpga]"
 	touch $@
 
-# Fmax / LUT / FF of every core at width 32 on iCE40 HX8K and ECP5-25F.
+# Fmax / LUT / FF of every core at width 32 on iCE40 HX8K and ECP5-25F, one line per build;
+# e.g. make synth SYNTH_ARGS="--core lin-std --family ice40" (interp synth --help).
 synth: fpga-deps
 	@mkdir -p out
-	$(INTERP) synth --csv out/synth.csv
+	$(INTERP) synth --csv out/synth.csv $(SYNTH_ARGS)
 
 # Bitstreams of the board wrapper (constraints/): iCE40-HX8K breakout, ULX3S.
 bitstream: fpga-deps
@@ -57,9 +58,10 @@ test-synth: fpga-deps
 	INTERP_GATE=1 $(VENV)/bin/pytest -n $(JOBS) tb/gate
 
 
-# SymbiYosys proofs of formal/*.sby (PASS stamps: a proof re-runs when its sources change).
+# SymbiYosys proofs of formal/*.sby, one line per task (PASS stamps: a proof re-runs when its
+# sources change); e.g. make formal PROOFS="blocks su1571551:prf".
 formal: fpga-deps
-	$(PY) -m interp.flows.formal
+	$(PY) -m interp.flows.formal $(PROOFS)
 
 clean:
 	rm -rf sim_build out .pytest_cache
