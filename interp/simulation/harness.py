@@ -127,9 +127,9 @@ def for_row(row: str, argv: list[str] | None = None, cycles: int = 10_000) -> tu
     if row != "motion_top" and (core is None or not (argv or core.examples)):
         return None
     target = next((t for t in synth.table_rows() if t.name == row), None)
-    if target is None:
-        return None
-    target = synth.checked(target)
+    # no row of its own (a top several CLI cores share): the core's parameters for its example
+    target = synth.checked(target or synth.Target(row, core.toplevel, core.parameters(
+        core_args(core, argv or core.examples[0], synth.WIDTH))))
     module = module_name(row)
     if core is None:                     # motion_top: commands pushed while the queue has room
         return module, generate(module, "motion_top", target.parameters, motion_top_load(), "xyz", cycles,
