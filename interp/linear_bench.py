@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import cocotb
 
-from .corecheck import CoreTB, moves, reset_at_any_cycle, start_while_busy
-from .tbkit import seeded_rng
+from .testing.corecheck import CoreTB, moves, reset_at_any_cycle, start_while_busy
+from .testing.tbkit import seeded_rng
 
 IDLE = {"start": 0, "tick": 0, "x": 0, "y": 0}
 CORE: dict = {}

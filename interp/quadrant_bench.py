@@ -7,8 +7,8 @@ import itertools
 
 import cocotb
 
-from .corecheck import CoreTB, moves, reset_at_any_cycle, start_while_busy
-from .tbkit import seeded_rng
+from .testing.corecheck import CoreTB, moves, reset_at_any_cycle, start_while_busy
+from .testing.tbkit import seeded_rng
 from .models.lecture import CircQuadrant, circ_steps, quadrant_error
 
 IDLE = {"start": 0, "tick": 0, "x0": 0, "y0": 0, "x1": 0, "y1": 0, "ccw": 0}

@@ -1,5 +1,5 @@
 """pytest set-up shared by every bench: each bench runs on both simulators."""
-from interp.sim import SIMULATORS
+from interp.simulation.runner import SIMULATORS
 
 
 def pytest_addoption(parser):

@@ -1,11 +1,11 @@
-"""`interp bench`: every benchmark table (modules of interp.benches define `tables(quick)`)."""
+"""`interp bench`: every benchmark table (modules of interp.benchmarks define `tables(quick)`)."""
 from __future__ import annotations
 
 import importlib
 import pkgutil
 from pathlib import Path
 
-from .. import benches
+from .. import benchmarks
 
 
 def add_parser(sub) -> None:
@@ -32,10 +32,10 @@ def _fmt(value) -> str:
 
 def run(args) -> int:
     out = []
-    for info in pkgutil.iter_modules(benches.__path__):
+    for info in pkgutil.iter_modules(benchmarks.__path__):
         if args.only and info.name not in args.only:
             continue
-        module = importlib.import_module(f"{benches.__name__}.{info.name}")
+        module = importlib.import_module(f"{benchmarks.__name__}.{info.name}")
         for title, header, rows in module.tables(args.quick):
             text = markdown(title, header, rows)
             print(text, flush=True)

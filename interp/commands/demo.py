@@ -2,8 +2,8 @@
 from __future__ import annotations
 
 from ..cores import REGISTRY
-from ..output import ensure_dir
-from ..sim import SIMULATORS
+from ..simulation.output import ensure_dir
+from ..simulation.runner import SIMULATORS
 
 
 def add_parser(sub) -> None:

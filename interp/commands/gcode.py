@@ -22,8 +22,8 @@ from pathlib import Path
 
 from ..cores import UsageError
 from ..models.motion import ARC_CCW, ARC_CW, DWELL, ERROR_TEXT, LINE, Command
-from ..output import ensure_dir, write_steps
-from ..sim import SIMULATORS
+from ..simulation.output import ensure_dir, write_steps
+from ..simulation.runner import SIMULATORS
 
 # motion_top as the benches build it (tb/motion_top): the CLI reuses that build.
 PARAMETERS = {"W": 16, "QDEPTH": 4, "QLW": 3, "SDEPTH": 2, "TW": 4}
@@ -193,13 +193,13 @@ def arc_points(start, delta, centre, ccw: bool, n: int = 96):
 def simulate(commands: list[Command], sim: str, timing: dict, vcd: str | None = None,
              max_cycles: int = 5_000_000) -> dict:
     """Run the commands through motion_top; the driver's result (pulses, errors, position)."""
-    from ..sim import run_cocotb
+    from ..simulation.runner import run_cocotb
 
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "result.json"
         job = {"commands": [c.ports() for c in commands], "timing": timing, "out": str(out),
                "max_cycles": max_cycles}
-        run_cocotb(toplevel="motion_top", test_module="interp.motion_driver", sim=sim,
+        run_cocotb(toplevel="motion_top", test_module="interp.simulation.motion_driver", sim=sim,
                    parameters=PARAMETERS, env={"INTERP_JOB": json.dumps(job)}, waves=vcd,
                    name="motion_top", test_dir=Path(tmp), quiet=True)
         return json.loads(out.read_text())
@@ -221,7 +221,7 @@ def run_program(text: str, args) -> int:
     rows = step_rows(result, axes)
     write_steps(args.steps, rows, axes)
     if args.plot:
-        from ..plot import plot_path
+        from ..plots.paths import plot_path
 
         ideal = [pt for piece in prog.path for pt in piece]
         plot_path(args.plot, rows, ideal, title=f"interp gcode {Path(args.file).name} (scale {args.scale:g})")

@@ -1,4 +1,11 @@
-"""`interp synth [--csv FILE]`: Fmax and area of every core on iCE40 HX8K and ECP5-25F."""
+"""`interp synth`: Fmax and area of the cores on iCE40 HX8K and ECP5-25F (Yosys + nextpnr).
+
+One line per build on stdout (core, family, device, Fmax against the placement
+target, LUTs of the device's, FFs, block RAMs, seeds); `--csv FILE` writes the
+rows as CSV.  A bad request (unknown core, a parameter the module does not
+declare, a design that does not lint) stops before any tool runs, with one
+line and exit status 2; a failed build is one line and exit status 1.
+"""
 from __future__ import annotations
 
 import csv
@@ -9,38 +16,84 @@ from ..cores import UsageError
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("synth", help="Yosys + nextpnr for every core: Fmax, LUTs, FFs at width 32")
-    p.add_argument("--csv", metavar="FILE", help="also write the table as CSV "
-                   "(core,family,device,fmax_mhz,luts,ffs)")
-    p.add_argument("--core", action="append", help="only this core (repeatable; CLI name)")
+    p = sub.add_parser("synth", help="Yosys + nextpnr for every core: Fmax, LUTs, FFs at width 32",
+                       description="Synthesize and place-and-route the cores (table CORES in "
+                       "interp/flows/synth.py) on iCE40 HX8K and ECP5-25F; one summary line per build.")
+    p.add_argument("--core", action="append", metavar="NAME",
+                   help="only this core (repeatable; CLI name such as lin-std, or Verilog top; "
+                   "--list shows them)")
     p.add_argument("--family", action="append", choices=["ice40", "ecp5"],
-                   help="only this FPGA family (repeatable)")
+                   help="only this FPGA family (repeatable; default both)")
+    p.add_argument("--width", type=int, metavar="N",
+                   help="set each chosen core's width parameter (WIDTH; W for motion_top) to N; "
+                   "cores without one (feed_rate, step_sync, step_dir) keep theirs unless named")
+    p.add_argument("--param", action="append", metavar="NAME=VALUE",
+                   help="set a Verilog parameter of the chosen cores (repeatable); "
+                   "each chosen module must declare it")
+    p.add_argument("--seeds", type=int, metavar="N",
+                   help="placement seeds to try (default: the table's, 8 for the cores with an Fmax goal)")
     p.add_argument("--force", action="store_true", help="re-run even where a cached result is current")
+    p.add_argument("--csv", metavar="FILE", help="also write the rows as CSV "
+                   "(core,family,device,fmax_mhz,luts,ffs,target_mhz,lut_capacity,brams,"
+                   "bram_capacity,seeds,parameters,note)")
+    p.add_argument("--list", action="store_true", help="list the cores and their parameters; run nothing")
     p.add_argument("--bitstream", metavar="DIR", help="instead: build the board wrapper's bitstreams "
                    "(iCE40-HX8K breakout, ULX3S 25F) into DIR")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    from .. import synth
+    from ..flows import synth
 
-    if not synth.have_tools():
-        raise UsageError("the YoWASP tools are not installed: pip install -e '.[fpga]' (or make synth)")
-    if args.bitstream:
-        for board in synth.BOARDS:
-            print(synth.bitstream(board, Path(args.bitstream),
-                                  log=lambda m: print(m, file=sys.stderr, flush=True)))
+    if args.list:
+        for t in synth.table_rows():
+            extra = "; ".join(f"{f}: " + " ".join(f"{k}={v}" for k, v in p.items())
+                              for f, p in t.per_family.items())
+            params = " ".join(f"{k}={v}" for k, v in t.parameters.items()) or "(defaults)"
+            print(f"{t.name:<20} rtl/{t.toplevel}.v  {params}" + (f"  [{extra}]" if extra else "")
+                  + (f"  seeds {t.seeds}" if t.seeds > 1 else ""))
         return 0
-    rows, notes = synth.table(args.core, args.family, args.force,
-                              log=lambda m: print(m, file=sys.stderr, flush=True))
-    writer = csv.DictWriter(sys.stdout, synth.CSV_HEADER, extrasaction="ignore")
-    writer.writeheader()
-    writer.writerows(rows)
+    if args.seeds is not None and args.seeds < 1:
+        raise UsageError("--seeds must be at least 1")
+    if args.width is not None and args.width < 2:
+        raise UsageError("--width must be at least 2")
+    params = synth.parse_params(args.param)
+    if args.bitstream:
+        if args.core or args.param or args.width is not None:
+            raise UsageError("--bitstream builds the board wrapper only: no --core, --param or --width")
+        need_tools(synth)
+        failed = 0
+        for board, (family, *_) in synth.BOARDS.items():
+            if args.family and family not in args.family:
+                continue
+            try:
+                path, row = synth.bitstream(board, Path(args.bitstream), log=progress)
+            except synth.FlowError as exc:
+                print(f"synth: failed: {str(exc).splitlines()[0]}", file=sys.stderr)
+                failed += 1
+                continue
+            print(synth.summary(row) + f"  -> {path}", flush=True)
+        return 1 if failed else 0
+    # Check the request (names, parameters, lint) before the tools are needed.
+    chosen = synth.targets(args.core, params, args.width, args.seeds, args.family)
+    need_tools(synth)
+    rows, failures = synth.table(args.core, args.family, args.force, log=progress, chosen=chosen,
+                                 on_row=lambda row: print(synth.summary(row), flush=True))
     if args.csv:
         with open(args.csv, "w", newline="") as f:
             w = csv.DictWriter(f, synth.CSV_HEADER, extrasaction="ignore")
             w.writeheader()
             w.writerows(rows)
-    for note in notes:
-        print(f"synth: {note}", file=sys.stderr)
-    return 1 if any("failed" in n for n in notes) else 0
+    for failure in failures:
+        print(f"synth: failed: {failure}", file=sys.stderr)
+    return 1 if failures else 0
+
+
+def need_tools(synth) -> None:
+    if not synth.have_tools():
+        raise UsageError("the YoWASP tools are not installed: make fpga-deps "
+                         "(or pip install -e '.[fpga]')")
+
+
+def progress(message: str) -> None:
+    print(message, file=sys.stderr, flush=True)

@@ -4,7 +4,7 @@ import pytest
 
 from interp.models.base import sequence
 from interp.models.blocks import AccumAddSub, ones_code, ones_value
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"clear": 0, "load": 0, "load_value": 0, "add": 0, "operand": 0, "cin": 0}
 
@@ -52,7 +52,7 @@ async def signed_sums(dut):
 
 @pytest.mark.parametrize("ones_complement", [0, 1])
 def test_accum_addsub(sim, ones_complement):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="accum_addsub", test_module="test_accum_addsub", sim=sim,
                parameters={"WIDTH": 8, "ONES_COMPLEMENT": ones_complement},
                name=f"accum_addsub_oc{ones_complement}")

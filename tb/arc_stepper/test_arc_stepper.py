@@ -9,11 +9,11 @@ import math
 import cocotb
 import pytest
 
-from interp.corecheck import moves
+from interp.testing.corecheck import moves
 from interp.models.arc import RELOAD_CYCLES, START_CYCLES, ArcStepper, arc_steps
 from interp.models.lecture import within_half_step
-from interp.sim import ecp5_cell_sources, run_cocotb
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.simulation.runner import ecp5_cell_sources, run_cocotb
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"run": 0, "tick": 0, "u0": 0, "v0": 0, "u1": 0, "v1": 0, "ccw": 0}
 

@@ -2,7 +2,7 @@
 import cocotb
 import pytest
 from cocotb.triggers import Timer
-from interp.tbkit import seeded_rng
+from interp.testing.tbkit import seeded_rng
 
 
 @cocotb.test()
@@ -26,6 +26,6 @@ async def orders(dut):
 
 @pytest.mark.parametrize("width", [2, 9, 32])
 def test_axis_order(sim, width):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="axis_order", test_module="test_axis_order", sim=sim,
                parameters={"WIDTH": width}, name=f"axis_order_w{width}")

@@ -1,7 +1,7 @@
-"""The generated speed harness (interp/harness.py) builds and runs natively, and counts
+"""The generated speed harness (interp/simulation/harness.py) builds and runs natively, and counts
 what the cycle model predicts: lin_std at WIDTH 8, a short move restarted whenever
 the core is idle."""
-from interp import harness, speed
+from interp.simulation import harness, speed
 from interp.cores import load_all
 
 

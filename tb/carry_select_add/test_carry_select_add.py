@@ -2,7 +2,7 @@
 import cocotb
 import pytest
 from cocotb.triggers import Timer
-from interp.tbkit import seeded_rng
+from interp.testing.tbkit import seeded_rng
 
 
 @cocotb.test()
@@ -24,7 +24,7 @@ async def adds(dut):
 @pytest.mark.parametrize("width, low, split", [(2, None, 1), (7, None, 1), (34, None, 1), (34, 17, 1),
                                               (34, None, 0)])
 def test_carry_select_add(sim, width, low, split):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="carry_select_add", test_module="test_carry_select_add", sim=sim,
                parameters={"WIDTH": width, "SPLIT": split, **({"LOW": low} if low else {})},
                name=f"carry_select_add_w{width}_l{low or 'default'}_s{split}")

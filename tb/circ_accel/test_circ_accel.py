@@ -5,7 +5,7 @@ The cocotb tests are shared with the other first-quadrant core (interp/quadrant_
 import pytest
 
 from interp.quadrant_bench import *  # noqa: F401,F403  (the cocotb tests)
-from interp.sim import run_cocotb
+from interp.simulation.runner import run_cocotb
 
 
 @pytest.mark.parametrize("width", [32])   # circ_std covers WIDTH = 8 of the shared datapath

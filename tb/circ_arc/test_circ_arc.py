@@ -9,11 +9,11 @@ import math
 import cocotb
 import pytest
 
-from interp.corecheck import CoreTB, moves, reset_at_any_cycle, start_while_busy
-from interp.tbkit import seeded_rng
+from interp.testing.corecheck import CoreTB, moves, reset_at_any_cycle, start_while_busy
+from interp.testing.tbkit import seeded_rng
 from interp.models.arc import CircArc, arc_error, arc_setup_cycles, arc_steps
 from interp.models.lecture import radial_deviation, within_half_step
-from interp.sim import run_cocotb
+from interp.simulation.runner import run_cocotb
 
 IDLE = {"start": 0, "tick": 0, "cx": 0, "cy": 0, "x0": 0, "y0": 0, "x1": 0, "y1": 0, "ccw": 0, "full": 0}
 

@@ -4,7 +4,7 @@ The wrappers' benches cover (ACCEL 0, WIDTH 8) and (ACCEL 1, WIDTH 32); this
 one runs the shared tests on `circ_quadrant` itself at the remaining corner.
 """
 from interp.quadrant_bench import *  # noqa: F401,F403  (the cocotb tests)
-from interp.sim import run_cocotb
+from interp.simulation.runner import run_cocotb
 
 
 def test_circ_quadrant(sim):

@@ -16,9 +16,9 @@ from interp.models.base import move, steps_of
 from interp.models.su1665343 import (Su1665343, expected_per_step, move_cycles, path_string,
                                      per_step, r_max, radial_error, setup_cycles, start_error, steps,
                                      trace)
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
-# Patent Table 2 (R = 12), SPEC §4: (step, kind, CT7, CT8, commutator code, F after).
+# Patent Table 2 (R = 12): (step, kind, CT7, CT8, commutator code, F after).
 TABLE2 = [
     ("1", "y", 1, 10, -3, 7.75), ("2", "y", 2, 9, -5, 2.75), ("3", "y", 3, 8, -7, -4.25),
     ("4", "diagonal", 4, 6, 13, 8.75), ("5", "y", 5, 5, -11, -2.25),
@@ -31,7 +31,7 @@ TABLE2 = [
     ("16", "x", 0, -11, 1, -12.25), ("17", "x", -1, -12, None, None),
 ]
 TABLE2_PATH = "YYYDYDYDDDXDXDXXX"
-# All three sector-switch cases (SPEC §4): A after a Y step, A after a diagonal, B.
+# All three sector-switch cases of the patent: A after a Y step, A after a diagonal, B.
 SWITCH_CASES = {4: ("A", "y"), 11: ("A", "y"), 134: ("A", "y"), 3: ("A", "diagonal"),
                 6: ("A", "diagonal"), 10: ("A", "diagonal"), 1: ("B", "diagonal"),
                 5: ("B", "diagonal"), 12: ("B", "diagonal")}
@@ -244,7 +244,7 @@ async def reset_at_any_cycle(dut):
 
 @pytest.mark.parametrize("width", [5, 12])
 def test_circ_su1665343(sim, width):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="circ_su1665343", test_module="test_circ_su1665343", sim=sim,
                parameters={"WIDTH": width}, name=f"circ_su1665343_w{width}")
 
@@ -255,7 +255,7 @@ SWEEP = {"verilator": 2000, "icarus": 300}
 
 def test_sweep(sim, tmp_path):
     """Native harness: each R's step sequence and cycle count against the step-level model."""
-    from interp.speed import build_harness
+    from interp.simulation.speed import build_harness
     rhi = SWEEP[sim]
     out = tmp_path / "paths.txt"
     cmd = build_harness("sweep_su1665343", sim, {"SWEEP_WIDTH": 12})

@@ -6,9 +6,9 @@ import cocotb
 import pytest
 from cocotb.triggers import Timer
 
-from interp.tbkit import seeded_rng
+from interp.testing.tbkit import seeded_rng
 from interp.models.lecture import within_half_step
-from interp.sim import run_cocotb
+from interp.simulation.runner import run_cocotb
 
 
 def exact(a: int, b: int) -> bool:

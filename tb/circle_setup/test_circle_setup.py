@@ -7,7 +7,7 @@ import pytest
 
 from interp.models.blocks import CircleSetup
 from interp.models.lecture import within_half_step
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"start": 0, "x0": 0, "y0": 0, "x1": 0, "y1": 0}
 
@@ -99,6 +99,6 @@ async def random_inputs(dut):
 @pytest.mark.parametrize("mw,sw,cs", [(4, 8, 0), (9, 18, 0), (33, 66, 0), (7, 10, 0), (33, 62, 0),
                                       (7, 10, 1), (33, 62, 1)])
 def test_circle_setup(sim, mw, sw, cs):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="circle_setup", test_module="test_circle_setup", sim=sim,
                parameters={"MW": mw, "SW": sw, "CARRY_SELECT": cs}, name=f"circle_setup_m{mw}_s{sw}_c{cs}")

@@ -6,7 +6,7 @@ import pytest
 from cocotb.triggers import Timer
 
 from interp.models.su1665343 import commutator, oc_value
-from interp.tbkit import seeded_rng
+from interp.testing.tbkit import seeded_rng
 
 
 @cocotb.test()
@@ -22,7 +22,7 @@ async def channels(dut):
             getattr(dut, f"lsb{k}").value = lsb
         await Timer(1, unit="ns")
         assert int(dut.out.value) == commutator(width, sel, data), (sel, data)
-    # {v, 1} = 2v + 1 for v >= 0; {v, 0} = 2v - 1 for v < 0 (ones' complement, SPEC §4)
+    # {v, 1} = 2v + 1 for v >= 0; {v, 0} = 2v - 1 for v < 0 (the patent's ones' complement)
     dut.sel1.value, dut.sel2.value, dut.sel3.value = 1, 0, 0
     top = (1 << (width - 1)) - 1
     for v in range(-top, top + 1):
@@ -34,6 +34,6 @@ async def channels(dut):
 
 @pytest.mark.parametrize("width", [6])
 def test_commutator(sim, width):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="commutator", test_module="test_commutator", sim=sim,
                parameters={"WIDTH": width}, name=f"commutator_w{width}")

@@ -6,8 +6,8 @@ from cocotb.triggers import FallingEdge
 from interp.models.base import move
 from interp.models.curve import (CURVES, END_COUNT, END_X, END_Y, PAPER_CURVES, PAPER_SCALES,
                                  CurveTangent, Program, anchored_e, program, steps)
-from interp.sim import run_cocotb
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.simulation.runner import run_cocotb
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = dict(vars(Program(0, 0, 0, 0, 0, 0, 0, 0, 0)), start=0, tick=0)
 

@@ -4,7 +4,7 @@ import pytest
 
 from interp.models.base import sequence
 from interp.models.su1665343 import DelayLine
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 
 @cocotb.test()
@@ -25,6 +25,6 @@ async def taps_follow_input(dut):
 
 @pytest.mark.parametrize("length", [1, 4])
 def test_delay_line(sim, length):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="delay_line", test_module="test_delay_line", sim=sim,
                parameters={"LENGTH": length}, name=f"delay_line_l{length}")

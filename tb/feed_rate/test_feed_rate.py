@@ -4,8 +4,8 @@ import math
 import cocotb
 
 from interp.models.motion import FeedRate, interval_costs
-from interp.sim import run_cocotb
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.simulation.runner import run_cocotb
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"feed": 0, "axes": 0, "take": 0}
 

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from interp.sim import run_cocotb
+from interp.simulation.runner import run_cocotb
 
 TB = Path(__file__).resolve().parents[1]
 pytestmark = pytest.mark.skipif(os.environ.get("INTERP_GATE") != "1",
@@ -29,22 +29,22 @@ CASES = [
 
 @pytest.mark.parametrize("case", CASES, ids=[c[0] for c in CASES])
 def test_gate_level(sim, case):
-    from interp.synth import Target, gate_netlist, resolved
+    from interp.flows.synth import Target, checked, gate_netlist
 
     name, top, params, module, folder, cases, keep = case
     # The netlist of the iCE40 flow; Verilator gets Yosys's generic gates
     # (the iCE40 cell models use timing constructs only Icarus takes).
     family = "ice40" if sim == "icarus" else "generic"
-    files = gate_netlist(resolved(Target(name, top, params)), family, keep)
+    files = gate_netlist(checked(Target(name, top, params)), family, keep)
     sys.path.insert(0, str(TB / folder))
     run_cocotb(toplevel=top, test_module=module, sim=sim, parameters=params, testcase=cases,
                sources=files, name=f"gate_{name.replace('/', '-')}_{family}")
 
 
 def test_fusesoc_core_files_are_current():
-    from interp import fusesoc
+    from interp.flows import fusesoc
 
-    assert fusesoc.main(["--check"]) == 0, "run python -m interp.fusesoc"
+    assert fusesoc.main(["--check"]) == 0, "run python -m interp.flows.fusesoc"
 
 
 @pytest.mark.parametrize("core", ["su1571551"])
@@ -57,3 +57,29 @@ def test_fusesoc_builds_with_dependencies(core, tmp_path):
                           "--build-root", str(tmp_path), "--setup", "--build", "--target", "default",
                           "--tool", "icarus", f"interp:rtl:{core}"], capture_output=True, text=True)
     assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
+
+
+@pytest.mark.parametrize("tool,family", [("icestorm", "ice40"), ("trellis", "ecp5"), ("icarus", None)])
+def test_fusesoc_picks_the_family_form(tool, family, tmp_path):
+    """A module's rtl/<family>/ form replaces rtl/<module>.v in the file list of the
+    family's tool, also when the module is a dependency (scratch forms of mux2 in a copy)."""
+    import shutil
+    import subprocess
+
+    from interp.flows import fusesoc
+
+    rtl = tmp_path / "rtl"
+    shutil.copytree(TB.parent / "rtl", rtl, ignore=shutil.ignore_patterns("*.core"))
+    for fam in ("ice40", "ecp5"):
+        (rtl / fam).mkdir(exist_ok=True)
+        (rtl / fam / "mux2.v").write_text((rtl / "mux2.v").read_text())
+    assert fusesoc.main([], rtl) == 0
+    fusesoc_bin = Path(sys.executable).parent / "fusesoc"
+    run = subprocess.run([str(fusesoc_bin), "--cores-root", str(rtl), "run", "--build-root", str(tmp_path / "b"),
+                          "--setup", "--target", "default", "--tool", tool, "interp:rtl:su1571551"],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
+    used = [p.relative_to(next((tmp_path / "b").glob("*/*/src"))).as_posix()
+            for p in (tmp_path / "b").rglob("mux2.v")]
+    want = f"interp_rtl_mux2_{fusesoc.VERSION}/" + (f"{family}/mux2.v" if family else "mux2.v")
+    assert used == [want], used

@@ -5,8 +5,8 @@ import pytest
 from cocotb.triggers import FallingEdge
 
 from interp.models.curve import fits, wrap
-from interp.tbkit import TB, seeded_rng
-from interp.sim import run_cocotb
+from interp.testing.tbkit import TB, seeded_rng
+from interp.simulation.runner import run_cocotb
 
 
 IDLE = dict(load=0, load_value=0, coef_a_in=0, coef_b_in=0, step_a=0, neg_a=0, step_b=0,

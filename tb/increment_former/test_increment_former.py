@@ -17,5 +17,5 @@ async def truth_table(dut):
 
 
 def test_increment_former(sim):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="increment_former", test_module="test_increment_former", sim=sim)

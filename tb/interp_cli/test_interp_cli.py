@@ -67,7 +67,7 @@ def test_unknown_core(tmp_path):
 
 
 def _gtkw_views():
-    from interp.sim import ROOT
+    from interp.simulation.runner import ROOT
     return sorted((ROOT / "sim").glob("*.gtkw"))
 
 

@@ -6,11 +6,11 @@ import cocotb
 import pytest
 
 from interp import linear_bench
-from interp.corecheck import moves
+from interp.testing.corecheck import moves
 from interp.linear_bench import *  # noqa: F401,F403  (the shared cocotb tests)
 from interp.linear_bench import check_move, setup
 from interp.models.lecture import LinStd, lin_std_steps
-from interp.sim import run_cocotb
+from interp.simulation.runner import run_cocotb
 
 
 def one_axis_and_registers(tb, x, y, samples, got):

@@ -16,8 +16,8 @@ from interp.models.motion import (ARC_CCW, ARC_CW, CURVE, DWELL, E_CORE, E_FEED,
                                   LINE, Command, MotionTop, TimingMonitor, queue_steps)
 from interp.cli import main
 from interp.commands import gcode
-from interp.sim import run_cocotb
-from interp.tbkit import TB, read, scoreboard, seeded_rng
+from interp.simulation.runner import run_cocotb
+from interp.testing.tbkit import TB, read, scoreboard, seeded_rng
 
 ONE = 1 << 16                                  # FRAC = 16: feed ONE would be 1 step per clock
 TOP = ONE - 1                                  # the largest feed FEED_W = 16 holds

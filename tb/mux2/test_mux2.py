@@ -2,7 +2,7 @@
 import cocotb
 import pytest
 from cocotb.triggers import Timer
-from interp.tbkit import seeded_rng
+from interp.testing.tbkit import seeded_rng
 
 
 
@@ -19,6 +19,6 @@ async def selects(dut):
 
 @pytest.mark.parametrize("width", [1, 13])
 def test_mux2(sim, width):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="mux2", test_module="test_mux2", sim=sim,
                parameters={"WIDTH": width}, name=f"mux2_w{width}")

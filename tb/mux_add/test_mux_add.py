@@ -7,8 +7,8 @@ import cocotb
 import pytest
 from cocotb.triggers import Timer
 
-from interp.sim import ecp5_cell_sources, run_cocotb
-from interp.tbkit import seeded_rng
+from interp.simulation.runner import ecp5_cell_sources, run_cocotb
+from interp.testing.tbkit import seeded_rng
 
 
 def expected(a: int, sel: int, c: int, d: int, load: bool, width: int) -> int:

@@ -4,7 +4,7 @@ import pytest
 
 from interp.models.base import sequence
 from interp.models.su1665343 import PulseExpander
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 
 @cocotb.test()
@@ -25,6 +25,6 @@ async def holds_for_length(dut):
 
 @pytest.mark.parametrize("length", [4])
 def test_pulse_expander(sim, length):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="pulse_expander", test_module="test_pulse_expander", sim=sim,
                parameters={"LENGTH": length}, name=f"pulse_expander_l{length}")

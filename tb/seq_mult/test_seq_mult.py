@@ -4,7 +4,7 @@ import pytest
 
 from interp.models.base import sequence
 from interp.models.blocks import SeqMult
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"start": 0, "a": 0, "b": 0}
 
@@ -68,6 +68,6 @@ async def random_products(dut):
 
 @pytest.mark.parametrize("width", [3, 5, 16, 33])
 def test_seq_mult(sim, width):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="seq_mult", test_module="test_seq_mult", sim=sim,
                parameters={"WIDTH": width}, name=f"seq_mult_w{width}")

@@ -17,5 +17,5 @@ async def truth_table(dut):
 
 
 def test_sign_analysis(sim):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="sign_analysis", test_module="test_sign_analysis", sim=sim)

@@ -5,7 +5,7 @@ import cocotb
 
 from interp.models.base import sequence
 from interp.models.blocks import StartStop
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 
 @cocotb.test()
@@ -25,5 +25,5 @@ async def every_transition(dut):
 
 
 def test_start_stop(sim):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="start_stop", test_module="test_start_stop", sim=sim)

@@ -4,8 +4,8 @@ import random
 import cocotb
 
 from interp.models.motion import StepDir, TimingMonitor
-from interp.sim import run_cocotb
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.simulation.runner import run_cocotb
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"rst": 0, "valid": 0, "step_in": 0, "dir_in": 0, "pulse_width": 1, "setup": 0, "hold": 0}
 

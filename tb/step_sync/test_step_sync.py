@@ -5,8 +5,8 @@ import cocotb
 import pytest
 
 from interp.models.motion import StepSync
-from interp.sim import run_cocotb
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.simulation.runner import run_cocotb
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"in_step": 0, "in_dir": 0, "in_data": 0, "tick": 0}
 

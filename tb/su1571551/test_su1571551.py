@@ -2,11 +2,11 @@
 import cocotb
 import pytest
 
-from interp import corecheck
-from interp.corecheck import CoreTB, moves, start_while_busy
+from interp.testing import corecheck
+from interp.testing.corecheck import CoreTB, moves, start_while_busy
 from interp.models.su1571551 import Su1571551, steps
-from interp.sim import run_cocotb
-from interp.tbkit import seeded_rng
+from interp.simulation.runner import run_cocotb
+from interp.testing.tbkit import seeded_rng
 
 # The patent's table, |X| = 7, |Y| = 3: (kind, F after, counter 1, counter 2).
 PATENT_TABLE = [

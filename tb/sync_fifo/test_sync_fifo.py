@@ -3,8 +3,8 @@
 import cocotb
 
 from interp.models.motion import SyncFifo
-from interp.sim import run_cocotb
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.simulation.runner import run_cocotb
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"push": 0, "pop": 0, "din": 0}
 

@@ -4,7 +4,7 @@ import pytest
 
 from interp.models.base import sequence
 from interp.models.blocks import UpDownCounter, ones_code, ones_value
-from interp.tbkit import TB, scoreboard, seeded_rng
+from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
 IDLE = {"load": 0, "load_value": 0, "inc": 0, "dec": 0, "dec2": 0}
 
@@ -48,7 +48,7 @@ async def counts_through_zero(dut):
 
 @pytest.mark.parametrize("ones_complement", [0, 1])
 def test_updown_counter(sim, ones_complement):
-    from interp.sim import run_cocotb
+    from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="updown_counter", test_module="test_updown_counter", sim=sim,
                parameters={"WIDTH": 6, "ONES_COMPLEMENT": ones_complement},
                name=f"updown_counter_oc{ones_complement}")

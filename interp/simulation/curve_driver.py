@@ -9,8 +9,8 @@ from argparse import Namespace
 
 import cocotb
 
-from .cores import load_all
-from .tbkit import TB, run_stimulus
+from ..cores import load_all
+from ..testing.tbkit import TB, run_stimulus
 
 
 @cocotb.test()

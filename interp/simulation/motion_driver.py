@@ -12,7 +12,7 @@ import os
 import cocotb
 from cocotb.triggers import FallingEdge
 
-from .tbkit import TB, read
+from ..testing.tbkit import TB, read
 
 IDLE = {"rst": 0, "cmd_valid": 0, "hold": 0, "cmd_kind": 0, "cmd_feed": 0,
         **{f"cmd_{f}": 0 for f in "xyzijkl"}}

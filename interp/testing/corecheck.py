@@ -11,7 +11,7 @@ from typing import Callable, Mapping
 
 from cocotb.triggers import FallingEdge
 
-from .models.base import CycleModel, move
+from ..models.base import CycleModel, move
 from .tbkit import TB, scoreboard
 
 

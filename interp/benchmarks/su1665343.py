@@ -6,7 +6,7 @@ from pathlib import Path
 
 from ..models.su1665343 import (CORRECTION_CYCLES, STEP_CYCLES, move_cycles, path_string,
                                 radial_error, setup_cycles, steps)
-from ..speed import run_harness
+from ..simulation.speed import run_harness
 
 WIDTH = 12          # the sweep harness's counters: R <= 2046
 

@@ -1,13 +1,13 @@
 """FPGA figures: Fmax, LUTs, FFs per core at width 32 (iCE40 HX8K, ECP5-25F), with
 cycles per step, so the step rate each core reaches on each device reads off one row.
 
-Fmax and area come from the synthesis flow (interp/synth.py, `make synth`):
+Fmax and area come from the synthesis flow (interp/flows/synth.py, `make synth`):
 `interp bench` re-runs it only where sources changed, and shows the cached
 results when the YoWASP tools are not installed (`make bench` does not
 install them).  Cycles per step: one of the core's `interp demo` moves
 through its cycle model (equal to the RTL cycle by cycle), `tick` high,
 start to `done`.  Simulation speed: a harness generated from the core
-registry (interp/harness.py: the table's parameters, the cycles/step move,
+registry (interp/simulation/harness.py: the table's parameters, the cycles/step move,
 `tick` high, `start` pulsed whenever the core is idle) runs a fixed number of
 cycles natively on Icarus and on Verilator (`--binary -O3`), no cocotb;
 cycles per CPU second of the run (user + system: other load on the
@@ -18,9 +18,10 @@ from __future__ import annotations
 import argparse
 from concurrent.futures import ThreadPoolExecutor
 
-from .. import harness, speed, synth
+from ..simulation import harness, speed
+from ..flows import synth
 
-# Goals of issue 7 (MHz at width 32): production cores.
+# Fmax goals (MHz at width 32, iCE40 / ECP5) of the production cores.
 GOALS = {"su1571551": (150, 250), "circ-arc": (120, 200)}
 # A move for the cycles/step column where the demo's first example does not fit.
 MOVES = {"su1571551": ["--x", "-40", "--y", "23", "--mode", "exact"],

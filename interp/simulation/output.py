@@ -4,7 +4,7 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
-from .models.base import Run
+from ..models.base import Run
 
 PERIOD_NS = 10      # the benches' clock period, also used for model waveforms
 
@@ -49,7 +49,7 @@ def write_run(core, args, run: Run, model_vcd: bool) -> None:
     if args.vcd and model_vcd:
         write_model_vcd(args.vcd, run.samples, core.toplevel)
     if args.plot:
-        from .plot import plot_path
+        from ..plots.paths import plot_path
 
         plot_path(args.plot, run.steps, core.ideal(args), title=f"{core.name} {' '.join(describe(args))}",
                   **core.plot_options(args))

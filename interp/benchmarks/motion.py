@@ -1,4 +1,4 @@
-"""Motion subsystem figures (issue 6), measured on rtl/motion_top.v with Icarus.
+"""Motion subsystem figures, measured on rtl/motion_top.v with Icarus.
 
   * path speed vs programmed feed for axial, diagonal, 3-axis and mixed lines;
   * maximum step rate of the output stage (steps per clock) at several timings.
