@@ -67,8 +67,8 @@ CORES = [
     Target("circ_su1665343", "circ_su1665343", {"WIDTH": 30}),    # its widest (ones' complement)
     Target("lin_std", "lin_std", {"WIDTH": WIDTH}),
     Target("lin_accel", "lin_accel", {"WIDTH": WIDTH}),
-    Target("circ_std", "circ_std", {"WIDTH": WIDTH}),
-    Target("circ_accel", "circ_accel", {"WIDTH": WIDTH}),
+    Target("circ_quadrant/std", "circ_quadrant", {"WIDTH": WIDTH, "ACCEL": 0}),     # the CLI's circ-std
+    Target("circ_quadrant/accel", "circ_quadrant", {"WIDTH": WIDTH, "ACCEL": 1}),   # and circ-accel
     Target("circ_arc", "circ_arc", {"WIDTH": WIDTH}, seeds=8,
            per_family={"ecp5": {"CARRY_SELECT": 2}}),       # its loop adders in ECP5 carry cells
     Target("curve_tangent", "curve_tangent", {"WIDTH": WIDTH}),
@@ -210,7 +210,11 @@ def cli_names() -> dict[str, str]:
     """Verilog top -> the CLI's core name, for the cores the CLI knows."""
     try:
         from .cores import load_all
-        return {core.toplevel: core.name for core in load_all().values()}
+        names: dict[str, list[str]] = {}
+        for core in load_all().values():
+            names.setdefault(core.toplevel, []).append(core.name)
+        # a top that several CLI cores share (circ_quadrant) keeps its own name
+        return {top: cores[0] for top, cores in names.items() if len(cores) == 1}
     except Exception as exc:          # a core module in progress must not stop the flow
         print(f"synth: CLI core registry not loaded ({exc})", file=sys.stderr)
         return {}
