@@ -5,7 +5,7 @@
 // expression (1)) on the same free inputs, rst, start and tick included; every
 // output must be equal in every cycle.
 module lin_exact_equiv #(
-    parameter integer WIDTH = 3
+    parameter integer WIDTH = 3     // width of X, Y (the .sby's bound is for 3)
 ) (
     input wire             clk,
     input wire             rst,
