@@ -127,7 +127,9 @@ def for_row(row: str, argv: list[str] | None = None, cycles: int = 10_000) -> tu
     if row != "motion_top" and (core is None or not (argv or core.examples)):
         return None
     target = next((t for t in synth.CORES if synth.display_name(t.name) == row), None)
-    target = synth.resolved(target or synth.Target(row, core.toplevel, {"WIDTH": synth.WIDTH}))
+    # no row of its own: the core's parameters for its example (circ-accel: ACCEL = 1)
+    target = synth.resolved(target or synth.Target(row, core.toplevel, core.parameters(
+        core_args(core, argv or core.examples[0], synth.WIDTH))))
     module = module_name(row)
     if core is None:                     # motion_top: commands pushed while the queue has room
         return module, generate(module, "motion_top", target.parameters, motion_top_load(), "xyz", cycles,
