@@ -1,11 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
 `default_nettype none
-// Equivalence miter (formal/lin_exact_equiv.sby): the production core
-// lin_exact and the patent's circuit su1571551 in its exact mode (EXACT = 1,
-// expression (1)) on the same free inputs, rst, start and tick included; every
-// output must be equal in every cycle.
+// Equivalence of lin_exact (the production core, retimed) and su1571551 with
+// EXACT = 1 (the patent's circuit, expression (1)): formal/lin_exact_equiv.sby.
+// The .sby script builds `miter` with Yosys's `miter -equiv`: both cores on the
+// same inputs (in_clk, in_rst, in_start, in_tick, in_x, in_y), `trigger` high
+// when any output differs.  Besides their ports, the script exposes the state
+// the two share under the same names (2F, counters 1 and 2, the start-of-frame
+// pulse, triggers 14 and 15, the held -S and L - S) as outputs, so the miter
+// compares them too and k-induction closes.  This wrapper starts from a reset
+// and asserts from the second cycle after it (the held operands are taken in
+// every idle cycle, so they agree from then on) that nothing differs.
 module lin_exact_equiv #(
-    parameter integer WIDTH = 3     // width of X, Y (the .sby's bound is for 3)
+    parameter integer WIDTH = 4     // width of X, Y: the .sby sets the cores' to the same
 ) (
     input wire             clk,
     input wire             rst,
@@ -14,24 +20,16 @@ module lin_exact_equiv #(
     input wire [WIDTH-1:0] x,
     input wire [WIDTH-1:0] y
 );
-    wire [5:0] patent, retimed;     // {step_x, step_y, dir_x, dir_y, busy, done}
-    su1571551 #(.WIDTH(WIDTH), .EXACT(1)) u_patent (
-        .clk(clk), .rst(rst), .start(start), .tick(tick), .x(x), .y(y),
-        .step_x(patent[5]), .step_y(patent[4]), .dir_x(patent[3]), .dir_y(patent[2]),
-        .busy(patent[1]), .done(patent[0])
-    );
-    lin_exact #(.WIDTH(WIDTH)) u_retimed (
-        .clk(clk), .rst(rst), .start(start), .tick(tick), .x(x), .y(y),
-        .step_x(retimed[5]), .step_y(retimed[4]), .dir_x(retimed[3]), .dir_y(retimed[2]),
-        .busy(retimed[1]), .done(retimed[0])
+    wire trigger;
+    miter u_miter (
+        .in_clk(clk), .in_rst(rst), .in_start(start), .in_tick(tick), .in_x(x), .in_y(y),
+        .trigger(trigger)
     );
 `ifdef FORMAL
-    // Both start from a reset (their own properties assume it too); from
-    // then on the outputs agree in every cycle.
-    reg f_past_valid = 1'b0;
-    always @(posedge clk) f_past_valid <= 1'b1;
-    always @(*) if (!f_past_valid) assume (rst);
-    always @(posedge clk) if (f_past_valid) assert (patent == retimed);
+    reg [1:0] f_cycle = 2'd0;       // 0: reset, 1: the held operands settle, 2: compared
+    always @(posedge clk) if (f_cycle != 2'd2) f_cycle <= f_cycle + 2'd1;
+    always @(*) if (f_cycle == 2'd0) assume (rst);
+    always @(*) if (f_cycle == 2'd2) assert (!trigger);
 `endif
 endmodule
 `default_nettype wire

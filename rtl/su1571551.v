@@ -104,10 +104,11 @@ module su1571551 #(
     wire [CW-1:0] axial_operand, diagonal_operand, operand;
     generate
         if (EXACT != 0) begin : g_exact
-            // Expression (1): -S and L - S held for the whole move.
+            // Expression (1): -S and L - S held for the whole move, taken
+            // in every idle cycle (the last one is the load).
             reg [CW-1:0] axial_q, diagonal_q;
             always @(posedge clk) begin
-                if (load) begin
+                if (!busy) begin
                     axial_q    <= -short_len;
                     diagonal_q <= axial_count;
                 end
