@@ -1,5 +1,5 @@
 `default_nettype none
-// Board wrapper: the SU 1571551 linear core (exact mode) with step/dir pins
+// Board wrapper: the production linear core lin_exact (SU 1571551's exact mode) with step/dir pins
 // and a serial command port, for the iCE40-HX8K breakout board
 // (constraints/hx8k_breakout.pcf) and the ULX3S 25F (constraints/ulx3s.lpf).
 //
@@ -69,7 +69,7 @@ module board_top #(
     end
 
     wire step_x, step_y, dir_x, dir_y, busy, done;
-    su1571551 #(.WIDTH(WIDTH), .EXACT(1)) u_core (
+    lin_exact #(.WIDTH(WIDTH)) u_core (
         .clk(clk), .rst(rst), .start(start), .tick(tick),
         .x(cmd_q[2*WIDTH-1:WIDTH]), .y(cmd_q[WIDTH-1:0]),
         .step_x(step_x), .step_y(step_y), .dir_x(dir_x), .dir_y(dir_y),

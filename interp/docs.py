@@ -109,7 +109,7 @@ def verilator_ports(module: str, rtl: Path = RTL) -> list[tuple[str, str, int]]:
     Verilator elaborates them (--json-only): an independent check of rtl_ports."""
     import subprocess
 
-    from .sim import verilator_bin
+    from .simulation.runner import verilator_bin
 
     with tempfile.TemporaryDirectory() as tmp:
         run = subprocess.run([str(verilator_bin() / "verilator"), "--json-only", "-Wno-fatal", "-Wno-lint",
@@ -482,7 +482,7 @@ def simulate(d: Diagram, vcd: Path) -> None:
                 raise RuntimeError(f"interp gcode failed for {d.module}")
         return
     top, parameters, cli = rest[0], rest[1], rest[2:]
-    from .sim import run_cocotb
+    from .simulation.runner import run_cocotb
 
     registry = load_all()
     with tempfile.TemporaryDirectory() as tmp:

@@ -1,6 +1,6 @@
 `default_nettype none
-// First-quadrant circular interpolator of the lecture (seed 004, SPEC §5), shared
-// by circ_std (ACCEL = 0) and circ_accel (ACCEL = 1).  F = x^2 + y^2 - R^2, F = 0 at
+// First-quadrant circular interpolator of the lecture, standard (ACCEL = 0, the
+// CLI's circ-std) and accelerated (ACCEL = 1, circ-accel).  F = x^2 + y^2 - R^2, F = 0 at
 // the start point (R^2 = X_H^2 + Y_H^2), clockwise or counter-clockwise.
 //   registers 1, 2 (-2X_H and 2Y_H for CCW, moving by 2) .. counters u_reg1, u_reg2
 //       holding -X, Y (CCW) or X, -Y (CW); the adder sees them shifted one bit left

@@ -1,5 +1,5 @@
 `default_nettype none
-// Accelerated linear interpolator of the lecture (seed 004, SPEC §5): a leading
+// Accelerated linear interpolator of the lecture: a leading
 // axis steps on every tick, the other one joins it (a diagonal step) when F < 0.
 //   register 1 (|L| - |S|), register 2 (-|S|) ........ reg1_q, reg2_q
 //   multiplexer (AND 1, 2, OR) + accumulating adder .. mux2 u_mux + accum_addsub u_adder
@@ -9,7 +9,7 @@
 //   |L|, |S| and |L| - |S| from dX, dY ................ axis_order u_order
 // F >= 0: axial step, F -= |S|;  F < 0: diagonal step, F += |L| - |S|, with
 // L the leading (longer) increment and S the other one; "mirrored when dY > dX"
-// (SPEC §5) is done by routing, as in SU 1571551's trigger 15.  F starts at 0
+// (the lecture) is done by routing, as in SU 1571551's trigger 15.  F starts at 0
 // (the lecture), except for |dX| = |dY|, where it starts at -1: the lecture's
 // F = 0 with "F >= 0: axial" would end one step short of a 45-degree line.
 //

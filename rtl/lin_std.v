@@ -1,6 +1,6 @@
 `default_nettype none
 // Standard linear interpolator of the lecture "Linear and circular interpolation
-// by the evaluation-function method" (seed 004, SPEC §5): one axis per tick.
+// by the evaluation-function method": one axis per tick.
 //   register 1 (+|dX|), register 2 (-|dY|) ... reg1_q, reg2_q
 //   multiplexer (AND 1, 2, OR) + accumulating adder (memory F) mux2 u_mux + accum_addsub u_adder
 //   logic NOT, AND 3, AND 4 (X / Y pulses) ........... x_pulse, y_pulse

@@ -141,11 +141,11 @@ module motion_top #(
     // ---------------- cores ----------------
     wire a_sx, a_sy, a_dx, a_dy, a_busy, a_done;
     wire b_sx, b_sy, b_dx, b_dy, b_busy, b_done;
-    su1571551 #(.WIDTH(W), .EXACT(1)) u_line_a (
+    lin_exact #(.WIDTH(W)) u_line_a (
         .clk(clk), .rst(rst), .start(start_line), .tick(core_tick), .x(lead_len), .y(minor1),
         .step_x(a_sx), .step_y(a_sy), .dir_x(a_dx), .dir_y(a_dy), .busy(a_busy), .done(a_done)
     );
-    su1571551 #(.WIDTH(W), .EXACT(1)) u_line_b (
+    lin_exact #(.WIDTH(W)) u_line_b (
         .clk(clk), .rst(rst), .start(start_line), .tick(core_tick), .x(lead_len), .y(minor2),
         .step_x(b_sx), .step_y(b_sy), .dir_x(b_dx), .dir_y(b_dy), .busy(b_busy), .done(b_done)
     );

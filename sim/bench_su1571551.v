@@ -1,6 +1,8 @@
 `default_nettype none
 // Speed harness for `make bench`: one long SU 1571551 line at full speed.
 // Counts cycles and steps; +x=<X> +y=<Y> set the move (defaults 1000000, 377777).
+// The core: the production one, lin_exact, with -DBENCH_LIN_EXACT; otherwise
+// the patent's circuit su1571551 in the mode -DBENCH_EXACT=0|1 sets.
 module bench_su1571551;
     localparam integer WIDTH = 32;
     reg clk = 1'b0;
@@ -11,7 +13,11 @@ module bench_su1571551;
     wire step_x, step_y, dir_x, dir_y, busy, done;
     reg [63:0] cycles = 64'd0, steps_x = 64'd0, steps_y = 64'd0;
 
+`ifdef BENCH_LIN_EXACT
+    lin_exact #(.WIDTH(WIDTH)) dut (
+`else
     su1571551 #(.WIDTH(WIDTH), .EXACT(`BENCH_EXACT)) dut (
+`endif
         .clk(clk), .rst(rst), .start(start), .tick(1'b1), .x(x), .y(y),
         .step_x(step_x), .step_y(step_y), .dir_x(dir_x), .dir_y(dir_y),
         .busy(busy), .done(done)

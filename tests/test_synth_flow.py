@@ -9,7 +9,7 @@ def test_sources_follow_instantiations():
     names = [p.stem for p in synth.sources("su1571551")]
     assert names[0] == "su1571551"
     assert set(names) == {"su1571551", "updown_counter", "accum_addsub", "sign_analysis",
-                          "mux2", "increment_former", "start_stop", "carry_select_add", "axis_order"}
+                          "mux2", "increment_former", "start_stop", "axis_order"}
 
 
 def test_a_parameter_the_module_lacks_is_an_error():
@@ -57,7 +57,7 @@ def test_fusesoc_core_lists_dependencies_and_parameters():
     text = fusesoc.core_text("su1571551", {p.stem for p in synth.RTL.glob("*.v")})
     assert "name: interp:rtl:su1571551:" in text
     assert "      - interp:rtl:updown_counter" in text
-    assert "parameters: [WIDTH, EXACT, CARRY_SELECT]" in text and "default: 32" in text
+    assert "parameters: [WIDTH, EXACT]" in text and "default: 32" in text
 
 
 def test_fusesoc_exports_every_declared_parameter():

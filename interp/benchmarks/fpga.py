@@ -22,7 +22,7 @@ from ..simulation import harness, speed
 from ..flows import synth
 
 # Fmax goals (MHz at width 32, iCE40 / ECP5) of the production cores.
-GOALS = {"su1571551": (150, 250), "circ-arc": (120, 200)}
+GOALS = {"lin-exact": (150, 250), "circ-arc": (120, 200)}
 # A move for the cycles/step column where the demo's first example does not fit.
 MOVES = {"su1571551": ["--x", "-40", "--y", "23", "--mode", "exact"],
          "su1571551/faithful": ["--x", "-40", "--y", "23", "--mode", "faithful"]}

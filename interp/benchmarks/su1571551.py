@@ -34,12 +34,17 @@ def tables(quick: bool):
         worst_s, where_s, over_s = deviation(mode, sample)
         differ = sum(steps(x, y, mode) != steps(x, y, "exact") for x, y in exhaustive
                      if x >= 0 and y >= 0) if mode == "faithful" else 0
-        for sim in ("icarus", "verilator"):
-            got, seconds = run_harness("bench_su1571551", sim, {"BENCH_EXACT": exact},
-                                       [f"+x={length}", f"+y={length * 3 // 8}"])
-            assert got["steps_x"] == length and got["steps_y"] == length * 3 // 8, got
-            rows_speed.append([mode, sim, f"{length:,}", f"{got['cycles']:,}", f"{seconds:.2f}",
-                               f"{got['cycles'] / seconds:,.0f}"])
+        # the exact mode also as the production core lin_exact (same cycles, other RTL)
+        cores = [(f"su1571551 {mode}", {"BENCH_EXACT": exact})]
+        if exact:
+            cores.append(("lin_exact", {"BENCH_EXACT": 1, "BENCH_LIN_EXACT": 1}))
+        for core, defines in cores:
+            for sim in ("icarus", "verilator"):
+                got, seconds = run_harness("bench_su1571551", sim, defines,
+                                           [f"+x={length}", f"+y={length * 3 // 8}"])
+                assert got["steps_x"] == length and got["steps_y"] == length * 3 // 8, got
+                rows_speed.append([core, sim, f"{length:,}", f"{got['cycles']:,}", f"{seconds:.2f}",
+                                   f"{got['cycles'] / seconds:,.0f}"])
         rows_acc.append([mode, f"{got['cycles'] / length:.6f}", 3,
                          f"{worst:.4f} at {where}", over, f"{worst_s:.4f} at {where_s}", over_s,
                          differ if mode == "faithful" else "-"])
@@ -51,5 +56,5 @@ def tables(quick: bool):
           "first-quadrant moves whose steps differ from (1)"],
          rows_acc),
         ("SU 1571551 linear: simulation speed (sim/bench_su1571551.v, no cocotb)",
-         ["mode", "simulator", "steps", "cycles", "seconds", "cycles/s"], rows_speed),
+         ["core", "simulator", "steps", "cycles", "seconds", "cycles/s"], rows_speed),
     ]

@@ -1,5 +1,7 @@
 """`interp run|model lin-std|lin-accel --x X --y Y` and
-`interp run|model circ-std|circ-accel --x0 --y0 --x1 --y1 --dir cw|ccw` (lecture seed 004)."""
+`interp run|model circ-std|circ-accel --x0 --y0 --x1 --y1 --dir cw|ccw` (the lecture).
+
+circ-std and circ-accel are one module, rtl/circ_quadrant.v, with ACCEL = 0 / 1."""
 import math
 
 from ..models.lecture import CircQuadrant, LinAccel, LinStd, quadrant_error
@@ -60,6 +62,7 @@ def arc_points(cx, cy, x0, y0, x1, y1, ccw, full=False, n=200):
 
 
 class QuadrantCore(Core):
+    toplevel = "circ_quadrant"
     accel = False
 
     def add_arguments(self, parser):
@@ -78,6 +81,9 @@ class QuadrantCore(Core):
         if reason:
             raise UsageError(f"{self.name}: {reason} (the core answers with its error strobe and no step)")
 
+    def parameters(self, args):
+        return {"WIDTH": args.width, "ACCEL": int(self.accel)}
+
     def model(self, args):
         return CircQuadrant(args.width, self.accel)
 
@@ -91,7 +97,6 @@ class QuadrantCore(Core):
 @register
 class CircStdCore(QuadrantCore):
     name = "circ-std"
-    toplevel = "circ_std"
     help = "lecture: standard circular interpolation, first quadrant"
     examples = [["--x0", "20", "--y0", "0", "--x1", "0", "--y1", "20", "--dir", "ccw"]]
 
@@ -99,7 +104,6 @@ class CircStdCore(QuadrantCore):
 @register
 class CircAccelCore(QuadrantCore):
     name = "circ-accel"
-    toplevel = "circ_accel"
     help = "lecture: accelerated circular interpolation by octants, first quadrant"
     accel = True
     examples = [["--x0", "20", "--y0", "0", "--x1", "0", "--y1", "20", "--dir", "ccw"]]

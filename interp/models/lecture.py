@@ -182,7 +182,7 @@ class LinAccel(CycleModel):
 # ---------------------------------------------------------------- circular, first quadrant
 
 def quadrant_error(x0: int, y0: int, x1: int, y1: int, ccw: bool) -> str | None:
-    """Why circ_std/circ_accel reject the command, or None (rtl/circ_quadrant.v CHECK)."""
+    """Why circ_quadrant rejects the command, or None (rtl/circ_quadrant.v CHECK)."""
     if min(x0, y0, x1, y1) < 0:
         return "a coordinate is negative (first quadrant only)"
     if x0 == 0 and y0 == 0:
@@ -235,11 +235,11 @@ def radial_deviation(x0: int, y0: int, path, cx: int = 0, cy: int = 0) -> float:
 
 
 class CircQuadrant(CycleModel):
-    """Cycle model of rtl/circ_quadrant.v, seen through the circ_std/circ_accel wrappers."""
+    """Cycle model of rtl/circ_quadrant.v (the CLI's circ-std: ACCEL = 0, circ-accel: ACCEL = 1)."""
 
     IDLE, SETUP, CHECK, RUN = range(4)
-    watch = {**MOTION_OUTPUTS, "error": False, "u_core.f": True, "u_core.half1": True,
-             "u_core.half2": True, "u_core.kox": True, "u_core.koy": True}
+    watch = {**MOTION_OUTPUTS, "error": False, "f": True, "half1": True,
+             "half2": True, "kox": True, "koy": True}
 
     def __init__(self, width: int = 32, accel: bool = False):
         self.width, self.accel = width, accel

@@ -1,4 +1,4 @@
-"""Golden models of the SU 1571551 linear interpolator (SPEC §3).
+"""Golden models of the SU 1571551 linear interpolator.
 
 `steps()` is the step-level algorithm, written as the patent's expressions:
   (1)  F0 = L/2 - S;  F >= 0: axial,    F -= S;        F < 0: diagonal, F += L - S
@@ -6,7 +6,8 @@
 with C1 = L - S, C2 = S loaded at the start (live counters).  F is kept doubled
 so it stays an integer (the patent's 0.5 is one extra LSB).
 
-`Su1571551` is the cycle model of rtl/su1571551.v: same registers, same edges.
+`Su1571551` is the cycle model of rtl/su1571551.v: same registers, same edges; and
+of rtl/lin_exact.v (the exact mode retimed: the same values in every cycle).
 """
 from __future__ import annotations
 
@@ -70,7 +71,7 @@ def max_deviation(x: int, y: int, path: list[Step]) -> float:
 
 
 class Su1571551(CycleModel):
-    """Cycle model of rtl/su1571551.v (registers named as the RTL's nets)."""
+    """Cycle model of rtl/su1571551.v and rtl/lin_exact.v (registers named as the RTL's nets)."""
 
     watch = {**MOTION_OUTPUTS, "f": True, "ctr1": True, "ctr2": True}
 

@@ -1,4 +1,6 @@
-"""Carry-select adder (the look-ahead sums of SU1571551's adder 3): a + b mod 2^WIDTH."""
+"""carry_select_add (lin_exact's step-loop adders): a + b mod 2^WIDTH, in both forms:
+the portable one (rtl/carry_select_add.v, one carry chain) and the iCE40 one
+(rtl/ice40/carry_select_add.v, carry select)."""
 import cocotb
 import pytest
 from cocotb.triggers import Timer
@@ -21,10 +23,12 @@ async def adds(dut):
         assert int(dut.sum.value) == (a + b) & mask, (a, b)
 
 
-@pytest.mark.parametrize("width, low, split", [(2, None, 1), (7, None, 1), (34, None, 1), (34, 17, 1),
-                                              (34, None, 0)])
-def test_carry_select_add(sim, width, low, split):
+@pytest.mark.parametrize("width, low", [(2, None), (7, None), (34, None), (34, 17)])
+@pytest.mark.parametrize("family", [None, "ice40"])
+def test_carry_select_add(sim, width, low, family):
+    from interp.flows import synth
     from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="carry_select_add", test_module="test_carry_select_add", sim=sim,
-               parameters={"WIDTH": width, "SPLIT": split, **({"LOW": low} if low else {})},
-               name=f"carry_select_add_w{width}_l{low or 'default'}_s{split}")
+               parameters={"WIDTH": width, **({"LOW": low} if low else {})},
+               name=f"carry_select_add_w{width}_l{low or 'default'}_{family or 'portable'}",
+               sources=synth.sources("carry_select_add", family))

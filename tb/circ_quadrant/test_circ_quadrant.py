@@ -1,13 +1,19 @@
-"""The first-quadrant datapath under circ_std / circ_accel, tested on its own.
+"""The lecture's first-quadrant circular interpolator, rtl/circ_quadrant.v: RTL vs cycle
+model vs the lecture's equations, in both forms: standard (ACCEL = 0, the CLI's
+circ-std) and accelerated (ACCEL = 1, circ-accel).  The tests are
+interp/quadrant_bench.py's."""
+import pytest
 
-The wrappers' benches cover (ACCEL 0, WIDTH 8) and (ACCEL 1, WIDTH 32); this
-one runs the shared tests on `circ_quadrant` itself at the remaining corner.
-"""
-from interp.quadrant_bench import *  # noqa: F401,F403  (the cocotb tests)
+from interp.quadrant_bench import quadrant_suite
 from interp.simulation.runner import run_cocotb
 
+globals().update(quadrant_suite())      # the cocotb tests, bound here for cocotb to find
 
-def test_circ_quadrant(sim):
+
+@pytest.mark.parametrize("width, accel", [(8, 0), (32, 1), (8, 1)])
+def test_circ_quadrant(sim, width, accel):
+    # (8, 1) only adds the accelerated octant logic at the small width
+    testcase = ["lecture_example", "exhaustive_small", "bad_commands"] if (width, accel) == (8, 1) else None
     run_cocotb(toplevel="circ_quadrant", test_module="test_circ_quadrant", sim=sim,
-               parameters={"WIDTH": 8, "ACCEL": 1}, name="circ_quadrant_w8_accel",
-               testcase=["lecture_example", "exhaustive_small", "bad_commands"])
+               parameters={"WIDTH": width, "ACCEL": accel},
+               name=f"circ_quadrant_w{width}_{'accel' if accel else 'std'}", testcase=testcase)

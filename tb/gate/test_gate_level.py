@@ -19,6 +19,9 @@ pytestmark = pytest.mark.skipif(os.environ.get("INTERP_GATE") != "1",
 
 # (CLI name, top, parameters, cocotb test module, its folder, test cases, watched nets)
 CASES = [
+    ("lin-exact", "lin_exact", {"WIDTH": 8}, "test_su1571551", "su1571551",
+     ["patent_table", "zero_length", "start_while_busy_is_ignored", "reset_at_any_cycle",
+      "random_full_width"], ["f", "ctr1", "ctr2"]),
     ("su1571551", "su1571551", {"WIDTH": 8, "EXACT": 1}, "test_su1571551", "su1571551",
      ["patent_table", "zero_length", "start_while_busy_is_ignored", "reset_at_any_cycle",
       "random_full_width"], ["f", "ctr1", "ctr2"]),

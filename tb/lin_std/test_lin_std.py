@@ -5,10 +5,8 @@ The generic line tests are shared with lin_accel (interp/linear_bench.py).
 import cocotb
 import pytest
 
-from interp import linear_bench
 from interp.testing.corecheck import moves
-from interp.linear_bench import *  # noqa: F401,F403  (the shared cocotb tests)
-from interp.linear_bench import check_move, setup
+from interp.linear_bench import LinearSuite
 from interp.models.lecture import LinStd, lin_std_steps
 from interp.simulation.runner import run_cocotb
 
@@ -21,14 +19,15 @@ def one_axis_and_registers(tb, x, y, samples, got):
     assert ((end["pos_x"] - before["pos_x"] - x) & mask, (end["pos_y"] - before["pos_y"] - y) & mask) == (0, 0)
 
 
-linear_bench.configure(LinStd, lin_std_steps, one_axis_and_registers, reset_cycles=14)
+suite = LinearSuite(LinStd, lin_std_steps, one_axis_and_registers, reset_cycles=14)
+globals().update(suite.tests())     # the shared cocotb tests, bound here for cocotb to find
 
 
 @cocotb.test()
 async def lecture_example(dut):
     """dX = 5, dY = 3 worked by hand from the lecture's rules: X Y X Y X X Y X."""
-    tb = await setup(dut)
-    samples = await check_move(tb, 5, 3)
+    tb = await suite.setup(dut)
+    samples = await suite.check_move(tb, 5, 3)
     assert [(dx, dy) for dx, dy, _ in moves(samples)] == [(1, 0), (0, 1), (1, 0), (0, 1), (1, 0), (1, 0), (0, 1), (1, 0)]
     assert [s["f"] for _, _, s in moves(samples)] == [-3, 2, -1, 4, 1, -2, 3, 0]
 

@@ -1,8 +1,14 @@
-"""SU 1571551 linear interpolator: RTL vs cycle model vs the patent's equations."""
+"""SU 1571551 linear interpolator: RTL vs cycle model vs the patent's equations.
+
+The same benches run on the patent's circuit (su1571551, faithful and exact
+mode) and on the production core lin_exact (the exact mode retimed, with the
+portable and the iCE40 file list): one cycle model (interp/models/su1571551.py)
+for all of them, compared in every cycle."""
 import cocotb
 import pytest
 
 from interp.testing import corecheck
+from interp.flows import synth
 from interp.testing.corecheck import CoreTB, moves, start_while_busy
 from interp.models.su1571551 import Su1571551, steps
 from interp.simulation.runner import run_cocotb
@@ -26,7 +32,8 @@ IDLE = {"start": 0, "tick": 0, "x": 0, "y": 0}
 class LinearTB(CoreTB):
     def __init__(self, dut):
         self.width = int(dut.WIDTH.value)
-        self.exact = bool(int(dut.EXACT.value))
+        # lin_exact has no EXACT parameter: it is the exact mode
+        self.exact = not hasattr(dut, "EXACT") or bool(int(dut.EXACT.value))
         self.mode = "exact" if self.exact else "faithful"
         super().__init__(dut, IDLE, lambda: Su1571551(self.width, self.exact))
 
@@ -112,11 +119,17 @@ async def reset_at_any_cycle(dut):
     await corecheck.reset_at_any_cycle(tb, {"x": 11, "y": 6}, 11 + 5)
 
 
-@pytest.mark.parametrize("width, mode, carry_select", [
-    (8, "faithful", 1), (32, "faithful", 1), (8, "exact", 1), (32, "exact", 1),
-    (32, "exact", 0),                   # one carry chain per adder (the ECP5 build)
-])
-def test_su1571551(sim, width, mode, carry_select):
+@pytest.mark.parametrize("width, mode", [(8, "faithful"), (32, "faithful"), (8, "exact"), (32, "exact")])
+def test_su1571551(sim, width, mode):
     run_cocotb(toplevel="su1571551", test_module="test_su1571551", sim=sim,
-               parameters={"WIDTH": width, "EXACT": int(mode == "exact"), "CARRY_SELECT": carry_select},
-               name=f"su1571551_w{width}_{mode}_cs{carry_select}")
+               parameters={"WIDTH": width, "EXACT": int(mode == "exact")},
+               name=f"su1571551_w{width}_{mode}")
+
+
+# lin_exact: the portable file list (one carry chain per adder, the ECP5 build)
+# and the iCE40 one (rtl/ice40/carry_select_add.v, carry select).
+@pytest.mark.parametrize("width, family", [(8, None), (32, None), (32, "ice40")])
+def test_lin_exact(sim, width, family):
+    run_cocotb(toplevel="lin_exact", test_module="test_su1571551", sim=sim,
+               parameters={"WIDTH": width}, name=f"lin_exact_w{width}_{family or 'portable'}",
+               sources=synth.sources("lin_exact", family))
