@@ -25,11 +25,13 @@ test: deps lint
 demo: deps
 	$(INTERP) demo --out out/demo
 
-# Opens the SU 1571551 example in GTKWave with the patent-named view.
+# A core's built-in example to out/$(CORE).vcd, opened in GTKWave with sim/<module>.gtkw
+# (zoomed to the whole run). CORE: circ-arc, curve, su1571551 (the patent's view),
+# lin-exact, su1665343, motion (the G-code demo through motion_top).
+CORE ?= su1571551
 wave: deps
-	$(INTERP) run su1571551 --x 7 --y 3 --mode faithful --steps out/wave_steps.csv --vcd out/su1571551.vcd
-	@command -v gtkwave >/dev/null || { apt-get update -qq && apt-get install -y -qq gtkwave; }
-	gtkwave out/su1571551.vcd sim/su1571551.gtkw
+	@if [ -n "$$DISPLAY" ] && ! command -v gtkwave >/dev/null; then apt-get update -qq && apt-get install -y -qq gtkwave; fi
+	$(INTERP) wave $(CORE)
 
 lint: deps
 	@for f in rtl/*.v; do \
