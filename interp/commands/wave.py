@@ -28,7 +28,6 @@ import subprocess
 from pathlib import Path
 
 from ..cores import REGISTRY, UsageError
-from ..output import ensure_dir
 
 ROOT = Path(__file__).resolve().parents[2]
 SIM = ROOT / "sim"
@@ -172,6 +171,8 @@ def run_example(name: str, vcd: Path, out: Path) -> None:
         src.write_text(DEMO)
         argv = ["gcode", str(src), "--steps", str(out / f"{name}_steps.csv"), "--vcd", str(vcd)]
     else:
+        if not REGISTRY[name].examples:
+            raise UsageError(f"core {name} has no built-in example to run")
         argv = ["run", name, *REGISTRY[name].examples[0], "--steps", str(out / f"{name}_steps.csv"),
                 "--vcd", str(vcd)]
     args = build_parser().parse_args(argv)
@@ -184,7 +185,8 @@ def make_wave(name: str, out) -> tuple[Path, Path]:
     found = targets()
     if name not in found:
         raise UsageError(f"no save file for {name!r}; choose from {', '.join(sorted(found))}")
-    out = ensure_dir(out)
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
     vcd, save = out / f"{name}.vcd", out / f"{name}.gtkw"
     run_example(name, vcd, out)
     text, missing = fit((SIM / f"{found[name]}.gtkw").read_text(), vcd, str(vcd.resolve()))
