@@ -20,6 +20,7 @@ import numpy as np  # noqa: E402
 
 STEPS_COLOUR, IDEAL_COLOUR, BAND_COLOUR = "tab:red", "tab:blue", "tab:green"
 MARKERS_UP_TO = 150         # steps drawn with a dot at each point up to this many
+STRETCH_ABOVE = 6          # a path longer than this many times its width is drawn not to scale
 INSET_STEPS = 24            # a longer path gets an inset: this many steps around its middle, magnified
 
 
@@ -92,10 +93,13 @@ def draw(ax_path, ax_dev, steps, ideal=None, title="", start=(0, 0), band: float
     """Both panels of one run on the given axes; the largest |deviation| (steps), or None."""
     pts = np.asarray(positions(steps, start), dtype=float)
     many = len(steps) > MARKERS_UP_TO
+    every = pts if ideal is None or not len(ideal) else np.vstack([pts, np.asarray(ideal, dtype=float)])
+    span = np.ptp(every, axis=0)
+    to_scale = span.min() * STRETCH_ABOVE >= span.max()
     ax_path.plot(pts[:, 0] / scale, pts[:, 1] / scale, color=STEPS_COLOUR, lw=0.7 if many else 0.9,
                  marker=None if many else "o", ms=2.2, zorder=2, label=f"steps ({len(steps)})")
     ax_path.plot(*(pts[0] / scale), "o", color="black", ms=4, zorder=4, label="start")
-    if many:
+    if many and to_scale:      # steps too small to see: magnify some (stretched axes show them)
         _inset(ax_path, pts / scale, None if ideal is None else np.asarray(ideal, dtype=float) / scale)
     if centre is not None:
         ax_path.plot(centre[0] / scale, centre[1] / scale, "+", color="black", ms=9, mew=1.2, zorder=4,
@@ -121,7 +125,11 @@ def draw(ax_path, ax_dev, steps, ideal=None, title="", start=(0, 0), band: float
     ax_dev.set_xlabel("step number", fontsize=fontsize)
     ax_dev.set_ylabel("deviation (steps)", fontsize=fontsize)
     ax_dev.grid(True, lw=0.3)
-    ax_path.set_aspect("equal", adjustable="datalim")
+    if to_scale:
+        ax_path.set_aspect("equal", adjustable="datalim")
+    else:                       # a long thin path: stretched to be seen, and said so
+        ax_path.text(0.01, 0.01, "axes not to scale", transform=ax_path.transAxes, fontsize=fontsize - 2,
+                     color="0.35", va="bottom")
     ax_path.grid(True, lw=0.3)
     ax_path.set_xlabel(f"X ({unit})", fontsize=fontsize)
     ax_path.set_ylabel(f"Y ({unit})", fontsize=fontsize)
