@@ -162,3 +162,12 @@ def test_overview_has_four_panels(tmp_path):
     out = tmp_path / "o.png"
     plot.plot_overview(out, [panel, {**panel, "unit": "mm", "scale": 2.0}, panel, panel])
     assert out.read_bytes()[:8] == PNG and out.stat().st_size < 300_000
+
+
+def test_long_thin_path_is_stretched_and_says_so():
+    steps = [(k, 1, 1 if k % 100 == 0 else 0) for k in range(1000)]     # 1000 x 10 steps
+    fig, _ = plot.path_figure(steps, [(0, 0), (1000, 10)])
+    path, _ = panels(fig)
+    assert path.get_aspect() == "auto" and not path.child_axes
+    assert any(t.get_text() == "axes not to scale" for t in path.texts)
+    plt.close(fig)
