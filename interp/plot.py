@@ -19,9 +19,13 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 STEPS_COLOUR, IDEAL_COLOUR, BAND_COLOUR = "tab:red", "tab:blue", "tab:green"
-MARKERS_UP_TO = 150         # steps drawn with a dot at each point up to this many
+MARKERS_UP_TO = 150         # steps drawn with a dot at each point up to this many (or while the
+                            # path is small enough for dots to be seen, up to 4 times as many)
 STRETCH_ABOVE = 6          # a path longer than this many times its width is drawn not to scale
-INSET_STEPS = 24            # a longer path gets an inset: this many steps around its middle, magnified
+INSET_ABOVE = 150           # a path wider than this many steps (drawn to scale) gets an inset:
+INSET_STEPS = 24            # this many steps a third of the way along, magnified
+CORNERS = {(0.6, 0.06): "lower right", (0.06, 0.06): "lower left", (0.6, 0.56): "upper right",
+           (0.06, 0.56): "upper left", (0.32, 0.31): "center"}
 
 
 def positions(steps, start=(0, 0)):
@@ -56,8 +60,9 @@ def deviations(points, ideal) -> np.ndarray:
     return out
 
 
-def _inset(ax, pts, ideal) -> None:
-    """Magnify INSET_STEPS steps a third of the way along a long path, in the emptiest corner."""
+def _inset(ax, pts, ideal) -> str:
+    """Magnify INSET_STEPS steps a third of the way along a long path, in the emptiest corner;
+    returns the next emptiest corner (for the legend)."""
     mid = len(pts) // 3
     part = pts[max(0, mid - INSET_STEPS // 2): mid + INSET_STEPS // 2 + 1]
     lo, hi = part.min(0), part.max(0)
@@ -67,8 +72,9 @@ def _inset(ax, pts, ideal) -> None:
     u = (pts[:, 0] - x0) / max(x1 - x0, 1e-9)
     v = (pts[:, 1] - y0) / max(y1 - y0, 1e-9)
     corners = {(0.6, 0.06): (u > 0.55) & (v < 0.45), (0.06, 0.06): (u < 0.45) & (v < 0.45),
-               (0.6, 0.56): (u > 0.55) & (v > 0.55), (0.06, 0.56): (u < 0.45) & (v > 0.55)}
-    where = min(corners, key=lambda c: corners[c].sum())
+               (0.6, 0.56): (u > 0.55) & (v > 0.55), (0.06, 0.56): (u < 0.45) & (v > 0.55),
+               (0.32, 0.31): (u > 0.28) & (u < 0.72) & (v > 0.27) & (v < 0.71)}     # inside a closed path
+    where, free = sorted(corners, key=lambda c: corners[c].sum())[:2]
     inset = ax.inset_axes([*where, 0.36, 0.36])
     inset.plot(pts[:, 0], pts[:, 1], color=STEPS_COLOUR, lw=0.9, marker="o", ms=2.5, zorder=2)
     if ideal is not None:
@@ -81,6 +87,7 @@ def _inset(ax, pts, ideal) -> None:
     inset.set_title(f"steps {max(0, mid - INSET_STEPS // 2)}-{min(len(pts) - 1, mid + INSET_STEPS // 2)}",
                     fontsize=7, pad=2)
     ax.indicate_inset_zoom(inset, edgecolor="0.3")
+    return CORNERS[free]
 
 
 def wrap(title: str, width: int) -> str:
@@ -89,18 +96,19 @@ def wrap(title: str, width: int) -> str:
 
 def draw(ax_path, ax_dev, steps, ideal=None, title="", start=(0, 0), band: float | None = 0.5,
          unit: str = "steps", scale: float = 1.0, title_width: int = 60, fontsize: float = 9,
-         centre=None) -> float | None:
+         centre=None, inset: bool = True) -> float | None:
     """Both panels of one run on the given axes; the largest |deviation| (steps), or None."""
     pts = np.asarray(positions(steps, start), dtype=float)
-    many = len(steps) > MARKERS_UP_TO
     every = pts if ideal is None or not len(ideal) else np.vstack([pts, np.asarray(ideal, dtype=float)])
     span = np.ptp(every, axis=0)
+    many = len(steps) > MARKERS_UP_TO and (span.max() > INSET_ABOVE or len(steps) > 4 * MARKERS_UP_TO)
     to_scale = span.min() * STRETCH_ABOVE >= span.max()
     ax_path.plot(pts[:, 0] / scale, pts[:, 1] / scale, color=STEPS_COLOUR, lw=0.7 if many else 0.9,
                  marker=None if many else "o", ms=2.2, zorder=2, label=f"steps ({len(steps)})")
     ax_path.plot(*(pts[0] / scale), "o", color="black", ms=4, zorder=4, label="start")
-    if many and to_scale:      # steps too small to see: magnify some (stretched axes show them)
-        _inset(ax_path, pts / scale, None if ideal is None else np.asarray(ideal, dtype=float) / scale)
+    legend_at = "best"
+    if inset and to_scale and span.max() > INSET_ABOVE:    # steps too small to see: magnify some
+        legend_at = _inset(ax_path, pts / scale, None if ideal is None else np.asarray(ideal, dtype=float) / scale)
     if centre is not None:
         ax_path.plot(centre[0] / scale, centre[1] / scale, "+", color="black", ms=9, mew=1.2, zorder=4,
                      label=f"centre ({centre[0] / scale:g}, {centre[1] / scale:g})")
@@ -134,7 +142,7 @@ def draw(ax_path, ax_dev, steps, ideal=None, title="", start=(0, 0), band: float
     ax_path.set_xlabel(f"X ({unit})", fontsize=fontsize)
     ax_path.set_ylabel(f"Y ({unit})", fontsize=fontsize)
     ax_path.set_title(wrap(title, title_width), fontsize=fontsize)
-    ax_path.legend(fontsize=fontsize - 1.5, loc="best", framealpha=0.85)
+    ax_path.legend(fontsize=fontsize - 1.5, loc=legend_at, framealpha=0.85)
     for ax in (ax_path, ax_dev):
         ax.tick_params(labelsize=fontsize - 1)
     return worst
@@ -176,7 +184,7 @@ def plot_overview(path, panels: list[dict], title: str = "", dpi: int = 80) -> N
         r, c = divmod(n, cols)
         ax_path = fig.add_subplot(grid[2 * r, c])
         ax_dev = fig.add_subplot(grid[2 * r + 1, c])
-        draw(ax_path, ax_dev, title_width=55, fontsize=9, **panel)
+        draw(ax_path, ax_dev, title_width=55, fontsize=9, inset=False, **panel)
     if title:
         fig.suptitle(wrap(title, 100), fontsize=12)
     fig.subplots_adjust(left=0.07, right=0.98, top=0.95 if title else 0.97, bottom=0.05)
