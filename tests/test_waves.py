@@ -10,11 +10,12 @@ for the run).
 from __future__ import annotations
 
 import shutil
+from pathlib import Path
 
 import pytest
 
-from interp.commands.wave import (SIM, fit, make_wave, save_file_signals, targets, vcd_end_time,
-                                  vcd_signals, visible_span, zoom_for)
+from interp.commands.wave import (ROOT, SIM, fit, make_wave, save_file_filters, save_file_signals, targets,
+                                  vcd_end_time, vcd_signals, visible_span, zoom_for)
 from interp.cores import REGISTRY, load_all
 
 load_all()
@@ -44,6 +45,15 @@ def test_save_files_group_by_function(groups):
             assert f"@800200\n-{group}\n" in text, f"sim/{module}.gtkw has no group {group!r}"
 
 
+@pytest.mark.parametrize("save", sorted(p.name for p in SIM.glob("*.gtkw")))
+def test_translate_filters_exist(save):
+    """Codes shown by name: each filter file exists (path from the repository root), 'value name' lines."""
+    for path in save_file_filters((SIM / save).read_text()):
+        assert not path.startswith("/"), f"sim/{save}: filter {path} must be relative to the repository"
+        lines = (ROOT / path).read_text().splitlines()
+        assert lines and all(len(line.split()) == 2 for line in lines), f"{path}: want 'value name' lines"
+
+
 def test_zoom_arithmetic():
     text = "[size] 1400 800\n[sst_width] 220\n[signals_width] 300\n[timestart] 0\n"
     for end in (1, 1000, 3_025_000, 10**12):
@@ -59,6 +69,8 @@ def test_save_file_matches_vcd(name, tmp_path_factory):
     module = targets()[name]
     committed = (SIM / f"{module}.gtkw").read_text()
     names = set(vcd_signals(vcd).values())
+    for path in save_file_filters(save.read_text()):
+        assert path.startswith("/") and Path(path).exists(), f"{save}: filter {path} is not an absolute path"
     missing = [s for s in save_file_signals(committed) if s not in names]
     assert not missing, f"sim/{module}.gtkw names signals that {vcd.name} lacks: {missing}"
     assert save_file_signals(committed), f"sim/{module}.gtkw shows no signal"

@@ -14,7 +14,10 @@ gtkwave it says so in one line and leaves the two files.
 GTKWave's zoom.  The save file's `*Z ...` line holds the zoom Z; GTKWave 3.3
 shows 2^-Z / 200 VCD time units per pixel (measured on GTKWave 3.3.118 under
 Xvfb: Z = -4 shows 0.08 ps per pixel of a 1 ps VCD, Z = -20 shows 5.2 ns).
-`[timestart]` is the left edge.  The save files' window is [size] 1400 x 800
+`[timestart]` is the left edge.  Codes (states, command kinds, error codes)
+are shown by name through translate filter files, sim/filters/*.txt (one
+"value name" a line): the save files name them from the repository root,
+the written save file by absolute path.  The save files' window is [size] 1400 x 800
 with the signal tree (sst_width) and names (signals_width) on the left; the
 rest, less a margin, is the wave area that `fit_zoom` fills.
 """
@@ -85,11 +88,16 @@ def vcd_end_time(path) -> int:
 
 # ---- save files -------------------------------------------------------------------------
 
+def save_file_filters(text: str) -> list[str]:
+    """The translate filter files (`^N path`, paths from the repository root) a save file uses."""
+    return [line.split(" ", 1)[1] for line in text.splitlines() if re.match(r"\^\d+ ", line)]
+
+
 def save_file_signals(text: str) -> list[str]:
     """The signal names a save file shows (aliases removed), in order."""
     out = []
     for line in text.splitlines():
-        if not line or line[0] in "[@-*#":
+        if not line or line[0] in "[@-*#^":
             continue
         out.append(line.split("} ", 1)[1] if line.startswith("+{") else line)
     return out
@@ -136,7 +144,10 @@ def fit(text: str, vcd, dumpfile: str | None = None) -> tuple[str, list[str]]:
             line = "[timestart] 0"
         elif line.startswith("[dumpfile]") and dumpfile:
             line = f'[dumpfile] "{dumpfile}"'
-        elif line and line[0] not in "[@-#":
+        elif re.match(r"\^\d+ ", line):          # translate filter file: absolute path
+            number, path = line[1:].split(" ", 1)
+            line = f"^{number} {(ROOT / path).resolve() if not Path(path).is_absolute() else path}"
+        elif line and line[0] not in "[@-#^":
             alias, name = (line.split("} ", 1)[0] + "} ", line.split("} ", 1)[1]) \
                 if line.startswith("+{") else ("", line)
             base = name.split("[")[0]
