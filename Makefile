@@ -6,7 +6,7 @@ PY      := $(VENV)/bin/python
 INTERP  := $(VENV)/bin/interp
 JOBS    ?= auto
 
-.PHONY: all deps test demo wave lint bench clean fpga-deps synth bitstream test-synth formal docs
+.PHONY: all deps test demo docs-demo wave lint bench clean fpga-deps synth bitstream test-synth formal docs
 all: test
 
 # Debian packages only if missing (CI machines have them), then the venv.
@@ -24,11 +24,18 @@ test: deps lint
 demo: deps
 	$(INTERP) demo --out out/demo
 
-# Opens the SU 1571551 example in GTKWave with the patent-named view.
+# The README's picture docs/demo.png: a line, an arc, a curve and the G-code demo through the
+# RTL (Icarus), with each run's deviation from the programmed path.
+docs-demo: deps
+	$(INTERP) demo --out out/docs-demo --overview-only --overview docs/demo.png
+
+# A core's built-in example to out/$(CORE).vcd, opened in GTKWave with sim/<module>.gtkw
+# (zoomed to the whole run). CORE: circ-arc, curve, su1571551 (the patent's view),
+# lin-exact, su1665343, motion (the G-code demo through motion_top).
+CORE ?= su1571551
 wave: deps
-	$(INTERP) run su1571551 --x 7 --y 3 --mode faithful --steps out/wave_steps.csv --vcd out/su1571551.vcd
-	@command -v gtkwave >/dev/null || { apt-get update -qq && apt-get install -y -qq gtkwave; }
-	gtkwave out/su1571551.vcd sim/su1571551.gtkw
+	@if [ -n "$$DISPLAY" ] && ! command -v gtkwave >/dev/null; then apt-get update -qq && apt-get install -y -qq gtkwave; fi
+	$(INTERP) wave $(CORE)
 
 # Verilator -Wall on every module's file list: portable, and each FPGA family's (rtl/<family>/).
 lint: deps

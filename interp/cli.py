@@ -3,6 +3,7 @@
   interp run CORE [core options] [--sim icarus|verilator] --steps FILE [--trace FILE] [--vcd FILE] [--plot FILE]
   interp model CORE ...          the same files from the golden model
   interp demo [--out DIR]        built-in examples through the RTL: waves, CSVs, plots
+  interp wave CORE               a core's example to out/CORE.vcd, opened in GTKWave (make wave CORE=...)
   interp bench                   benchmark tables
 
 More subcommands come from the modules of interp.commands (each has `add_parser`).

@@ -1,9 +1,26 @@
-"""`interp demo`: every core's built-in examples through the RTL, with waves and plots."""
+"""`interp demo`: every core's built-in examples through the RTL, with waves and plots.
+
+Besides one VCD, steps CSV and PNG per example, it draws OUT/overview.png: a
+line, an arc, a curve and the G-code demo program side by side, each over its
+deviation from the programmed path.  The README's picture docs/demo.png is
+this file: `make docs-demo`, i.e.
+`interp demo --overview-only --overview docs/demo.png`.
+"""
 from __future__ import annotations
 
-from ..cores import REGISTRY
+import csv
+from pathlib import Path
+
+from ..cores import REGISTRY, UsageError
 from ..simulation.output import ensure_dir
 from ..simulation.runner import SIMULATORS
+
+# The overview's panels: (label, core, options); the first linear core that exists is used.
+OVERVIEW = (("line", "lin-exact", ["--x", "-40", "--y", "23"]),
+            ("line", "su1571551", ["--x", "-40", "--y", "23", "--mode", "exact"]),
+            ("arc", "circ-arc", ["--cx", "0", "--cy", "0", "--x0", "30", "--y0", "0", "--x1", "30", "--y1", "0",
+                                 "--full"]),
+            ("curve", "curve", ["--curve", "ellipse", "--a", "40", "--b", "25", "--mode", "improved"]))
 
 
 def add_parser(sub) -> None:
@@ -11,6 +28,8 @@ def add_parser(sub) -> None:
     p.add_argument("--out", default="out/demo", help="output folder (default out/demo)")
     p.add_argument("--sim", choices=SIMULATORS, default="icarus")
     p.add_argument("--core", action="append", help="only this core (repeatable)")
+    p.add_argument("--overview", metavar="FILE", help="the overview picture (default OUT/overview.png)")
+    p.add_argument("--overview-only", action="store_true", help="only the overview picture's runs")
     p.set_defaults(func=run)
 
 
@@ -19,7 +38,10 @@ def run(args) -> int:
 
     out = ensure_dir(args.out)
     parser = build_parser()
-    names = args.core or sorted(REGISTRY)
+    names = [] if args.overview_only else args.core or sorted(REGISTRY)
+    for name in names:
+        if name not in REGISTRY:
+            raise UsageError(f"demo: unknown core {name!r}; choose from {', '.join(sorted(REGISTRY))}")
     for name in names:
         core = REGISTRY[name]
         for n, options in enumerate(core.examples, 1):
@@ -31,10 +53,48 @@ def run(args) -> int:
             job = parser.parse_args(argv)
             job.func(job)
             print(f"{name} {' '.join(options)}: {stem}.vcd {stem}.png {stem}_steps.csv")
-    extra = [f for f in (getattr(m, "demo", None) for m in _demo_hooks()) if f]
-    for hook in extra:
-        hook(out, args.sim)
+    if not args.overview_only:
+        for hook in [f for f in (getattr(m, "demo", None) for m in _demo_hooks()) if f]:
+            hook(out, args.sim)
+    overview = Path(args.overview) if args.overview else out / "overview.png"
+    write_overview(overview, out / "overview", args.sim)
+    print(f"overview: {overview}")
     return 0
+
+
+def read_steps(path) -> list[tuple[int, ...]]:
+    with open(path, newline="") as f:
+        rows = csv.reader(f)
+        next(rows)
+        return [tuple(int(v) for v in row) for row in rows]
+
+
+def write_overview(path, work, sim: str = "icarus") -> None:
+    """A line, an arc, a curve and the G-code demo through the RTL, in one small PNG."""
+    from ..cli import build_parser
+    from ..plots.paths import plot_overview
+    from .gcode import DEMO, UNIT, ideal_path, parse
+
+    work = ensure_dir(work)
+    parser = build_parser()
+    panels, lines = [], 0
+    for label, name, options in OVERVIEW:
+        if name not in REGISTRY or (label == "line" and lines):
+            continue
+        lines += label == "line"
+        core = REGISTRY[name]
+        job = parser.parse_args(["run", name, *options, "--sim", sim, "--steps", str(work / f"{name}_steps.csv")])
+        job.func(job)
+        panels.append({"steps": read_steps(job.steps), "ideal": core.ideal(job),
+                       "title": f"{label}, {core.toplevel}: {' '.join(options)}", **core.plot_options(job)})
+    src = work / "gcode_demo.nc"
+    src.write_text(DEMO)
+    job = parser.parse_args(["gcode", str(src), "--sim", sim, "--steps", str(work / "gcode_steps.csv")])
+    job.func(job)
+    panels.append({"steps": read_steps(job.steps), "ideal": ideal_path(parse(DEMO)), "unit": UNIT,
+                   "title": "G-code, motion_top: the demo program (1 step/mm)"})
+    ensure_dir(Path(path).parent)
+    plot_overview(path, panels)
 
 
 def _demo_hooks():
@@ -47,5 +107,3 @@ def _demo_hooks():
     for info in pkgutil.iter_modules(commands.__path__):
         if info.name != "demo":
             yield importlib.import_module(f"{commands.__name__}.{info.name}")
-
-

@@ -187,7 +187,24 @@ def arc_points(start, delta, centre, ccw: bool, n: int = 96):
     if sweep == 0:
         sweep = 2 * math.pi if ccw else -2 * math.pi
     r = math.hypot(start[0] - cx, start[1] - cy)
+    n = max(n, math.ceil(abs(sweep) / math.sqrt(0.008 / max(r, 1))))     # chords within 0.001 step
     return [(cx + r * math.cos(a0 + sweep * k / n), cy + r * math.sin(a0 + sweep * k / n)) for k in range(n + 1)]
+
+
+UNIT = "mm"         # G21 (the only units accepted); plots are drawn in program units
+
+
+def ideal_path(prog: Program) -> list[tuple[float, float]]:
+    """The programmed XY path as one polyline, in steps."""
+    return [pt for piece in prog.path for pt in piece]
+
+
+def plot_program(path, prog: Program, rows, scale: float, name: str) -> float | None:
+    """PNG of a program's steps over its programmed XY path, in program units."""
+    from ..plots.paths import plot_path
+
+    return plot_path(path, rows, ideal_path(prog), unit=UNIT, scale=scale,
+                     title=f"interp gcode {name}: motion_top, {scale:g} step{'s' * (scale != 1)}/{UNIT}")
 
 
 def simulate(commands: list[Command], sim: str, timing: dict, vcd: str | None = None,
@@ -221,10 +238,7 @@ def run_program(text: str, args) -> int:
     rows = step_rows(result, axes)
     write_steps(args.steps, rows, axes)
     if args.plot:
-        from ..plots.paths import plot_path
-
-        ideal = [pt for piece in prog.path for pt in piece]
-        plot_path(args.plot, rows, ideal, title=f"interp gcode {Path(args.file).name} (scale {args.scale:g})")
+        plot_program(args.plot, prog, rows, args.scale, Path(args.file).name)
     for cycle, code in result["errors"]:        # the front end's checks should leave none
         print(f"interp: motion_top error at cycle {cycle}: code {code}, {ERROR_TEXT.get(code, '?')}")
     if result["errors"]:

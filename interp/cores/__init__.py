@@ -70,7 +70,8 @@ class Core:
         return None
 
     def plot_options(self, args) -> dict:
-        """Extra plot_path arguments (start point, error band)."""
+        """Extra plot_path arguments: the start point in the user's coordinates (the
+        steps are drawn from it; default the origin), the deviation band."""
         return {}
 
 

@@ -41,3 +41,6 @@ class CircArcCore(Core):
 
     def ideal(self, args):
         return arc_points(args.cx, args.cy, args.x0, args.y0, args.x1, args.y1, args.dir == "ccw", args.full)
+
+    def plot_options(self, args):
+        return {"start": (args.x0, args.y0), "centre": (args.cx, args.cy)}

@@ -118,4 +118,5 @@ class CurveCore(Core):
 
     def plot_options(self, args):
         prog = self.program(args)
-        return {"start": (prog.x0, prog.y0), "band": self.band}
+        centre = {"centre": (0, 0)} if args.curve in ("circle", "ellipse") else {}
+        return {"start": (prog.x0, prog.y0), "band": self.band, **centre}

@@ -49,15 +49,16 @@ class LinAccelCore(LinearCore):
 
 
 def arc_points(cx, cy, x0, y0, x1, y1, ccw, full=False, n=200):
-    """The ideal arc from the start point's angle to the end point's, for plots.
-
-    Relative to the start point, like the plotted steps (they start at (0, 0))."""
+    """The ideal arc from the start point's angle to the end point's, for plots, in
+    absolute coordinates (the plotted steps start at (x0, y0): `plot_options`).
+    Points close enough that the chords are within 0.001 step of the arc."""
     r = math.hypot(x0 - cx, y0 - cy)
     t0, t1 = math.atan2(y0 - cy, x0 - cx), math.atan2(y1 - cy, x1 - cx)
     sweep = (t1 - t0) % (2 * math.pi) if ccw else -((t0 - t1) % (2 * math.pi))
     if full and sweep == 0:
         sweep = 2 * math.pi if ccw else -2 * math.pi
-    return [(cx - x0 + r * math.cos(t0 + sweep * k / n), cy - y0 + r * math.sin(t0 + sweep * k / n))
+    n = max(n, math.ceil(abs(sweep) / math.sqrt(0.008 / max(r, 1))))
+    return [(cx + r * math.cos(t0 + sweep * k / n), cy + r * math.sin(t0 + sweep * k / n))
             for k in range(n + 1)]
 
 
@@ -92,6 +93,9 @@ class QuadrantCore(Core):
 
     def ideal(self, args):
         return arc_points(0, 0, args.x0, args.y0, args.x1, args.y1, args.dir == "ccw")
+
+    def plot_options(self, args):
+        return {"start": (args.x0, args.y0), "centre": (0, 0)}
 
 
 @register

@@ -50,6 +50,9 @@ class Su1665343Core(Core):
         import math
         x0, y0 = self._start(args)
         a0 = math.atan2(y0, x0)
-        n = 200
-        return [(args.r * math.cos(a0 + (math.pi / 2 - a0) * k / n) - x0,
-                 args.r * math.sin(a0 + (math.pi / 2 - a0) * k / n) - y0) for k in range(n + 1)]
+        n = max(200, math.ceil((math.pi / 2 - a0) / math.sqrt(0.008 / args.r)))
+        return [(args.r * math.cos(a0 + (math.pi / 2 - a0) * k / n),
+                 args.r * math.sin(a0 + (math.pi / 2 - a0) * k / n)) for k in range(n + 1)]
+
+    def plot_options(self, args):
+        return {"start": self._start(args), "centre": (0, 0)}

@@ -51,7 +51,8 @@ def write_run(core, args, run: Run, model_vcd: bool) -> None:
     if args.plot:
         from ..plots.paths import plot_path
 
-        plot_path(args.plot, run.steps, core.ideal(args), title=f"{core.name} {' '.join(describe(args))}",
+        plot_path(args.plot, run.steps, core.ideal(args),
+                  title=f"interp {args.command} {core.name} ({core.toplevel}): {', '.join(describe(args))}",
                   **core.plot_options(args))
 
 

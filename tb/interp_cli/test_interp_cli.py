@@ -64,33 +64,3 @@ def test_bad_arguments(args, message, tmp_path):
 def test_unknown_core(tmp_path):
     done = interp("run", "nosuchcore", "--steps", tmp_path / "s.csv")
     assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1
-
-
-def _gtkw_views():
-    from interp.simulation.runner import ROOT
-    return sorted((ROOT / "sim").glob("*.gtkw"))
-
-
-@pytest.mark.parametrize("view", _gtkw_views(), ids=lambda p: p.stem)
-def test_gtkwave_view_names_real_signals(view, tmp_path):
-    """Every signal a saved GTKWave view shows exists in the core's Icarus VCD."""
-    from interp.cores import load_all
-    cores = [c for c in load_all().values() if c.toplevel == view.stem and c.examples]
-    assert cores, f"no core with an example for {view.name}"
-    vcd = tmp_path / "w.vcd"
-    done = interp("run", cores[0].name, *cores[0].examples[0], "--steps", tmp_path / "s.csv", "--vcd", vcd)
-    assert done.returncode == 0, done.stderr
-    names, scope = set(), []
-    for line in vcd.read_text().splitlines():
-        words = line.split()
-        if words[:1] == ["$scope"]:
-            scope.append(words[2])
-        elif words[:1] == ["$upscope"]:
-            scope.pop()
-        elif words[:1] == ["$var"]:
-            ref = words[4] + (words[5] if words[5] != "$end" else "")
-            names.add(".".join(scope + [ref]))
-    shown = [line.split("} ")[-1].strip() for line in view.read_text().splitlines()
-             if line and line[0] not in "[*@-"]
-    missing = [s for s in shown if s not in names]
-    assert shown and not missing, f"{view.name}: not in the VCD: {missing}"
