@@ -68,8 +68,7 @@ CORES = [
     Target("lin_accel", "lin_accel", {"WIDTH": WIDTH}),
     Target("circ_std", "circ_std", {"WIDTH": WIDTH}),
     Target("circ_accel", "circ_accel", {"WIDTH": WIDTH}),
-    Target("circ_arc", "circ_arc", {"WIDTH": WIDTH}, seeds=8,
-           per_family={"ecp5": {"CARRY_SELECT": 2}}),       # its loop adders in ECP5 carry cells
+    Target("circ_arc", "circ_arc", {"WIDTH": WIDTH}, seeds=8),
     Target("curve_tangent", "curve_tangent", {"WIDTH": WIDTH}),
     Target("feed_rate", "feed_rate", {"WIDTH": WIDTH}),
     Target("step_sync", "step_sync", {"WIDTH": WIDTH}),

@@ -48,8 +48,7 @@
 // together), plus six reload cycles after each step into a new octant; `fin` comes
 // with the last step's strobes.  Used by circ_arc.
 module arc_stepper #(
-    parameter integer WIDTH = 32,           // circ_arc's coordinate width (>= 6); |u|, |v| < 2^(WIDTH-3)
-    parameter integer CARRY_SELECT = 1      // 1: adders cut in two, selects after (iCE40); 0: one chain, selects in front; 2: as 0 in ECP5 carry cells
+    parameter integer WIDTH = 32            // circ_arc's coordinate width (>= 6); |u|, |v| < 2^(WIDTH-3)
 ) (
     input  wire             clk,
     input  wire             rst,
@@ -71,7 +70,6 @@ module arc_stepper #(
 );
     initial begin
         if (WIDTH < 6) $error("%m: WIDTH must be at least 6");
-        if (CARRY_SELECT < 0 || CARRY_SELECT > 2) $error("%m: CARRY_SELECT must be 0, 1 or 2");
     end
 
     localparam integer UW = WIDTH + 1;      // coordinates, p, q and their sums
@@ -276,34 +274,18 @@ module arc_stepper #(
         hit = |({{3{wu[2]}}, {3{wu[1]}}, {3{wu[0]}}} & {3{wv}} & table_t);
     endfunction
 
-    // Carry-select sums for the loop (iCE40's carry chain is slow): the low part and both
-    // versions of the high part at once; a + b + 1 written as a - ~b, so Yosys keeps it apart.
-    localparam integer LN = NW * 2 / 5, LU = UW * 2 / 5;     // low parts
-    function automatic [NW-1:0] add_n(input [NW-1:0] a, b);
-        reg [LN:0] lo;
-        begin
-            lo = {1'b0, a[LN-1:0]} + {1'b0, b[LN-1:0]};
-            add_n = CARRY_SELECT != 1 ? a + b
-                                      : {lo[LN] ? a[NW-1:LN] - ~b[NW-1:LN] : a[NW-1:LN] + b[NW-1:LN], lo[LN-1:0]};
-        end
-    endfunction
-    /* verilator lint_off UNUSEDSIGNAL */        // sum's top bit
-    function automatic [UW-1:0] add_u(input [UW-1:0] a, b);   // the same, one bit narrower
-        reg [NW-1:0] sum;
-        begin
-            sum = add_n({a[UW-1], a}, {b[UW-1], b});
-            add_u = sum[UW-1:0];
-        end
-    endfunction
-    /* verilator lint_on UNUSEDSIGNAL */
-    function automatic [UW-1:0] add1_u(input [UW-1:0] a, b);  // a + b + 1 ({0, x} - {1, ~y} = x + y + 1)
-        reg [LU:0] lo;
-        begin
-            lo = {1'b0, a[LU-1:0]} - {1'b1, ~b[LU-1:0]};
-            add1_u = CARRY_SELECT != 1 ? a - ~b
-                                       : {lo[LU] ? a[UW-1:LU] - ~b[UW-1:LU] : a[UW-1:LU] + b[UW-1:LU], lo[LU-1:0]};
-        end
-    endfunction
+    // Wide sums off the loop: one chain_add each (cut in two by its iCE40 form).
+    wire [UW-1:0] s1_w, s3_w, p_w, q_w, du0_w, dv0_w, p1_ld, g2_ld;
+    wire [7:0]    unused_carries;
+    chain_add #(.WIDTH(UW)) u_s1_add (.a(u_q), .b(v_q), .cin(1'b0), .sum(s1_w), .cout(unused_carries[0]));
+    chain_add #(.WIDTH(UW), .SUBTRACT(1)) u_s3_add (.a(v_q), .b(u_q), .cin(1'b1), .sum(s3_w), .cout(unused_carries[1]));
+    chain_add #(.WIDTH(UW)) u_p_add (.a(pa_q), .b({UW{1'b0}}), .cin(mjn_q), .sum(p_w), .cout(unused_carries[2]));
+    chain_add #(.WIDTH(UW)) u_q_add (.a(pb_q), .b({UW{1'b0}}), .cin(mnn_q), .sum(q_w), .cout(unused_carries[3]));
+    chain_add #(.WIDTH(UW), .SUBTRACT(1)) u_du0_add (.a(u_q), .b(u1_q), .cin(1'b1), .sum(du0_w), .cout(unused_carries[4]));
+    chain_add #(.WIDTH(UW), .SUBTRACT(1)) u_dv0_add (.a(v_q), .b(v1_q), .cin(1'b1), .sum(dv0_w), .cout(unused_carries[5]));
+    chain_add #(.WIDTH(UW)) u_p1_ld_add (.a(ls_q), .b(lc_q), .cin(1'b0), .sum(p1_ld), .cout(unused_carries[6]));
+    chain_add #(.WIDTH(UW)) u_g2_ld_add (.a(gs_q), .b(gc_q), .cin(1'b0), .sum(g2_ld), .cout(unused_carries[7]));
+    wire unused = &{1'b0, unused_carries};
     // ---------------------------------------------------------------- the decision loop
     wire td   = t_q[NW-1];                       // take the diagonal: (T < 0) == (q > 0)
     // `run` is registered (run_q), and so are the enables' terms: ok_q (running, no reload
@@ -323,18 +305,14 @@ module arc_stepper #(
     // load select: with ECP5's carry cells (CARRY_SELECT = 2) the select sits in the
     // cells' LUTs.  With iCE40's slow carry chains (1) every candidate has its own
     // carry-select adder and the selects come after the chains.
-    wire [NW-1:0] t_next, t_mux;
-    wire [UW-1:0] p1x_next, p1x_mux, g2x_next, g2x_mux;
-    mux_add #(.WIDTH(NW), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_t_add (
-        .a(t_q), .sel({{(NW-1){td}}, ld_t_q}), .c({g2x_q, t0_q}), .d({p1x_q, 1'b1}), .sum(t_mux));
-    mux_add #(.WIDTH(UW), .LOAD(1), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_p1_add (
-        .a(p1x_q), .sel({UW{ld_p_q}}), .c(p1_load_q), .d(inc1p_q), .sum(p1x_mux));
-    mux_add #(.WIDTH(UW), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_g2_add (
-        .a(g2x_q), .sel({UW{td}}), .c(inc2_q), .d(inc1_q), .sum(g2x_mux));
-    assign t_next   = CARRY_SELECT != 1 ? t_mux : ld_t_q ? {p1x_q, t0_q}
-                    : td ? add_n(t_q, {g2x_q, 1'b1}) : add_n(t_q, {p1x_q, 1'b1});
-    assign p1x_next = CARRY_SELECT != 1 ? p1x_mux : ld_p_q ? p1_load_q : add_u(p1x_q, inc1p_q);
-    assign g2x_next = CARRY_SELECT != 1 ? g2x_mux : reload5_q ? inc1_q : td ? add_u(g2x_q, inc2_q) : add_u(g2x_q, inc1_q);
+    wire [NW-1:0] t_next;
+    wire [UW-1:0] p1x_next, g2x_next;
+    mux_add #(.WIDTH(NW)) u_t_add (
+        .a(t_q), .sel(td), .c({g2x_q, 1'b1}), .d({p1x_q, t0_q}), .sum(t_next));
+    mux_add #(.WIDTH(UW), .LOAD(1)) u_p1_add (
+        .a(p1x_q), .sel(ld_p_q), .c(p1_load_q), .d(inc1p_q), .sum(p1x_next));
+    mux_add #(.WIDTH(UW)) u_g2_add (
+        .a(g2x_q), .sel(td), .c(inc2_q), .d(inc1_q), .sum(g2x_next));
     // The octant ends: p' >= 0 (q > 0) or p' + q' >= 0 (q < 0), i.e. p + 1 >= 0, or
     // p + q + 2 >= 0 after a diagonal step and p + q + 1 >= 0 after an axial one.
     // p + q + 1 < 0 <=> p + q + 2 <= 0: its sign and a registered zero flag.
@@ -431,7 +409,6 @@ module arc_stepper #(
     // the two, its operands picked as they are registered, so no LUT follows its chain;
     // so also p + q + 2's adder, whose operands are its step (+1 or -1) from cycle 5 on,
     // as the step register inc1_q is its load value in cycle 5.
-    wire [UW-1:0] p1_ld = add_u(ls_q, lc_q), g2_ld = add_u(gs_q, gc_q);
     // The kind's next value and constants (registered with the kind, from its inputs: no
     // logic shared with the operands' selects behind the kind's registers).
     wire [3:0] ksel_d = {!idle_q && !qpos_q && st, !idle_q && !qpos_q && !st, !idle_q && qpos_q, idle_q};
@@ -486,7 +463,7 @@ module arc_stepper #(
         p1_b1_q <= p1_b0[UW-1:0];
         g2_a1_q <= g2_a0[UW-1:0];
         g2_b1_q <= g2_b0[UW-1:0];
-        t0_q    <= t_cs[0];
+        t0_q    <= !reload5_q || t_cs[0];         // T's low operand bit: 1, T's load value's in cycle 6
         ls_q    <= reload4_q ? p1_cs[UW-1:0] : t_cs[NW-1:1];
         lc_q    <= reload4_q ? p1_cs[NW+UW-1:NW] : t_cs[2*NW-1:NW+1];
         gs_q    <= idle_q || reload3_q ? g2_cs[UW-1:0] : nqn ? ~zero : one;
@@ -528,13 +505,9 @@ module arc_stepper #(
     // the octant's step vectors, so registers feed the chain and the decision is off D's path.
     reg  [UW-1:0] su_q, sv_q;
     // Not running (idle_q) D takes its load value: x cleared, y the value (mux_add LOAD).
-    wire [UW-1:0] du_next, dv_next, du_mux, dv_mux;
-    mux_add #(.WIDTH(UW), .LOAD(1), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_du_add (
-        .a(du_q), .sel({UW{idle_q}}), .c(du0_q), .d(su_q), .sum(du_mux));
-    mux_add #(.WIDTH(UW), .LOAD(1), .ECP5(CARRY_SELECT == 2 ? 1 : 0)) u_dv_add (
-        .a(dv_q), .sel({UW{idle_q}}), .c(dv0_q), .d(sv_q), .sum(dv_mux));
-    assign du_next = CARRY_SELECT != 1 ? du_mux : idle_q ? du0_q : add_u(du_q, su_q);
-    assign dv_next = CARRY_SELECT != 1 ? dv_mux : idle_q ? dv0_q : add_u(dv_q, sv_q);
+    wire [UW-1:0] du_next, dv_next;
+    mux_add #(.WIDTH(UW), .LOAD(1)) u_du_add (.a(du_q), .sel(idle_q), .c(du0_q), .d(su_q), .sum(du_next));
+    mux_add #(.WIDTH(UW), .LOAD(1)) u_dv_add (.a(dv_q), .sel(idle_q), .c(dv0_q), .d(sv_q), .sum(dv_next));
     function automatic [UW-1:0] unit(input move, neg);      // -1, 0, +1
         unit = {{(UW-1){move && neg}}, move};
     endfunction
@@ -667,8 +640,8 @@ module arc_stepper #(
         near_v_q <= near_v_w;
         lt_all_q <= lt_all;
         loaded_q <= loading;
-        du0_q <= add1_u(u_q, ~u1_q);
-        dv0_q <= add1_u(v_q, ~v1_q);
+        du0_q <= du0_w;
+        dv0_q <= dv0_w;
         dot_small_q <= dot_small_w;
         szg_u_q <= equal_groups({u1_q[UW-1:2], 2'b00}, zero);
         sog_u_q <= equal_groups({u1_q[UW-1:2], 2'b11}, ~zero);
@@ -713,8 +686,8 @@ module arc_stepper #(
             small_q <= small2(sz_u_q, so_u_q, u1_q[1:0]) && small2(sz_v_q, so_v_q, v1_q[1:0]);
             pos_q   <= pos_w;
             dot_q   <= dot_w;
-            s1_q    <= add_u(u_q, v_q);
-            s3_q    <= add1_u(v_q, ~u_q);
+            s1_q    <= s1_w;
+            s3_q    <= s3_w;
             uz_q    <= &uz_g_q;
             vz_q    <= &vz_g_q;
             s1z_q   <= &s1z_g_q;
@@ -725,8 +698,8 @@ module arc_stepper #(
             pa_q    <= (xm_q ? u_q : v_q) ^ {UW{mjn_q}};
             pb_q    <= (xm_q ? v_q : u_q) ^ {UW{mnn_q}};
             qpos_l_q <= !pb_q[UW-1];            // q = P.b > 0 (never 0)
-            p_q     <= add_u(pa_q, {{(UW-1){1'b0}}, mjn_q});    // P.a
-            q_q     <= add_u(pb_q, {{(UW-1){1'b0}}, mnn_q});    // P.b
+            p_q     <= p_w;                     // P.a
+            q_q     <= q_w;                     // P.b
             lt_q    <= lt0_q[35:18] | lt0_q[17:0];
         end else if (reload3_q) begin
             {xm_q, mjn_q, mnn_q, qpos_l_q} <= oct_n_q;

@@ -34,8 +34,7 @@
 // command's registers follow the inputs (the stepper shows the start point as its
 // position); `start` keeps the command of its cycle.
 module circ_arc #(
-    parameter integer WIDTH = 32,   // width of the signed absolute coordinates (>= 6)
-    parameter integer CARRY_SELECT = 1  // long adders: 1 cut in two (iCE40), 0 one chain, 2 one chain of ECP5 carry cells
+    parameter integer WIDTH = 32    // width of the signed absolute coordinates (>= 6)
 ) (
     input  wire             clk,
     input  wire             rst,
@@ -74,7 +73,7 @@ module circ_arc #(
     assign busy = !idle_q;
 
     wire check, on_band, setup_busy;
-    circle_setup #(.MW(UW), .SW(SW), .CARRY_SELECT(CARRY_SELECT == 1 ? 1 : 0)) u_setup (
+    circle_setup #(.MW(UW), .SW(SW)) u_setup (
         .clk(clk), .rst(rst), .start(load), .x0(u0_q), .y0(v0_q), .x1(u1_q), .y1(v1_q),
         .busy(setup_busy), .check(check), .on_band(on_band)
     );
@@ -146,7 +145,7 @@ module circ_arc #(
     // clears it), so the check's band flag and command flags stay off the path into its
     // step enable.
     wire run_d = state_q == RUN && !fin;
-    arc_stepper #(.WIDTH(WIDTH), .CARRY_SELECT(CARRY_SELECT)) u_stepper (
+    arc_stepper #(.WIDTH(WIDTH)) u_stepper (
         .clk(clk), .rst(rst), .run(run_d), .tick(tick), .u0(u0_q), .v0(v0_q), .u1(u1_q), .v1(v1_q),
         .ccw(ccw_q), .step_x(step_x), .step_y(step_y), .dir_x(dir_x), .dir_y(dir_y), .fin(fin),
         .u(pos_u), .v(pos_v), .e(e)
