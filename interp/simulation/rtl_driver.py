@@ -10,7 +10,7 @@ from argparse import Namespace
 import cocotb
 
 from ..cores import load_all
-from ..testing.tbkit import TB, run_stimulus
+from ..testing.tbkit import TB, read, run_stimulus
 
 
 @cocotb.test()
@@ -19,10 +19,15 @@ async def run_job(dut):
     core = load_all()[job["core"]]
     args = Namespace(**job["args"])
     watch = core.model(args).watch
+    probes = getattr(core, "probes", {})            # watched names that are signals inside the DUT
     tb = TB(dut)
     stimulus = core.stimulus(args)
     first = next(stimulus)
     await tb.reset({name: 0 for name in first})     # the inputs the stimulus drives, held low
-    samples = await run_stimulus(tb, stimulus, lambda: tb.sample(watch), first=first)
+
+    def sample():
+        return {name: read(dut, probes.get(name, name), signed) for name, signed in watch.items()}
+
+    samples = await run_stimulus(tb, stimulus, sample, first=first)
     with open(job["out"], "w") as f:
         json.dump(samples, f)

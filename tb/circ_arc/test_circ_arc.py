@@ -9,8 +9,10 @@ import math
 import cocotb
 import pytest
 
+from interp.cores.arc import PROBES
 from interp.testing.corecheck import CoreTB, moves, reset_at_any_cycle, start_while_busy
 from interp.testing.tbkit import seeded_rng
+from interp.models.base import CycleModel
 from interp.models.arc import CircArc, arc_error, arc_setup_cycles, arc_steps
 from interp.models.lecture import radial_deviation, within_half_step
 from interp.simulation.runner import run_cocotb
@@ -18,9 +20,23 @@ from interp.simulation.runner import run_cocotb
 IDLE = {"start": 0, "tick": 0, "cx": 0, "cy": 0, "x0": 0, "y0": 0, "x1": 0, "y1": 0, "ccw": 0, "full": 0}
 
 
+class Probed(CycleModel):
+    """CircArc with the watched names of the DUT: its point and E inside it (PROBES)."""
+
+    def __init__(self, model: CycleModel):
+        self.model, self.names = model, {PROBES.get(n, n): n for n in model.watch}
+        self.watch = {PROBES.get(n, n): signed for n, signed in model.watch.items()}
+
+    def clock(self, inputs) -> None:
+        self.model.clock(inputs)
+
+    def sample(self, names=None) -> dict:
+        return {n: int(getattr(self.model, self.names[n])) for n in (self.watch if names is None else names)}
+
+
 async def setup(dut):
     width = int(dut.WIDTH.value)
-    tb = CoreTB(dut, IDLE, lambda: CircArc(width))
+    tb = CoreTB(dut, IDLE, lambda: Probed(CircArc(width)))
     tb.width = width
     await tb.reset()
     return tb
