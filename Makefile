@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Thin wrapper: the logic lives in Python (interp) and Verilog (rtl/).
 # Every target sets up .venv by itself on a fresh machine.
 SHELL   := /bin/bash

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Board wrapper: the production linear core lin_exact (SU 1571551's exact mode) with step/dir pins
 // and a serial command port, for the iCE40-HX8K breakout board

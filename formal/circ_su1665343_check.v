@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Formal harness of the SU 1665343 circular core (formal/circ_su1665343.sby):
 // follows the step/dir outputs from the start point and checks that every

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Formal harness of the synchronization buffer (formal/step_sync.sby): a
 // producer that honours STOP with the buffer's LATENCY (1: the linear and curve

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The `interp` command line.
 
   interp run CORE [core options] [--sim icarus|verilator] --steps FILE [--trace FILE] [--vcd FILE] [--plot FILE]

@@ -217,8 +217,7 @@ def ports_table(module: str, source: str | None = None) -> str:
 
 # The flow's CSV names cores by the command line's name (a variant after '/');
 # these are the ones that differ from their module's name.
-ALIASES = {"su1665343": "circ_su1665343", "curve": "curve_tangent",
-           "circ_std": "circ_quadrant", "circ_accel": "circ_quadrant"}
+ALIASES = {"su1665343": "circ_su1665343", "curve": "curve_tangent"}
 
 
 # Modules the synthesis flow does not build on their own, and why.
@@ -518,16 +517,9 @@ _MT = "motion_top"
 _GCODE = ["gcode", "G91\nG01 X3 Y-2 F200\nG01 X-1 F200\n", "--pulse-width", "2", "--setup", "1", "--hold", "1"]
 
 
-def _lin_exact_top() -> str:
-    return "lin_exact" if (RTL / "lin_exact.v").exists() else "su1571551"
-
-
 def diagrams() -> dict[str, Diagram]:
-    lx = _lin_exact_top()
-    lx_cli = ["lin-exact"] if lx == "lin_exact" else ["su1571551", "--mode", "exact"]
-    # the accelerated quadrant: its own top, or inside the circ_accel wrapper while that exists
-    qtop = "circ_accel" if (RTL / "circ_accel.v").exists() else "circ_quadrant"
-    qscope = "circ_accel.u_core" if qtop == "circ_accel" else "circ_quadrant"
+    lx, lx_cli = "lin_exact", ["lin-exact"]
+    qtop, qscope = "circ_quadrant", "circ_quadrant"
     d = [
         Diagram("su1571551", "su1571551, WIDTH 8, faithful (EXACT 0): the patent's move X = 7, Y = 3",
                 _core("su1571551", _LINE), [("start", 2, 14)], "su1571551.clk",

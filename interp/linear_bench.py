@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cocotb tests shared by tb/lin_std and tb/lin_accel (line cores taking signed x, y).
 
 A bench module makes a `LinearSuite` for its core and binds the shared tests

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cocotb tests of the lecture's first-quadrant circular interpolator, rtl/circ_quadrant.v
 (the CLI's circ-std with ACCEL = 0, circ-accel with ACCEL = 1).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Accumulating adder-subtractor: F <= F + operand + cin on `add`.
 // SU1571551: adder 3 of node 19 (the operand comes from mux 12; subtraction is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Run loop of the production arc core circ_arc: the steps of an arc from its start point
 // to its end point, one per `tick`, in octant-local counters, so that a step is a

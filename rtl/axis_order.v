@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Orders a move's projections: |X|, |Y| into the long one L and the short one
 // S, and L - S.  SU1571551's inputs 22-26 with trigger 15's input (X is the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Adder of the linear core's step loop (rtl/lin_exact.v: adder 3's look-ahead
 // copies and the steps-left counters): sum = a + b (mod 2^WIDTH).  This is the

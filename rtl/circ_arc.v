@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Production arc interpolator: any start point to any end point on a circle about
 // an integer centre, clockwise or counter-clockwise, across quadrant and octant

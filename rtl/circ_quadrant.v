@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // First-quadrant circular interpolator of the lecture, standard (ACCEL = 0, the
 // CLI's circ-std) and accelerated (ACCEL = 1, circ-accel).  F = x^2 + y^2 - R^2, F = 0 at
@@ -19,7 +20,7 @@
 // Set-up without combinational multipliers (circle_setup, as in circ_arc): four
 // seq_mult instances square x0, y0, x1, y1 (a = R^2, b = |End|^2, d = b - a), then
 // one forms m^2 with m = |d|; the end point is within half a step of the circle
-// (circle_band's test) <=> d = 0 or m^2 <= min(a, b) + (m - 1) div 2.  Sums
+// (the half-step test) <=> d = 0 or m^2 <= min(a, b) + (m - 1) div 2.  Sums
 // (2*WIDTH + 2 bits) take two cycles, as two chunks with a registered carry.
 //
 // Timing: `start` in an idle cycle captures the command (cycle 0); the set-up

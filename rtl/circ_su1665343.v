@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Circular interpolator after USSR patent SU 1665343: one quadrant
 // counter-clockwise from the start point to (0, R), continuous through 45°,
-// two sectors, ones'-complement datapath (SPEC §4).
+// two sectors, ones'-complement datapath.
 //   adder 1 ................ accum_addsub u_adder1 (ones' complement, end-around carry)
 //   AND 2, 3 / AND 10, 11 .. sign_analysis u_and2_3 (sector 1), u_and10_11 (sector 2)
 //   trigger 4 (mode) ....... start_stop u_trigger4; input 33 = start, input 32 = rst,

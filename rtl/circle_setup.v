@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Set-up sequencer of a circle command (circ_quadrant, circ_arc): the half-step band
 // test of the end point against the circle through the start point, without a
@@ -5,7 +6,7 @@
 //   round 1: x0^2, y0^2, x1^2, y1^2  ->  a = x0^2 + y0^2 (R^2), b = x1^2 + y1^2
 //            (|End|^2), d = b - a and -d;
 //   round 2: m^2 with m = |d| (multiplier 3), as d^2 from the registered d;
-//   band:    |sqrt(b) - sqrt(a)| <= 1/2 (circle_band's test)  <=>  d = 0 or
+//   band:    |sqrt(b) - sqrt(a)| <= 1/2 (the half-step test)  <=>  d = 0 or
 //            (m < 2^(SW/2 - 1) and m^2 <= min(a, b) + (m - 1) div 2),
 //            t = min(a, b) + (m - 1) div 2 - m^2 with a carry-save step in front
 //            (registered every cycle: its inputs hold from MUL2's last cycle on).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Three-channel commutator of 2x3 AND/OR elements.  SU1665343: commutator 6
 // (elements 37, fig. 3).  Channel k presents {v_k, lsb_k}: a counter's direct

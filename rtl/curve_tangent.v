@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Interpolator of arbitrary planar curves by the tangent method:
 // Bulatnikov & Bulatnikova, "Digital interpolators of curve trajectories" (2011),
-// the integer algorithm, points 1-9 (SPEC §6).
+// the integer algorithm, points 1-9.
 //   point 1 (E0) ............... e0 at `load`
 //   point 2 (step choice) ...... move_x / move_y from the sign of E and the major axis
 //   point 3 (new node) ......... x_q, y_q

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Delay element with taps: taps[i] is `d` delayed by i+1 clock cycles.
 // SU1665343: delay elements 12, 13, 14 (let the counters settle before the

@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
-// Speed-setting block of the lecture ("БЗС", SPEC §5): turns the programmed
+// Speed-setting block of the lecture ("БЗС"): turns the programmed
 // feed into the feed tick that releases steps from the synchronization
 // buffer, with a constant path speed.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Gradient unit: keeps one affine function v = c + a·x + b·y up to date with
 // adders only while the node (x, y) moves by unit steps (no multiplier, no

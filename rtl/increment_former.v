@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Coordinate-increment former: routes long- and short-projection pulses to the
 // X and Y outputs.  A diagonal step is a short-axis pulse; OR 10/11 add it to

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Accelerated linear interpolator of the lecture: a leading
 // axis steps on every tick, the other one joins it (a diagonal step) when F < 0.

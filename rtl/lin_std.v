@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Standard linear interpolator of the lecture "Linear and circular interpolation
 // by the evaluation-function method": one axis per tick.

@@ -1,12 +1,13 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
-// Motion subsystem (issue 6): segment queue -> interpolator cores ->
+// Motion subsystem: segment queue -> interpolator cores ->
 // synchronization buffer -> speed-setting block -> step/dir output stage.
 //   segment queue ........... sync_fifo u_queue (commands, QDEPTH entries)
-//   line, 2 or 3 axes ....... two su1571551 (EXACT = 1) sharing the leading axis:
+//   line, 2 or 3 axes ....... two lin_exact sharing the leading axis:
 //                             core A makes (lead, minor 1), core B (lead, minor 2);
 //                             both get every tick, so each lead step is one tick
-//   circular arc ............ circ_arc (SU 1665343 family, SPEC §4-5)
-//   curve ................... curve_tangent (SPEC §6)
+//   circular arc ............ circ_arc (the production arc)
+//   curve ................... curve_tangent (the paper's tangent method)
 //   synchronization buffer .. step_sync u_sync (lecture: 2 D flip-flops per axis, STOP)
 //   speed-setting block ..... feed_rate u_feed (lecture: Δt, x1.41 / x1.73 after
 //                             steps on 2 / 3 axes)

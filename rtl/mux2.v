@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Two-input multiplexer: out = sel ? in1 : in0.
 // SU1571551: multiplexer 12 of node 19 (counter 1 direct / counter 2 inverted).

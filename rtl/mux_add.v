@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Adder with an operand select (the arc core's loop adders and its point counters):
 //   sum = x + (sel ? c : d),  x = a (LOAD = 0) or sel ? 0 : a (LOAD = 1).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Pulse expander: `active` is high for LENGTH cycles after a `trigger` cycle
 // (a new trigger restarts the count).  SU1665343: expander 25, the inhibit

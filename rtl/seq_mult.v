@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Sequential signed multiplier (shift-add, radix 2): product = a * b, for set-up
 // products that must not cost a combinational multiplier.

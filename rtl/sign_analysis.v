@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Sign-analysis node: passes the generator pulse (`tick`) to one of two
 // outputs by the sign of the evaluation function, while the run trigger is set.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Start-stop trigger: set by `start` when idle, reset by the end detector.
 // `start` while running is ignored.  `finish` is a one-cycle strobe when the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Step/dir output stage: turns each released step into step pulses and
 // direction levels that meet a stepper driver's timing (all in clock cycles,

@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
-// Synchronization buffer of the lecture ("synchronization scheme", SPEC §5):
+// Synchronization buffer of the lecture ("synchronization scheme"):
 // the interpolator runs at full speed into a small store and is held by STOP
 // while the store is full; each feed tick sends the oldest stored step to the
 // drive and frees a place.  The lecture's circuit is two D flip-flops per

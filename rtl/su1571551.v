@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Linear interpolator after USSR patent SU 1571551 (diagonal + axial steps).
 // The patent's circuit, element by element, to read with the patent in hand.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Synchronous first-in first-out buffer: the command queue of motion_top and
 // the store of the lecture's synchronization buffer (step_sync).

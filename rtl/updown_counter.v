@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Reversible (up/down) counter with parallel load, direct and inverted outputs.
 // SU1571551: counters 1 and 2.  SU1665343: counters CT7, CT8 (ones' complement;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Speed harness for `make bench`: one long SU 1571551 line at full speed.
 // Counts cycles and steps; +x=<X> +y=<Y> set the move (defaults 1000000, 377777).

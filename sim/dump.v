@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Waveform dump for Icarus runs: a second root module that dumps the design
 // top (`DUMP_TOP`) into the file named by +vcd=<path>. Verilator runs use

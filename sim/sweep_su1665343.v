@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Self-running sweep for tb/circ_su1665343 (test_sweep) and `make bench`:
 // every R in +rlo .. +rhi from (R, 0) at full speed, one line per R written

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """pytest set-up shared by every bench: each bench runs on both simulators."""
 from interp.simulation.runner import SIMULATORS
 

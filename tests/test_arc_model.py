@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The arc algorithm's two promises, on the step-level model (no simulator):
 every visited point within half a step of the circle, and the move ends exactly
 at the end point with a single last step.  (The RTL equals the model: test_circ_arc.)"""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Point 7: the merged correction equals points 5 + 6 (+ 8) for every E, L, S, L', S'."""
 from hypothesis import given, strategies as st
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The G-code front end (`interp gcode`): parsing, conversion to motion_top commands, bad input.
 
 These run the parser only; the RTL run of a program is in test_motion_top.py.

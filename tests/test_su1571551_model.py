@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Properties of the SU 1571551 golden models (pure Python, hypothesis)."""
 from hypothesis import given, settings
 from hypothesis import strategies as st

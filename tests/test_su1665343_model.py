@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """SU 1665343 models: the cycle model (circuit order) agrees with the step-level equations."""
 import math
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The FPGA flow's own logic (no tools needed): source scan, parameters, report parsing."""
 import pytest
 

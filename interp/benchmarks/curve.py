@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Curve core: the paper's error table through the RTL (interp curve-error), three modes."""
 from ..commands.curve_error import experiment
 from ..models.curve import PAPER_SCALES

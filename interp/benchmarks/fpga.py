@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """FPGA figures: Fmax, LUTs, FFs per core at width 32 (iCE40 HX8K, ECP5-25F), with
 cycles per step, so the step rate each core reaches on each device reads off one row.
 

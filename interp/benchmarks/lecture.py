@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Side by side: the lecture's standard and accelerated cores, the production arc,
 and the patents (SU 1571551 linear, SU 1665343 circular).
 

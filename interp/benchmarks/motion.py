@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Motion subsystem figures, measured on rtl/motion_top.v with Icarus.
 
   * path speed vs programmed feed for axial, diagonal, 3-axis and mixed lines;

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """SU 1571551 figures: cycles per step, deviation from the line, simulation speed."""
 from __future__ import annotations
 

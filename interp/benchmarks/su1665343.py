@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """SU 1665343 figures: cycles per step, steps per quadrant, radial error, simulation speed."""
 from __future__ import annotations
 

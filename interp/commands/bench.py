@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`interp bench`: every benchmark table (modules of interp.benchmarks define `tables(quick)`)."""
 from __future__ import annotations
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`interp curve-error [--csv FILE]`: the paper's error experiment, through the RTL.
 
 The four curves at the paper's four scalings (A, B), each over a fixed range

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`interp demo`: every core's built-in examples through the RTL, with waves and plots.
 
 Besides one VCD, steps CSV and PNG per example, it draws OUT/overview.png: a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`interp gcode FILE`: a G-code program through rtl/motion_top.v.
 
   interp gcode FILE [--sim icarus|verilator] [--scale STEPS_PER_UNIT] --steps FILE

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`interp synth`: Fmax and area of the cores on iCE40 HX8K and ECP5-25F (Yosys + nextpnr).
 
 One line per build on stdout (core, family, device, Fmax against the placement

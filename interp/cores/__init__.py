@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Registry of the cores the command line knows.
 
 Each module in this package defines a `Core` subclass and registers it with

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`interp run|model circ-arc --cx --cy --x0 --y0 --x1 --y1 --dir cw|ccw [--full]`."""
 from ..models.arc import CircArc, arc_error
 from . import Core, UsageError, register, signed_range

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`interp run|model curve --curve NAME --a A --b B ...`: the tangent-method curve core."""
 from __future__ import annotations
 

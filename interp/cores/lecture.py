@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`interp run|model lin-std|lin-accel --x X --y Y` and
 `interp run|model circ-std|circ-accel --x0 --y0 --x1 --y1 --dir cw|ccw` (the lecture).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`interp run|model su1571551 --x X --y Y --mode faithful|exact` and `lin-exact --x X --y Y`."""
 from ..models.su1571551 import MODES, Su1571551
 from . import Core, register, signed_range

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`interp run|model su1665343 --r R [--x0 X --y0 Y]`: the SU 1665343 circular interpolator."""
 from ..models.su1665343 import Su1665343, start_error, trace
 from . import Core, UsageError, register

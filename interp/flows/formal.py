@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """SymbiYosys proofs (`make formal`): every task of every formal/*.sby.
 
 sby finds `yosys`, `yosys-smtbmc`, `yosys-witness` and the solver on PATH;

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """FPGA flow: Yosys + nextpnr for every core on iCE40 HX8K and ECP5 LFE5U-25F.
 
 Table-driven: `CORES` lists (CLI name, Verilog top, parameters); every core

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Golden models of the production arc core rtl/circ_arc.v.
 
 Step-level model (`arc_steps`), relative to the centre, P = (u, v), F = u^2 + v^2 - R^2

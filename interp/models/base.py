@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shared pieces of the golden models: the cycle-model protocol and move stimulus.
 
 A cycle model mirrors a core's registers.  `clock(inputs)` is one rising edge;
@@ -11,7 +12,7 @@ from typing import Callable, Generator, Iterable, Mapping
 
 Stimulus = Generator[Mapping[str, int], dict, None]
 
-# Step/dir/busy/done: every interpolator core shows these (SPEC §1).
+# Step/dir/busy/done: every interpolator core shows these.
 MOTION_OUTPUTS = {"step_x": False, "step_y": False, "dir_x": False, "dir_y": False,
                   "busy": False, "done": False}
 

@@ -1,4 +1,5 @@
-"""Models of the building blocks (SPEC §2), one per rtl/ module."""
+# SPDX-License-Identifier: Apache-2.0
+"""Models of the building blocks, one per rtl/ module."""
 from __future__ import annotations
 
 from .base import CycleModel

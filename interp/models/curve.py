@@ -1,4 +1,5 @@
-"""Golden models of the tangent-method curve interpolator (SPEC §6, Bulatnikov 2011).
+# SPDX-License-Identifier: Apache-2.0
+"""Golden models of the tangent-method curve interpolator (the paper by Bulatnikov and Bulatnikova).
 
 The tangent's projections at node (x, y) are affine:
     ΔX = φ(x, y) = p0 + dp_dx·(x − x0) + dp_dy·(y − y0)

@@ -1,4 +1,5 @@
-"""Golden models of the lecture's evaluation-function cores (seed 004, SPEC §5).
+# SPDX-License-Identifier: Apache-2.0
+"""Golden models of the lecture's evaluation-function cores.
 
 Step-level models, written as the lecture's equations (F is the evaluation function):
 
@@ -39,7 +40,7 @@ def sign(value: int) -> int:
 
 
 def within_half_step(a: int, b: int) -> bool:
-    """|sqrt(b) - sqrt(a)| <= 1/2 for squared radii a, b, in integers (rtl/circle_band.v)."""
+    """|sqrt(b) - sqrt(a)| <= 1/2 for squared radii a, b, in integers (the test circle_setup computes)."""
     d, s = abs(a - b), min(a, b)
     return d == 0 or (4 * d - 1) ** 2 <= 16 * s
 

@@ -1,5 +1,6 @@
-"""Golden models of the motion subsystem (SPEC §5: speed-setting block,
-synchronization buffer; issue 6: step/dir stage, segment queue).
+# SPDX-License-Identifier: Apache-2.0
+"""Golden models of the motion subsystem (the lecture's speed-setting block and
+synchronization buffer; the step/dir stage and the segment queue).
 
 Step level, written like the lecture's rules:
   * `interval_costs`: the interval after a step on n axes is sqrt(n) times

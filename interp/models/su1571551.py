@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Golden models of the SU 1571551 linear interpolator.
 
 `steps()` is the step-level algorithm, written as the patent's expressions:

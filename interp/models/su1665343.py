@@ -1,4 +1,5 @@
-"""Golden models of the SU 1665343 circular interpolator (SPEC §4).
+# SPDX-License-Identifier: Apache-2.0
+"""Golden models of the SU 1665343 circular interpolator.
 
 `steps()` is the step-level algorithm, the patent's evaluation functions (1)-(6)
 written out (F is kept as 4F so it stays an integer; it is always n + 0.75):

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Plots of stepped paths over the programmed path, with the deviation at every step.
 
 Every figure has two panels: the path in the user's coordinates (absolute

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cocotb test module behind `interp curve-error`: many curve moves in one simulation.
 
 $INTERP_JOBS holds a JSON list of CLI argument dicts for the `curve` core; the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Self-running speed harnesses generated from the core registry (no cocotb).
 
 `generate` writes a Verilog testbench that instantiates one core with fixed

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cocotb test module behind `interp gcode`: feeds commands to rtl/motion_top.v.
 
 The job comes in $INTERP_JOB as JSON: the commands (ports of

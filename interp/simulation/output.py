@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Files `interp run`/`interp model` write: steps CSV, trace CSV, model VCD, plot."""
 from __future__ import annotations
 

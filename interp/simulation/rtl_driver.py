@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cocotb test module behind `interp run`: drives one core with its stimulus.
 
 The job (core name, options, output file) comes in $INTERP_JOB as JSON; the

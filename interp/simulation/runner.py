@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Build and run a cocotb test module against RTL on Icarus or Verilator.
 
 Used by the pytest benches in tb/ and by `interp run`.  Build folders live

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Native (no cocotb) runs of self-running harnesses, to measure simulation speed.
 
 `run_harness` compiles a self-running testbench with Icarus (iverilog/vvp) or

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cocotb checks shared by the lecture and arc core benches (tb/lin_*, tb/circ_*).
 
 A `CoreTB` keeps one cycle model alive across moves (like the SU 1571551 bench),

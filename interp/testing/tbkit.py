@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cocotb side of the benches: clock/reset, cycle-by-cycle scoreboard.
 
 Timing convention shared by every bench and by `interp run`: inputs are driven

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Accumulating adder-subtractor (SU1571551 node 19 adder 3, SU1665343 adder 1)."""
 import cocotb
 import pytest

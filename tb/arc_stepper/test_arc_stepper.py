@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Arc run loop: RTL vs cycle model every cycle, steps vs the step-level midpoint model.
 
 Every move loads the inputs (`run` low for a few cycles), then runs with a tick

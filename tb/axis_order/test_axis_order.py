@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Axis order (SU1571551 inputs 22-26, trigger 15's input): |X|, |Y| into L, S and L - S."""
 import cocotb
 import pytest

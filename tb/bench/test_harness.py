@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The generated speed harness (interp/simulation/harness.py) builds and runs natively, and counts
 what the cycle model predicts: lin_std at WIDTH 8, a short move restarted whenever
 the core is idle."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """carry_select_add (lin_exact's step-loop adders): a + b mod 2^WIDTH, in both forms:
 the portable one (rtl/carry_select_add.v, one carry chain) and the iCE40 one
 (rtl/ice40/carry_select_add.v, carry select)."""

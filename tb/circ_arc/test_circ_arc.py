@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Production arc core: RTL vs cycle model vs the step-level midpoint model.
 
 Every arc is also checked for the promises of the core: it ends exactly at the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The lecture's first-quadrant circular interpolator, rtl/circ_quadrant.v: RTL vs cycle
 model vs the lecture's equations, in both forms: standard (ACCEL = 0, the CLI's
 circ-std) and accelerated (ACCEL = 1, circ-accel).  The tests are

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """SU 1665343 circular interpolator: RTL vs cycle model vs the patent's equations and Table 2.
 
 cocotb scoreboards every cycle here (Table 2, the sector switches, start

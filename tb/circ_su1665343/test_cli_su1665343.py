@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`interp run|model su1665343`: Table 2 as the trace CSV, RTL == model, bad input messages."""
 import subprocess
 import sys

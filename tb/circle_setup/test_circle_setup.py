@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Circle set-up sequencer: RTL vs cycle model every cycle; the band test vs Python."""
 import itertools
 import math

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Commutator 6 of SU1665343 (2x3 AND/OR elements 37): each channel {v, lsb}, one-hot selects."""
 import itertools
 

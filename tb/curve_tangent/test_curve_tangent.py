@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Tangent-method curve interpolator: RTL vs cycle model (every cycle) vs the paper's points 1-9."""
 import cocotb
 import pytest

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Delay element (SU1665343 delay elements 12, 13, 14, 19, 26): RTL vs model, every cycle."""
 import cocotb
 import pytest

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """feed_rate: RTL vs cycle model every cycle; constant path speed; glitch-free feed change."""
 import math
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Gate-level regression (`make test-synth`): cocotb benches on Yosys's netlist.
 
 The same cocotb tests as the RTL benches, run on the iCE40-mapped netlist

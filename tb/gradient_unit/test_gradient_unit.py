@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Gradient unit: value = c + a·x + b·y tracked by adders, checked against the product form
 (value, next value, their magnitudes, overflow)."""
 import cocotb

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Coordinate-increment former (SU1571551 node 20: AND 7, 8, OR 10, 11): truth table."""
 import itertools
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The `interp` command line contract: files, formats, RTL == model, bad arguments."""
 import subprocess
 import sys

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Lecture's accelerated linear interpolator: RTL vs cycle model vs the lecture's equations.
 
 The generic line tests are shared with lin_std (interp/linear_bench.py).

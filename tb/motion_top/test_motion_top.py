@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """motion_top: queue -> cores -> synchronization buffer -> feed -> step/dir.
 
 Every cycle the RTL is compared with the cycle model (interp.models.motion.MotionTop:

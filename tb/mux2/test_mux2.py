@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Multiplexer (SU1571551 mux 12): random data through both inputs."""
 import cocotb
 import pytest

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Adder with an operand select (the arc core's loop adders), the portable form:
 sum = x + y, y = sel ? c : d, x = a (LOAD = 0) or sel ? 0 : a (LOAD = 1).
 

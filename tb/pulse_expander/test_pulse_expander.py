@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Pulse expander (SU1665343 expander 25): RTL vs model, every cycle."""
 import cocotb
 import pytest

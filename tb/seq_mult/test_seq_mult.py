@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Sequential signed multiplier: RTL vs cycle model every cycle, products vs Python's a * b."""
 import cocotb
 import pytest

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Sign-analysis node (SU1571551 node 18: AND 5, AND 6): full truth table."""
 import itertools
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Start-stop trigger (SU1571551 node 21 trigger 14, SU1665343 trigger 4)."""
 import itertools
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """step_dir: RTL vs cycle model every cycle; a monitor checks width/setup/hold in every cycle."""
 import random
 

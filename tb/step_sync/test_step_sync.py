@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """step_sync: RTL vs cycle model every cycle; every step leaves exactly once, in order."""
 import random
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """SU 1571551 linear interpolator: RTL vs cycle model vs the patent's equations.
 
 The same benches run on the patent's circuit (su1571551, faithful and exact

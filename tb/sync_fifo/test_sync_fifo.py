@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """sync_fifo: RTL vs cycle model every cycle; order, no loss, overflow refused."""
 
 import cocotb

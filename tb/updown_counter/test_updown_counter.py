@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Up/down counter (SU1571551 ctr 1, 2; SU1665343 CT7, CT8): RTL vs model, every cycle."""
 import cocotb
 import pytest
