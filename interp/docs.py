@@ -494,7 +494,7 @@ def simulate(d: Diagram, vcd: Path) -> None:
                "out": str(out)}
         params = core.parameters(args)
         params = {k: v for k, v in {**params, **parameters}.items() if k in _declared(top)}
-        run_cocotb(toplevel=top, test_module="interp.rtl_driver", sim="icarus", parameters=params,
+        run_cocotb(toplevel=top, test_module="interp.simulation.rtl_driver", sim="icarus", parameters=params,
                    env={"INTERP_JOB": json.dumps(job)}, waves=str(vcd), name=f"docs_{top}",
                    test_dir=Path(tmp), quiet=True)
 
