@@ -10,7 +10,7 @@
 //   node 18 (AND 5, 6) .... sign_analysis u_node18; generator 4 is `tick`
 //   node 19 (adder 3, mux 12) adder 3 as f_q plus two look-ahead copies
 //                             (carry_select_add u_add_axial, u_add_diagonal), mux 12 as
-//                             mux2 u_mux12 (and its copy u_mux12_copy)
+//                             operand_mux u_mux12 (and its copy u_mux12_copy)
 //   node 20 (AND 7, 8, OR 10, 11) increment_former u_node20
 //   node 21 (AND 9, OR 13, trigger 14) start_stop u_trigger14; AND 9 is `at_end_q`
 // F is held doubled (one extra LSB carries the patent's 0.5).
@@ -192,19 +192,21 @@ module lin_exact #(
     // mux 12: the operand of the coming step, by the sign of the F that step
     // will see (the frame cycle makes no step: F stays).  One mux per operand
     // register, the idle load folded into its inputs, so the decision is the
-    // last select before the register.  The operand muxes keep their
-    // hierarchy: otherwise ABC merges the idle select into the decision and
-    // puts three LUTs on this path (ECP5's critical one).  The high parts
-    // (read only by the carry-select adders) have their own muxes, which
-    // synthesis drops with the one-chain adders.
+    // last select before the register.  The operand muxes are operand_mux:
+    // its portable form (ECP5) keeps the mux's hierarchy, otherwise ABC
+    // merges the idle select into the decision and puts three LUTs on this
+    // path (ECP5's critical one); its iCE40 form lets them merge (smaller, as
+    // fast with the adders cut in two).  The high parts (read only by the
+    // carry-select adders) have their own muxes, which synthesis drops with
+    // the one-chain adders.
     wire negative_next = frame_q ? negative_q
                        : negative_q ? f_diagonal_q[FW-1] : f_axial_q[FW-1];
     wire [FW-1:0] op_axial_next, op_diagonal_next;
     wire [HI-1:0] op_axial_hi1_next, op_diagonal_hi1_next;
-    (* keep_hierarchy *) mux2 #(.WIDTH(FW)) u_mux12 (
+    operand_mux #(.WIDTH(FW)) u_mux12 (
         .sel(negative_next), .in0(idle ? f_axial_init : a2), .in1(idle ? f_axial_init : d2),
         .out(op_axial_next));
-    (* keep_hierarchy *) mux2 #(.WIDTH(FW)) u_mux12_copy (
+    operand_mux #(.WIDTH(FW)) u_mux12_copy (
         .sel(negative_next), .in0(idle ? f_diagonal_init : a2), .in1(idle ? f_diagonal_init : d2),
         .out(op_diagonal_next));
     mux2 #(.WIDTH(HI)) u_mux12_hi (

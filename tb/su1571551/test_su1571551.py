@@ -127,8 +127,9 @@ def test_su1571551(sim, width, mode):
                name=f"su1571551_w{width}_{mode}")
 
 
-# lin_exact: the portable file list (one carry chain per adder, the ECP5 build)
-# and the iCE40 one (rtl/ice40/carry_select_add.v, carry select).
+# lin_exact: the portable file list (one carry chain per adder, operand_mux kept
+# as its own module: the ECP5 build) and the iCE40 one (rtl/ice40/carry_select_add.v,
+# carry select, and rtl/ice40/operand_mux.v, merged).
 @pytest.mark.parametrize("width, family", [(8, None), (32, None), (32, "ice40")])
 def test_lin_exact(sim, width, family):
     run_cocotb(toplevel="lin_exact", test_module="test_su1571551", sim=sim,
