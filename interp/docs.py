@@ -247,10 +247,14 @@ def resources_table(module: str, rows: list[dict]) -> str:
             return f"_No row in docs/resources.csv: {NOT_SYNTHESIZED[module]}._"
         return ("_No row for this module in docs/resources.csv yet: `make synth`, copy out/synth.csv "
                 "to docs/resources.csv, `make docs`._")
-    lines = ["| build (flow name) | family | device | Fmax (MHz) | LUTs | FFs |", "|---|---|---|---|---|---|"]
+    lines = ["| build (flow name) | family | device | Fmax (MHz) | placements (median MHz) | LUTs (of the device's) | FFs |",
+             "|---|---|---|---|---|---|---|"]
     for r in mine:
         fmax = r.get("fmax_mhz") or "—"
-        lines.append(f"| `{r['core']}` | {r['family']} | {r['device']} | {fmax} | {r['luts']} | {r['ffs']} |")
+        median = re.search(r"median ([0-9.]+)", r.get("note") or "")
+        seeds = (f"{r['seeds']}" + (f" ({median.group(1)})" if median else "")) if r.get("seeds") not in (None, "", "0") else "—"
+        luts = f"{r['luts']} of {r['lut_capacity']}" if r.get("lut_capacity") else r["luts"]
+        lines.append(f"| `{r['core']}` | {r['family']} | {r['device']} | {fmax} | {seeds} | {luts} | {r['ffs']} |")
     if any(not r.get("fmax_mhz") for r in mine):
         lines.append("\n— : does not fit that device (the flow reports its area after synthesis, no Fmax).")
     return "\n".join(lines)

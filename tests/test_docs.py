@@ -126,7 +126,7 @@ def test_resources_csv_has_the_flows_header():
         pytest.skip("docs/resources.csv not made yet (make synth; the pages say so)")
     with open(docs.RESOURCES_CSV, newline="") as f:
         header = next(csv.reader(f))
-    assert header == ["core", "family", "device", "fmax_mhz", "luts", "ffs"], header
+    assert header[:6] == ["core", "family", "device", "fmax_mhz", "luts", "ffs"], header
 
 
 def test_resources_check_catches_a_changed_figure(tmp_path):
@@ -147,7 +147,7 @@ def test_resources_check_catches_a_changed_figure(tmp_path):
     page = pages / "lin_std.md"
     page.write_text(docs.with_resources(page.read_text(), "lin_std", docs.read_resources(table)))
     assert docs.stale_resources(table, pages) == []
-    assert "| 100.0 | 10 | 5 |" in page.read_text()
+    assert "| 100.0 | — | 10 | 5 |" in page.read_text()
     rows[0]["luts"] = "11"
     write()
     assert len(docs.stale_resources(table, pages)) == 1
