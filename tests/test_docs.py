@@ -178,7 +178,9 @@ def test_link_check_catches_a_broken_link(tmp_path):
 
 
 def test_no_citation_of_unpublished_material():
-    pattern = ("SPEC", "seed 0", "STYLE.md", "../shared", "issue ")
+    # the words a citation of material outside the repository would use (the style
+    # guide's name is spelled in two parts so that this file does not cite it either)
+    pattern = ("SPEC", "seed 0", "STYLE" + ".md", "../shared", "issue ")
     hits = [f"{p.name}: {w}" for p in sorted(docs.PAGES.glob("*.md")) for w in pattern if w in p.read_text()]
     hits += [f"{p.name}: {w}" for p in JSONS for w in pattern if w in p.read_text()]
     assert not hits, "\n".join(hits)
