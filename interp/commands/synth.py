@@ -48,10 +48,8 @@ def run(args) -> int:
 
     if args.list:
         for t in synth.table_rows():
-            extra = "; ".join(f"{f}: " + " ".join(f"{k}={v}" for k, v in p.items())
-                              for f, p in t.per_family.items())
             params = " ".join(f"{k}={v}" for k, v in t.parameters.items()) or "(defaults)"
-            print(f"{t.name:<20} rtl/{t.toplevel}.v  {params}" + (f"  [{extra}]" if extra else "")
+            print(f"{t.name:<20} rtl/{t.toplevel}.v  {params}"
                   + (f"  seeds {t.seeds}" if t.seeds > 1 else ""))
         return 0
     if args.seeds is not None and args.seeds < 1:

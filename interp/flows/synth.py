@@ -49,7 +49,6 @@ class Target:
     toplevel: str               # Verilog module = rtl/<toplevel>.v
     parameters: dict = field(default_factory=dict)
     seeds: int = 1              # placement seeds tried (1 .. seeds); the best Fmax is reported
-    per_family: dict = field(default_factory=dict)   # family -> parameters set for it only
     width: str | None = "WIDTH"  # the parameter `interp synth --width` sets (None: no such width)
 
 
@@ -151,7 +150,7 @@ def declared_parameters(path: Path) -> set[str]:
 
 def checked(target: Target, extra: dict | None = None) -> Target:
     """The target with `extra` parameters set (a user's --param / --width); every
-    parameter of the row, its per-family sets and `extra` must be declared by the
+    parameter of the row and of `extra` must be declared by the
     module (UsageError otherwise): a parameter the module lacks would be ignored
     and the core synthesized at the wrong width."""
     path = RTL / f"{target.toplevel}.v"
@@ -159,12 +158,11 @@ def checked(target: Target, extra: dict | None = None) -> Target:
         raise UsageError(f"core {target.name}: rtl/{target.toplevel}.v does not exist")
     declared = declared_parameters(path)
     params = {**target.parameters, **(extra or {})}
-    wanted = set(params) | {k for p in target.per_family.values() for k in p}
-    unknown = sorted(wanted - declared)
+    unknown = sorted(set(params) - declared)
     if unknown:
         raise UsageError(f"core {target.name}: rtl/{target.toplevel}.v declares no parameter "
                          f"{', '.join(unknown)} (it declares: {', '.join(sorted(declared)) or 'none'})")
-    return Target(target.name, target.toplevel, params, target.seeds, target.per_family, target.width)
+    return Target(target.name, target.toplevel, params, target.seeds, target.width)
 
 
 def lint(target: Target, family: str | None) -> str | None:
@@ -172,13 +170,12 @@ def lint(target: Target, family: str | None) -> str | None:
     None if clean, else the first message (one line)."""
     from .lint import lint as verilator_lint
 
-    params = {**target.parameters, **target.per_family.get(family or "", {})}
-    return verilator_lint(target.toplevel, sources(target.toplevel, family), family, params)
+    return verilator_lint(target.toplevel, sources(target.toplevel, family), family, target.parameters)
 
 
 def table_rows() -> list[Target]:
     """CORES under the names the CLI knows them by."""
-    return [Target(display_name(t.name), t.toplevel, t.parameters, t.seeds, t.per_family, t.width)
+    return [Target(display_name(t.name), t.toplevel, t.parameters, t.seeds, t.width)
             for t in CORES]
 
 
@@ -215,7 +212,7 @@ def targets(names: list[str] | None = None, params: dict | None = None, width: i
             raise UsageError(f"core {t.name} has no width parameter: set its parameters with --param")
         t = checked(t, extra)
         if seeds is not None:
-            t = Target(t.name, t.toplevel, t.parameters, seeds, t.per_family, t.width)
+            t = Target(t.name, t.toplevel, t.parameters, seeds, t.width)
         for fam in families or list(FAMILIES):
             message = lint(t, fam)
             if message:
@@ -353,9 +350,6 @@ def add_utilisation(row: dict, family: Family, log: str) -> dict:
 
 def implement(target: Target, family: Family, force: bool = False, log=print) -> dict:
     """Synthesize and place-and-route one target; return (and cache) its row."""
-    extra = target.per_family.get(family.name, {})
-    target = Target(target.name, target.toplevel, {**target.parameters, **extra}, target.seeds,
-                    width=target.width)
     files = sources(target.toplevel, family.name)
     work = run_dir(target, family)
     key = _key(target, family, files)
@@ -402,9 +396,6 @@ def implement(target: Target, family: Family, force: bool = False, log=print) ->
            "parameters": " ".join(f"{k}={v}" for k, v in target.parameters.items()),
            "note": f"does not fit: not enough {short}" if short else note}
     add_utilisation(row, family, (work / "nextpnr.log").read_text())
-    if extra:
-        row["note"] = (row["note"] + "; " if row["note"] else "") + \
-            " ".join(f"{k}={v}" for k, v in extra.items())
     if len(by_seed) > 1:
         best = max(by_seed, key=lambda s: by_seed[s] or 0)
         row["fmax_by_seed"] = by_seed
