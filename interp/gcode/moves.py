@@ -1,0 +1,81 @@
+# SPDX-License-Identifier: Apache-2.0
+"""What the G-code interpreter hands to the compiler: moves in machine coordinates.
+
+Every position is in millimetres in the machine frame (work offsets, G92, tool
+length and units already applied), as (x, y, z).  Feeds are path speeds in
+mm/min (G93 inverse time is already turned into one per move); `feed=None`
+on a Line means a rapid (G0): the compiler uses the axes' maximum rates.
+`line` is the 1-based line number of the block in the source file, for messages.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+Point = tuple[float, float, float]
+
+# Arc planes as RS274NGC defines them: (u, v) is the plane, w its normal;
+# counter-clockwise turns from +u towards +v.
+PLANES = {"XY": (0, 1, 2), "ZX": (2, 0, 1), "YZ": (1, 2, 0)}      # G17, G18, G19
+
+
+@dataclass(frozen=True)
+class Line:
+    start: Point
+    end: Point
+    feed: float | None          # mm/min; None = rapid
+    line: int
+
+
+@dataclass(frozen=True)
+class Arc:
+    start: Point
+    end: Point                  # the normal coordinate may differ from start's: a helix
+    centre: Point               # the normal coordinate equals start's
+    plane: str                  # "XY" (G17), "ZX" (G18), "YZ" (G19)
+    ccw: bool                   # G3
+    turns: int                  # P word: 1 = up to one revolution; n > 1 adds n - 1 full turns
+    feed: float
+    line: int
+
+
+@dataclass(frozen=True)
+class Dwell:
+    seconds: float
+    line: int
+
+
+# Event names and what their value is (the compiler gives each a hardware code):
+EVENTS = {
+    "spindle_cw": "S (rpm or laser power)",        # M3
+    "spindle_ccw": "S",                            # M4
+    "spindle_off": "0",                            # M5
+    "spindle_speed": "S",                          # S changed while the spindle runs
+    "mist_on": "0",                                # M7
+    "flood_on": "0",                               # M8
+    "coolant_off": "0",                            # M9
+    "output_on": "P (output number)",              # M62 / M64
+    "output_off": "P",                             # M63 / M65
+    "pause": "0 (M0), 1 (M1), 6 (M6 tool change), 60 (M60)",
+    "tool_change": "T (the tool selected)",        # M6, before its pause
+    "program_end": "2 (M2) or 30 (M30)",
+}
+
+
+@dataclass(frozen=True)
+class Event:
+    name: str                   # a key of EVENTS
+    value: float
+    line: int
+
+
+Move = Line | Arc | Dwell | Event
+
+
+@dataclass
+class Program:
+    moves: list[Move] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)       # "line N: ..." each
+    messages: list[str] = field(default_factory=list)       # (MSG, ...) texts, "line N: text"
+    end_work: Point = (0.0, 0.0, 0.0)     # final position in work coordinates, program units
+    units: str = "mm"                     # the units in force at the end: "mm" or "inch"
+    end_machine: Point = (0.0, 0.0, 0.0)  # final position in machine coordinates, mm
