@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """The `interp` command line.
 
-  interp run CORE [core options] [--sim icarus|verilator] --steps FILE [--trace FILE] [--vcd FILE] [--plot FILE]
+  interp run CORE [core options] [--sim icarus|verilator] [--steps FILE] [--trace FILE] [--vcd FILE] [--plot FILE]
   interp model CORE ...          the same files from the golden model
   interp demo [--out DIR]        built-in examples through the RTL: waves, CSVs, plots
   interp wave CORE               a core's example to out/CORE.vcd, opened in GTKWave (make wave CORE=...)
@@ -22,7 +22,7 @@ from pathlib import Path
 from . import commands
 from .cores import REGISTRY, UsageError, load_all
 from .models.base import Run, drive, steps_of
-from .simulation.output import write_run
+from .simulation.output import check_outputs, summary, write_run
 from .simulation.runner import SIMULATORS
 
 
@@ -36,7 +36,7 @@ class Parser(argparse.ArgumentParser):
 def add_run_options(parser: argparse.ArgumentParser, rtl: bool) -> None:
     if rtl:
         parser.add_argument("--sim", choices=SIMULATORS, default="icarus", help="simulator (default icarus)")
-    parser.add_argument("--steps", required=True, metavar="FILE", help="CSV of steps: cycle,dx,dy")
+    parser.add_argument("--steps", metavar="FILE", help="CSV of steps: cycle,dx,dy")
     parser.add_argument("--trace", metavar="FILE", help="CSV of the patent core's registers at each step")
     parser.add_argument("--vcd", metavar="FILE", help="waveform file")
     parser.add_argument("--plot", metavar="FILE", help="PNG of the stepped path over the ideal one")
@@ -72,11 +72,13 @@ def cmd_run_or_model(args) -> int:
     core.check(args)
     if args.trace and core.trace_header is None:
         raise UsageError(f"core {core.name} has no --trace (only the patent cores have one)")
+    check_outputs(args.steps, args.trace, args.vcd, args.plot)
     if args.command == "run":
         run = simulate(core, args, args.sim, args.vcd)
     else:
         run = model_run(core, args)
     write_run(core, args, run, model_vcd=args.command == "model")
+    print(summary(core, args, run))
     return 0
 
 

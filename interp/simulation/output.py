@@ -43,8 +43,46 @@ def write_model_vcd(path, samples: list[dict], scope: str) -> None:
                 vcd.change(variables[n], t + PERIOD_NS // 2, v)
 
 
+def check_outputs(*paths) -> None:
+    """Refuse, before anything runs, an output path that cannot be written."""
+    import os
+
+    from ..cores import UsageError
+
+    for path in paths:
+        if path is None:
+            continue
+        p = Path(path)
+        folder = p.parent if str(p.parent) else Path(".")
+        if p.is_dir():
+            raise UsageError(f"{path} is a directory, not a file")
+        if not folder.is_dir():
+            raise UsageError(f"cannot write {path}: no directory {folder}")
+        if not os.access(folder, os.W_OK) or (p.exists() and not os.access(p, os.W_OK)):
+            raise UsageError(f"cannot write {path}: permission denied")
+
+
+def summary(core, args, run: Run) -> str:
+    """One line: steps, end point, clock cycles, largest deviation from the programmed path."""
+    start = core.plot_options(args).get("start", (0, 0))
+    end = list(start) + [0] * (len(core.axes) - len(start))
+    for row in run.steps:
+        end = [e + d for e, d in zip(end, row[1:])]
+    cycles = len(run.samples)
+    text = (f"{core.name}: {len(run.steps)} steps, end ({', '.join(map(str, end))}), "
+            f"{cycles} clock cycles")
+    ideal = core.ideal(args)
+    if ideal is not None and len(core.axes) == 2:
+        from ..plots.paths import deviations, positions
+
+        worst = float(abs(deviations(positions(run.steps, start), ideal)).max())
+        text += f", max deviation {worst:.3f} steps"
+    return text
+
+
 def write_run(core, args, run: Run, model_vcd: bool) -> None:
-    write_steps(args.steps, run.steps, core.axes)
+    if args.steps:
+        write_steps(args.steps, run.steps, core.axes)
     if args.trace:
         write_trace(args.trace, core.trace_header, run.trace)
     if args.vcd and model_vcd:

@@ -65,3 +65,20 @@ def test_bad_arguments(args, message, tmp_path):
 def test_unknown_core(tmp_path):
     done = interp("run", "nosuchcore", "--steps", tmp_path / "s.csv")
     assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1
+
+
+def test_summary_line(sim):
+    """`interp run` (no files asked for) prints one line: steps, end point, cycles, deviation."""
+    done = interp("run", "circ-arc", "--cx", 0, "--cy", 0, "--x0", 30, "--y0", 0, "--x1", 0, "--y1", 30,
+                  "--sim", sim)
+    assert done.returncode == 0, done.stderr
+    line, = done.stdout.strip().splitlines()
+    assert line.startswith("circ-arc: 42 steps, end (0, 30), ") and "clock cycles" in line, line
+    assert float(line.split("max deviation ")[1].split()[0]) <= 0.5
+
+
+@pytest.mark.parametrize("option", ["--steps", "--plot", "--vcd", "--trace"])
+def test_unwritable_output_refused_before_running(option, tmp_path):
+    done = interp("model", "su1571551", "--x", 7, "--y", 3, option, tmp_path / "missing" / "out")
+    assert done.returncode == 2 and "no directory" in done.stderr, done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1 and not done.stdout
