@@ -7,7 +7,7 @@ PY      := $(VENV)/bin/python
 INTERP  := $(VENV)/bin/interp
 JOBS    ?= auto
 
-.PHONY: all deps test demo docs-demo wave lint bench clean fpga-deps synth bitstream test-synth formal docs
+.PHONY: all deps test test-all demo docs-demo wave lint bench clean fpga-deps synth bitstream test-synth formal docs
 all: test
 
 # Debian packages only if missing (CI machines have them), then the venv.
@@ -21,6 +21,10 @@ $(VENV)/.installed: pyproject.toml
 
 test: deps lint
 	$(VENV)/bin/pytest -n $(JOBS) tb tests
+
+# make test plus the long sweeps (tests marked slow).
+test-all: deps lint
+	INTERP_TEST_ALL=1 $(VENV)/bin/pytest -n $(JOBS) tb tests
 
 demo: deps
 	$(INTERP) demo --out out/demo
