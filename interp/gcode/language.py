@@ -110,6 +110,8 @@ class Parameters:
 
     def set(self, key, value: float) -> None:
         value = float(value)
+        if not math.isfinite(value):
+            raise ExpressionError(f"parameter value {value} is not a finite number")
         if isinstance(key, str):
             name = _name(key)
             if not name:
@@ -481,6 +483,9 @@ def _diagnose(compact: str, error: _LineError, number: int, column, written) -> 
         ch = compact[pos]
         return GcodeError(number, column(pos), ch,
                           "unknown letter" if ch.isalpha() else "unknown character")
+    if compact[pos:pos + 1] == "/" and compact[:pos].count("[") == compact[:pos].count("]"):
+        return GcodeError(number, column(pos), "/",
+                          "block delete '/' must be the first character of the line")
     starts = _item_starts(compact)
     if error.text and error.end is not None:
         return GcodeError(number, column(pos), written(pos, error.end), error.text)
@@ -504,8 +509,6 @@ def _diagnose(compact: str, error: _LineError, number: int, column, written) -> 
         text = "missing ']'"
     elif item.count("]") > item.count("["):
         text = "']' without '['"
-    elif item.startswith("/") or (pos < len(compact) and compact[pos] == "/" and start == pos):
-        text = "block delete '/' must be the first character of the line"
     elif pos >= len(compact):
         text = "incomplete expression"
     else:
@@ -564,6 +567,13 @@ def _function(name: str, x: float) -> float:
 
 
 def _binary(op: str, a: float, b: float) -> float:
+    try:
+        return _operate(op, a, b)
+    except OverflowError:
+        raise ExpressionError("result out of range") from None
+
+
+def _operate(op: str, a: float, b: float) -> float:
     if op == "+":
         return _finite(a + b)
     if op == "-":
@@ -651,11 +661,9 @@ class _Evaluator:
                 return 0.0
             raise
 
-    def assign(self, target, value: float) -> None:
-        if target[0] == "n":
-            self.params.set(target[1], value)
-        else:
-            self.params.set(self.index(target), value)
+    def key(self, target) -> int | str:
+        """The key an assignment's target parameter node names."""
+        return target[1] if target[0] == "n" else self.index(target)
 
 
 # --- the program: structure and control flow ------------------------------------------------
@@ -833,9 +841,9 @@ def iterate_blocks(text: str, params: Parameters) -> Iterator[Block]:
                     if type(target) is str:
                         words.append(Word(target, value, item.column, item.text))
                     else:
-                        assignments.append((item, target, value))
-                for item, target, value in assignments:
-                    ev.assign(target, value)
+                        assignments.append((item, ev.key(target), value))
+                for item, key, value in assignments:
+                    params.set(key, value)
             except ExpressionError as e:
                 fail(rec, item, str(e))
             yield Block(rec.line, words, rec.delete, rec.comments)
