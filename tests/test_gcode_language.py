@@ -157,10 +157,12 @@ def test_parameters_store():
     p.set("local", 4)
     assert (p.get(5220), p.get("_myglobal"), p.get("#<_MY GLOBAL>"), p.get("LOCAL")) == (2, 3, 3, 4)
     assert p.exists("_myglobal") and not p.exists("nothing") and p.exists(1) and not p.exists(0)
+    p.set(3, 9)
     p.push_call([7.0, 8.0])
-    assert (p.get(1), p.get(2), p.get(3), p.exists("local"), p.get("_myglobal")) == (7, 8, 0, False, 3)
+    assert (p.get(1), p.get(2), p.get(3), p.exists("local"), p.get("_myglobal")) == (7, 8, 9, False, 3)
+    p.set(3, 10)
     p.pop_call()
-    assert (p.get(1), p.get("local")) == (0, 4)
+    assert (p.get(1), p.get(3), p.get("local")) == (0, 9, 4)
     for bad in (0, 5603, 2.5, "missing"):
         with pytest.raises(language.ExpressionError):
             p.get(bad)
@@ -222,7 +224,7 @@ def test_hal_pin_reads_zero_with_a_warning():
 
 def test_sub_call_before_definition_arguments_return_value_and_locals():
     text = """
-#1 = 100
+#1 = 100 #2 = 50
 #<x> = 1
 o<add> call [2] [3]
 X#<_value> Y#1 Z#<x>
@@ -237,8 +239,8 @@ o100 sub
   X#1 Y#2
 o100 endsub
 """
-    # blocks: #1 =, #<x> =, the sub's #<x> =, X Y Z, o100's X Y, X Y (G0 X999 never runs)
-    assert words(text) == [[], [], [], [("X", 5), ("Y", 100), ("Z", 1)], [("X", 7), ("Y", 0)],
+    # #N+1..#30 keep the caller's values; blocks: #1 =, #<x> =, the sub's #<x> =, X Y Z, o100's X Y, X Y (G0 X999 never runs)
+    assert words(text) == [[], [], [], [("X", 5), ("Y", 100), ("Z", 1)], [("X", 7), ("Y", 50)],
                            [("X", 0), ("Y", 0)]]
 
 

@@ -136,10 +136,12 @@ class Parameters:
         return len(self.saved)
 
     def push_call(self, args: list[float]) -> None:
-        """Enter a subroutine: #1..#30 saved and set from args (the rest 0), new locals."""
+        """Enter a subroutine: #1..#30 saved, #1..#N set from the N args (#N+1..#30 keep
+        the caller's values, as LinuxCNC does), new named locals."""
+        if len(args) > CALL_ARGUMENTS:
+            raise ExpressionError(f"more than {CALL_ARGUMENTS} arguments")
         self.saved.append(self.numbered[1:CALL_ARGUMENTS + 1])
-        values = list(args) + [0.0] * (CALL_ARGUMENTS - len(args))
-        self.numbered[1:CALL_ARGUMENTS + 1] = values
+        self.numbered[1:len(args) + 1] = [float(a) for a in args]
         self.frames.append({})
 
     def pop_call(self) -> None:
