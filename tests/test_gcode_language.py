@@ -105,8 +105,11 @@ def test_comments_kept_in_order_msg_print_debug():
     [b] = blocks("(MSG, Load tool #1) G0 (PRINT,x=#1) X1 (DEBUG,y) ; (end")
     assert b.comments == ["MSG, Load tool #1", "PRINT,x=#1", "DEBUG,y", " (end"]
     assert [w.text for w in b.words] == ["G0", "X1"]
-    [b] = blocks("(only a comment, \u00e9 and \udcff are fine here)")
-    assert b.words == [] and b.comments == ["only a comment, \u00e9 and \udcff are fine here"]
+    # any character inside a comment; a byte that was not UTF-8 (surrogateescape) becomes U+FFFD
+    [b] = blocks("(only a comment, \u00e9 and \udcff are fine here) ; \udcfe")
+    assert b.words == [] and b.comments == ["only a comment, \u00e9 and \ufffd are fine here", " \ufffd"]
+    [b] = blocks("M117 \udcff")
+    assert b.comments == ["\ufffd"]
 
 
 def test_parentheses_nested_in_a_comment_read_with_a_warning():

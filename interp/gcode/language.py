@@ -163,6 +163,7 @@ _CONTROL = re.compile(r"[\x00-\x08\x0a-\x1f\x7f]")
 _GRBL = re.compile(r"\$(?![0-9.+-])|\$[0-9]+=|[?!~]")
 _ALLOWED = set("abcdefghijklmnopqrstuvwxyz0123456789.+-*/[]#<>=_$@^")
 _MESSAGE = re.compile(r"[ \t]*((?:[nN][ \t0-9]*[0-9][ \t]*)?[mM][ \t]*0*11[78])(?![ \t]*[0-9.])")
+_SURROGATE = re.compile("[\ud800-\udfff]")
 _FUNCTIONS = ("abs", "acos", "asin", "atan", "cos", "exists", "exp", "fix", "fup", "ln",
               "round", "sin", "sqrt", "tan")
 
@@ -200,6 +201,11 @@ class _Line:
     loop: int = -1              # break / continue: the loop's opening line
 
 
+def _comment(text: str) -> str:
+    """A comment's text, printable: a byte that was not UTF-8 becomes U+FFFD."""
+    return text if text.isascii() else _SURROGATE.sub("\ufffd", text)
+
+
 def _strip_comments(raw: str, number: int, warnings: list[str]):
     """(code, columns, comments): the line without comments, and each code character's column.
 
@@ -217,7 +223,7 @@ def _strip_comments(raw: str, number: int, warnings: list[str]):
         while i < n:
             ch = raw[i]
             if ch == ";":
-                comments.append(raw[i + 1:])
+                comments.append(_comment(raw[i + 1:]))
                 break
             if ch == ")":
                 raise GcodeError(number, i + 1, ")", "')' without '('")
@@ -235,7 +241,7 @@ def _strip_comments(raw: str, number: int, warnings: list[str]):
                 if "(" in text:
                     warnings.append(f"line {number}: parentheses nested in a comment "
                                     "(read as one comment)")
-                comments.append(text)
+                comments.append(_comment(text))
                 i = j
                 continue
             chars.append(ch)
@@ -376,7 +382,7 @@ def _read_line(raw: str, number: int, warnings: list[str]) -> _Line | None:
     message = _MESSAGE.match(raw)
     if message:                     # Marlin M117 / M118: the rest of the line is a text
         rec = _read_code(message.group(0), number, warnings)
-        text = raw[message.end():].strip(" \t")
+        text = _comment(raw[message.end():].strip(" \t"))
         if text:
             rec.comments.append(text)
         return rec
