@@ -148,6 +148,9 @@ def test_marlin_message_text_is_a_comment():
     [b] = blocks("M117 Printing... (50%)")
     assert [(w.letter, w.value) for w in b.words] == [("M", 117)]
     assert b.comments == ["Printing... (50%)"]
+    [b] = blocks("/N5 m 118 E1 hello")
+    assert (b.delete, [(w.letter, w.value) for w in b.words], b.comments) == (True, [("M", 118)], ["E1 hello"])
+    assert words("M1170 X1") == [[("M", 1170), ("X", 1)]]
 
 
 # --- parameters and expressions -------------------------------------------------------------

@@ -162,7 +162,7 @@ _PLAIN_WORD = re.compile(rf"([{re.escape(_WORD_LETTERS)}])([+-]?{_NUM})")
 _CONTROL = re.compile(r"[\x00-\x08\x0a-\x1f\x7f]")
 _GRBL = re.compile(r"\$(?![0-9.+-])|\$[0-9]+=|[?!~]")
 _ALLOWED = set("abcdefghijklmnopqrstuvwxyz0123456789.+-*/[]#<>=_$@^")
-_MESSAGE = re.compile(r"[ \t]*((?:[nN][ \t0-9]*[0-9][ \t]*)?[mM][ \t]*0*11[78])(?![ \t]*[0-9.])")
+_MESSAGE = re.compile(r"[ \t]*(/?[ \t]*(?:[nN][ \t0-9]*[0-9][ \t]*)?[mM][ \t]*0*11[78])(?![ \t]*[0-9.])")
 _SURROGATE = re.compile("[\ud800-\udfff]")
 _FUNCTIONS = ("abs", "acos", "asin", "atan", "cos", "exists", "exp", "fix", "fup", "ln",
               "round", "sin", "sqrt", "tan")
@@ -435,7 +435,7 @@ def _read_code(raw: str, number: int, warnings: list[str]) -> _Line | None:
         except RecursionError:
             raise GcodeError(number, column(0), written(0, len(compact)),
                              "expression nested too deeply") from None
-        if len(_CACHE) < 100_000:
+        if len(_CACHE) < 10_000:
             _CACHE[compact] = parsed
     if parsed[0] == "o":
         _, delete, start, label, keyword, args = parsed
