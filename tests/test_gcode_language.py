@@ -199,6 +199,22 @@ def test_unary_function_as_a_word_value_and_spaces_inside_names():
     assert values("#<a>=1\nx exists[#<a>] y exists[#<b>]") == [1.0]
 
 
+def test_lines_differing_only_in_numbers_share_a_parse_but_keep_their_values():
+    text = ("#<a1> = 1 #<a22> = 2\n#5 = 3\n"
+            "G1 X[#<a1> * 10.5] Y-#5 Z[2 ** 3]\nG1 X[#<a22> * 0.25] Y-#5 Z[10 ** 2]\n"
+            "o7 repeat [2]\nA#<a1>\no7 endrepeat\no300 repeat [1]\nA7.5\no300 endrepeat")
+    got = [[(w.letter, w.value, w.column, w.text) for w in b.words] for b in blocks(text)]
+    assert got[2:] == [
+        [("G", 1, 1, "G1"), ("X", 10.5, 4, "X[#<a1> * 10.5]"), ("Y", -3, 20, "Y-#5"),
+         ("Z", 8, 25, "Z[2 ** 3]")],
+        [("G", 1, 1, "G1"), ("X", 0.5, 4, "X[#<a22> * 0.25]"), ("Y", -3, 21, "Y-#5"),
+         ("Z", 100, 26, "Z[10 ** 2]")],
+        [("A", 1, 1, "A#<a1>")], [("A", 1, 1, "A#<a1>")], [("A", 7.5, 1, "A7.5")]]
+    assert error("X[1.5]\nX[1.5.2]") == "line 2, column 1: X[1.5.2]: unexpected '.'"
+    assert error("X[1 + 22222]\nX[1 + " + "2" * 61 + "]") == \
+        f"line 2, column 7: {'2' * 61}: number with more than 60 digits"
+
+
 def test_parameter_references():
     text = "#1=2 #2=3 #<_g>=4 #<loc>=5\nX#1 Y##1 Z#[#1*1] A#<_g> B#<loc> C-#1"
     assert words(text)[1] == [("X", 2), ("Y", 3), ("Z", 3), ("A", 4), ("B", 5), ("C", -2)]

@@ -18,6 +18,7 @@ Anything unreadable raises GcodeError with the line, column and word.
 """
 from __future__ import annotations
 
+import bisect
 import math
 import re
 from dataclasses import dataclass, field
@@ -270,98 +271,170 @@ def _digits_ok(text: str) -> bool:
 
 # --- lark tree -> items -------------------------------------------------------------------
 
-def _convert(node, depth: int = 0):
-    """An expression node: float, or a tuple ("p", index) ("n", name) ("b", op, a, b)
-    ("f", name, arg) ("atan", y, x) ("exists", param) ("neg", x)."""
-    if depth > MAX_NESTING:
-        raise _LineError(_first_pos(node), f"expression nested deeper than {MAX_NESTING} levels")
-    d = depth + 1
-    data = node.data
-    ch = node.children
-    if data == "number":
-        tok = ch[0]
-        if not _digits_ok(tok):
-            raise _LineError(tok.start_pos, f"number with more than {MAX_DIGITS} digits",
-                             tok.end_pos)
-        return float(tok)
-    if data == "pnum":
-        tok = ch[1]
-        if not _digits_ok(tok):
-            raise _LineError(tok.start_pos, f"number with more than {MAX_DIGITS} digits",
-                             tok.end_pos)
-        return ("p", float(tok))
-    if data == "pname":
-        name = _name(str(ch[1]))
-        return ("n", name)
-    if data == "pexpr":
-        return ("p", _convert(ch[2], d))
-    if data == "pind":
-        return ("p", _convert(ch[1], d))
-    if data == "group":
-        return _convert(ch[1], d)
-    if data == "func":
-        return ("f", str(ch[0]), _convert(ch[2], d))
-    if data == "atan":
-        return ("atan", _convert(ch[2], d), _convert(ch[6], d))
-    if data == "exists":
-        return ("exists", _convert(ch[2], d))
-    if data == "neg":
-        inner = _convert(ch[1], d)
-        return -inner if type(inner) is float else ("neg", inner)
-    if data == "pos":
-        return _convert(ch[1], d)
-    if data == "binary":
-        return ("b", str(ch[1]), _convert(ch[0], d), _convert(ch[2], d))
-    raise AssertionError(data)      # pragma: no cover - the grammar has no other rule
+_TEMPLATE = re.compile(r"<[^<>]*>|([0-9]+\.?[0-9]*|\.[0-9]+)")
+_TREES: dict[str, lark.Tree] = {}
 
 
-def _first_pos(node) -> int:
-    while isinstance(node, lark.Tree):
-        node = node.children[0]
-    return node.start_pos
+class _Source:
+    """A line and its template, the line with every number written as 1.
+
+    Lines that differ only in their numbers (CAM output with expressions) share one
+    template, so the grammar parses each template once.  The tokens of the template's
+    tree are mapped back to the line: their text and positions.
+    """
+
+    __slots__ = ("compact", "template", "starts", "numbers", "extra")
+
+    def __init__(self, compact: str):
+        self.compact = compact
+        self.starts: list[int] = []                 # template position of each number
+        self.numbers: list[tuple[int, int]] = []    # its span in the line
+        self.extra: list[int] = []                  # characters saved up to and with it
+        parts = []
+        last = shift = 0
+        n = len(compact)
+        for m in _TEMPLATE.finditer(compact):
+            if m.group(1) is None:
+                continue
+            start, end = m.span()
+            if (start and compact[start - 1] in "0123456789.") or (end < n and compact[end] == "."):
+                self.template = compact             # "1.2.3", "..5": read as written
+                self.starts, self.numbers, self.extra = [], [], []
+                return
+            parts.append(compact[last:start])
+            parts.append("1")
+            self.starts.append(start - shift)
+            self.numbers.append((start, end))
+            shift += end - start - 1
+            self.extra.append(shift)
+            last = end
+        parts.append(compact[last:])
+        self.template = "".join(parts)
+
+    def pos(self, tok) -> int:
+        p = tok.start_pos
+        k = bisect.bisect_right(self.starts, p)
+        if k and self.starts[k - 1] == p:
+            return self.numbers[k - 1][0]
+        return p + (self.extra[k - 1] if k else 0)
+
+    def text(self, tok) -> str:
+        if tok.type == "NUMBER":
+            k = bisect.bisect_left(self.starts, tok.start_pos)
+            if k < len(self.starts) and self.starts[k] == tok.start_pos:
+                start, end = self.numbers[k]
+                return self.compact[start:end]
+        return str(tok)
+
+    def end(self, tok) -> int:
+        return self.pos(tok) + len(self.text(tok))
+
+    def first_pos(self, node) -> int:
+        while isinstance(node, lark.Tree):
+            node = node.children[0]
+        return self.pos(node)
+
+    def number(self, tok) -> str:
+        text = self.text(tok)
+        if not _digits_ok(text):
+            raise _LineError(self.pos(tok), f"number with more than {MAX_DIGITS} digits",
+                             self.end(tok))
+        return text
+
+    def convert(self, node, depth: int = 0):
+        """An expression node: float, or a tuple ("p", index) ("n", name) ("b", op, a, b)
+        ("f", name, arg) ("atan", y, x) ("exists", param) ("neg", x)."""
+        if depth > MAX_NESTING:
+            raise _LineError(self.first_pos(node),
+                             f"expression nested deeper than {MAX_NESTING} levels")
+        d = depth + 1
+        data = node.data
+        ch = node.children
+        convert = self.convert
+        if data == "number":
+            return float(self.number(ch[0]))
+        if data == "pnum":
+            return ("p", float(self.number(ch[1])))
+        if data == "pname":
+            return ("n", _name(str(ch[1])))
+        if data == "pexpr":
+            return ("p", convert(ch[2], d))
+        if data == "pind":
+            return ("p", convert(ch[1], d))
+        if data == "group":
+            return convert(ch[1], d)
+        if data == "func":
+            return ("f", str(ch[0]), convert(ch[2], d))
+        if data == "atan":
+            return ("atan", convert(ch[2], d), convert(ch[6], d))
+        if data == "exists":
+            return ("exists", convert(ch[2], d))
+        if data == "neg":
+            inner = convert(ch[1], d)
+            return -inner if type(inner) is float else ("neg", inner)
+        if data == "pos":
+            return convert(ch[1], d)
+        if data == "binary":
+            return ("b", str(ch[1]), convert(ch[0], d), convert(ch[2], d))
+        raise AssertionError(data)      # pragma: no cover - the grammar has no other rule
+
+
+def _parse_tree(text: str) -> lark.Tree:
+    try:
+        return _PARSER.parse(text)
+    except lark.exceptions.UnexpectedInput as e:
+        pos = getattr(e, "pos_in_stream", None)
+        token = getattr(e, "token", None)
+        if token is not None:
+            pos = len(text) if token.type == "$END" else token.start_pos
+        if pos is None:
+            pos = len(text)
+        raise _LineError(pos, "") from None
 
 
 def _parse_compact(compact: str):
     """("block", delete, [(start, target, expr)]) or ("o", delete, start, label, keyword, args).
 
     start = compact position; raises _LineError."""
-    try:
-        tree = _PARSER.parse(compact)
-    except lark.exceptions.UnexpectedInput as e:
-        pos = getattr(e, "pos_in_stream", None)
-        token = getattr(e, "token", None)
-        if token is not None:
-            pos = len(compact) if token.type == "$END" else token.start_pos
-        if pos is None:
-            pos = len(compact)
-        raise _LineError(pos, "") from None
+    src = _Source(compact)
+    tree = _TREES.get(src.template)
+    if tree is None:
+        try:
+            tree = _parse_tree(src.template)
+        except _LineError:
+            src = _Source.__new__(_Source)          # the error's position in the line itself
+            src.compact = src.template = compact
+            src.starts, src.numbers, src.extra = [], [], []
+            tree = _parse_tree(compact)
+        if len(_TREES) < 10_000:
+            _TREES[src.template] = tree
     delete = False
     items = []
     for child in tree.children:
         if child.data == "delete":
             delete = True
         elif child.data == "lineno":
-            if not _digits_ok(child.children[1]):
-                raise _LineError(child.children[1].start_pos,
-                                 f"number with more than {MAX_DIGITS} digits")
+            src.number(child.children[1])
         elif child.data == "word":
             letter = child.children[0]
             if letter in "no":
-                raise _LineError(letter.start_pos,
+                raise _LineError(src.pos(letter),
                                  "N (line number) must be the first word of the line"
                                  if letter == "n" else
-                                 "an O-word must be the first word of the line", letter.end_pos)
-            items.append((letter.start_pos, letter.upper(), _convert(child.children[1])))
+                                 "an O-word must be the first word of the line",
+                                 src.pos(letter) + 1)
+            items.append((src.pos(letter), letter.upper(), src.convert(child.children[1])))
         elif child.data == "assign":
-            items.append((_first_pos(child), _convert(child.children[0]),
-                          _convert(child.children[2])))
+            items.append((src.first_pos(child), src.convert(child.children[0]),
+                          src.convert(child.children[2])))
         elif child.data == "oline":
             o, label, command = child.children
             tok = label.children[0]
             if tok.type == "NUMBER":
-                if "." in tok or not _digits_ok(tok):
-                    raise _LineError(tok.start_pos, "an O-word number must be an integer")
-                name = f"o{int(tok)}"
+                text = src.text(tok)
+                if "." in text or not _digits_ok(text):
+                    raise _LineError(src.pos(tok), "an O-word number must be an integer")
+                name = f"o{int(text)}"
             else:
                 name = f"o<{_name(str(tok))}>"
             if command.data == "onone":
@@ -369,8 +442,8 @@ def _parse_compact(compact: str):
                 args = []
             else:
                 keyword = str(command.children[0])
-                args = [_convert(a) for a in command.children[1:]]
-            return ("o", delete, o.start_pos, name, keyword, args)
+                args = [src.convert(a) for a in command.children[1:]]
+            return ("o", delete, src.pos(o), name, keyword, args)
     return ("block", delete, items)
 
 
