@@ -814,7 +814,9 @@ class _Machine:
             self.homes[code - 1] = list(self.position)
             return False
         if code == 920:
-            self._extra_axes(words)
+            for letter in EXTRA_AXES:                 # offsets of absent axes: no effect
+                if words.has(letter):
+                    words.value(letter)
             named = [a for a in range(3) if words.has(AXES[a])]
             if not named and not any(words.has(c) for c in EXTRA_AXES):
                 self._fail(word, "G92 needs at least one axis word")
