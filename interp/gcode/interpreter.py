@@ -447,6 +447,13 @@ class _Machine:
                 group = G_GROUPS.get(code)
                 if group is None:
                     self._fail(word, "unknown or unsupported G code")
+                if group == "motion" and group in g and 800 in (code, g[group][0]) and \
+                        {code, g[group][0]} & {0, 10, 20, 30}:
+                    # Fanuc's safe-start idiom "G0 G17 G40 G80 G90": there G80 (cycle cancel)
+                    # has a group of its own; here G0..G3 end any cycle anyway.
+                    if code != 800:
+                        g[group] = (code, word)
+                    continue
                 if group in g:
                     self._fail(word, f"two G codes of the {group} group in one block "
                                      f"({g[group][1].text.strip()} and {word.text.strip()})")
