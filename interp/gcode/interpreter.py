@@ -117,7 +117,9 @@ def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0
         if machine.ended:
             break
     program = machine.program
-    program.warnings[:0] = list(getattr(params, "warnings", []))
+    # the language layer's warnings and ours, in line order
+    program.warnings = sorted(list(getattr(params, "warnings", [])) + program.warnings,
+                              key=_warning_line)
     program.end_machine = tuple(machine.position)
     program.end_work = machine.work_position()
     program.units = machine.units
@@ -177,6 +179,7 @@ class _Machine:
         self.tool_loaded = 0
         self.ended = False
         self.written: dict[int, float] = {}
+        self.settings_changed = True             # the offset parameters need writing
         self._write_parameters()
 
     # ---- coordinates ----------------------------------------------------------------
@@ -196,9 +199,7 @@ class _Machine:
         s = self.scale
         values = {5220: float(self.coordinate_system), 5210: 1.0 if self.g92_enabled else 0.0,
                   5400: float(self.tool_loaded)}
-        work = self.work_position()
         for a in range(3):
-            values[5420 + a] = work[a]
             values[5211 + a] = _clean(self.g92_stored[a] / s)
             values[5161 + a] = _clean(self.homes[280][a] / s)
             values[5181 + a] = _clean(self.homes[300][a] / s)
@@ -208,26 +209,29 @@ class _Machine:
         return values
 
     def _write_parameters(self) -> None:
-        self.written = self._parameter_map()
-        for key, value in self.written.items():
-            self.params.set(key, value)
+        """Write the parameters that changed: the position after every block, the offsets,
+        homes and tool after a block that changed them (or the units)."""
+        values = dict(zip((5420, 5421, 5422), self.work_position()))
+        if self.settings_changed:
+            values.update(self._parameter_map())
+            self.settings_changed = False
+        for key, value in values.items():
+            if self.written.get(key) != value:
+                self.params.set(key, value)
+                self.written[key] = value
 
-    def _read_parameters(self) -> None:
-        """Take over what the program assigned to the offset parameters since the last block."""
-        s = self.scale
-        changed = {key for key, value in self.written.items() if self.params.get(key) != value}
-        if not changed:
-            return
+    def _read_offsets(self, system: int) -> None:
+        """Select a coordinate system: its offsets from #5221.. (the program may have set them),
+        as LinuxCNC reads them when G54..G59.3 is programmed."""
         for a in range(3):
-            if 5211 + a in changed:
-                self.g92_stored[a] = self.params.get(5211 + a) * s
-            if 5161 + a in changed:
-                self.homes[280][a] = self.params.get(5161 + a) * s
-            if 5181 + a in changed:
-                self.homes[300][a] = self.params.get(5181 + a) * s
-            for n in range(9):
-                if 5221 + 20 * n + a in changed:
-                    self.work_offsets[n][a] = self.params.get(5221 + 20 * n + a) * s
+            key = 5221 + 20 * (system - 1) + a
+            if self.params.get(key) != self.written.get(key):
+                self.work_offsets[system - 1][a] = self.params.get(key) * self.scale
+
+    def _read_vector(self, base: int, vector: list[float]) -> None:
+        for a in range(3):
+            if self.params.get(base + a) != self.written.get(base + a):
+                vector[a] = self.params.get(base + a) * self.scale
 
     # ---- output ---------------------------------------------------------------------
     def _event(self, name: str, value: float, line: int) -> None:
@@ -245,13 +249,15 @@ class _Machine:
 
     # ---- one block ------------------------------------------------------------------
     def run_block(self, block: Block) -> None:
-        self._read_parameters()
         for comment in block.comments:
             text = comment.strip()
             if text[:4].upper() == "MSG,":
                 self.program.messages.append(f"line {block.line}: {text[4:].strip()}")
         words = self._sort_words(block)
         line = block.line
+        if words.g.keys() & {"non-modal", "units", "tool length", "coordinate system"} or \
+                "tool change" in words.m:
+            self.settings_changed = True
 
         # 3. feed rate mode, 4. feed rate
         feed_mode = words.g.get("feed mode")
@@ -347,6 +353,7 @@ class _Machine:
             code = words.g["coordinate system"][0]
             self.coordinate_system = {540: 1, 550: 2, 560: 3, 570: 4, 580: 5, 590: 6,
                                       591: 7, 592: 8, 593: 9}[code]
+            self._read_offsets(self.coordinate_system)
         # 20. path control
         if "path control" in words.g:
             code, word = words.g["path control"]
@@ -808,6 +815,7 @@ class _Machine:
                 self._fail(words.word("@" if words.has("@") else "^"),
                            "polar coordinates cannot be used with G28/G30")
             home = self.homes[code]
+            self._read_vector(5161 if code == 280 else 5181, home)
             if named:
                 self._line_to(self._target(words), None, line)
                 final = list(self.position)
@@ -843,6 +851,7 @@ class _Machine:
             self.g92_enabled = False
             return False
         if code == 923:
+            self._read_vector(5211, self.g92_stored)
             self.g92 = list(self.g92_stored)
             self.g92_enabled = True
             return False
@@ -933,6 +942,11 @@ class _Machine:
                     offset[a] = words.value(AXES[a]) * self.scale
             self.tool_offset = offset
             return True
+
+
+def _warning_line(text: str) -> int:
+    head = text.split(":", 1)[0]
+    return int(head[5:]) if head.startswith("line ") and head[5:].isdigit() else 0
 
 
 def _clean(value: float) -> float:
