@@ -205,6 +205,26 @@ def test_linuxcnc_centre_format_example():
     assert arc == Arc((0, 0, 0), (1, 1, 0), (1, 0, 0), "XY", False, 1, 10, 2)
 
 
+def test_linuxcnc_g2_g3_pair_and_turns_examples():
+    # the G2/G3 page: G2 X0 Y1 I1 J0.5 F25 / G3 X0 Y0 I1 J-0.5 F25 (centre (1, 0.5) both)
+    ms = paths("G0 X0 Y0\nG2 X0 Y1 I1 J0.5 F25\nG3 X0 Y0 I1 J-0.5 F25")
+    assert [(m.centre, m.ccw, m.end) for m in ms] == [
+        ((1, 0.5, 0), False, (0, 1, 0)), ((1, 0.5, 0), True, (0, 0, 0))]
+    # its multiple-turns example: G2 X0 Y1 Z-1 I1 J0.5 P2 F25, a helix of two turns
+    (arc,) = paths("G0 X0 Y0 Z0\nG2 X0 Y1 Z-1 I1 J0.5 P2 F25")
+    assert arc == Arc((0, 0, 0), (0, 1, -1), (1, 0.5, 0), "XY", False, 2, 25, 2)
+
+
+def test_linuxcnc_helix_example_is_refused_as_linuxcnc_does():
+    # the page's helix example G17 G2 X10 Y16 I3 J4 Z-1 from the origin: the radius to the
+    # start is 5, to the end 13.89, far beyond the tolerance
+    assert error("G0 X0 Y0 Z0\nG17 G2 X10 Y16 I3 J4 Z-1 F10") == (
+        "line 2, column 16: I3: the radius to the end (13.8924) differs from the radius to the "
+        "start (5.0000) by 8.892 mm, more than 0.5, or more than 0.005 and 0.1 %")
+    (arc,) = paths("G0 X7 Y7 Z0\nG17 G2 X10 Y16 I3 J4 Z-1 F10")[1:]   # a start on its circle
+    assert arc.end == (10, 16, -1) and arc.centre == (10, 11, 0)
+
+
 def test_linuxcnc_radius_format_example():
     # the G2/G3 page's radius-format example: G17 G2 X10 Y15 R20 Z5 (from the origin)
     (arc,) = paths("G17 G2 X10 Y15 R20 Z5 F10")
