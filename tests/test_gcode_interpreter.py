@@ -171,6 +171,12 @@ def test_g92_family():
     assert ends(text) == [(10, 10, 0), (15, 10, 0), (5, 10, 0), (10, 10, 0), (1, 10, 0)]
 
 
+def test_fanuc_home_idiom_g91_g28_z0():
+    # G91 G28 Z0: the intermediate point is the current one, then Z alone goes home
+    assert ends("G0 X5 Y5 Z-3\nG91 G28 Z0\nG90 G28 X0 Y0", g28=(1, 2, 3)) == [
+        (5, 5, -3), (5, 5, 3), (0, 0, 3), (1, 2, 3)]
+
+
 def test_g53_is_machine_coordinates_for_one_block():
     assert ends("G10 L2 P1 X100\nG0 X0\nG53 G0 X5\nG1 X1 F10") == [
         (100, 0, 0), (5, 0, 0), (101, 0, 0)]
@@ -387,6 +393,10 @@ def test_polar_bolt_circle_of_the_linuxcnc_sample():
     ("G93 G81 X1 Z-1 R1 F10", "line 1, column 5: G81: canned cycles cannot be used in inverse "
                               "time mode (G93)"),
     ("G81 X1 Z-1 R1", "line 1, column 1: G81: canned cycle without a feed rate (no F word yet)"),
+    ("G91 G81 X1 Z-1 R1 L500000 F10", "line 1, column 19: L500000: this canned cycle would make "
+                                      "more than 1000000 moves (500000 holes of 1 pecks)"),
+    ("G83 X1 Z-100 R1 Q0.0001 F10", "line 1, column 17: Q0.0001: this canned cycle would make "
+                                    "more than 1000000 moves (1 holes of 1010000 pecks)"),
 ])
 def test_bad_cycles(text, message):
     assert error(text) == message

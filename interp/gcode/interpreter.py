@@ -35,6 +35,7 @@ RADIUS_TOLERANCE = {"inch": 0.00005, "mm": 0.00005 * MM_PER_INCH}
 CENTRE_ABSOLUTE_TOLERANCE = {"inch": 0.05, "mm": 0.5}
 CENTRE_SMALL_TOLERANCE = {"inch": 0.0005, "mm": 0.005}
 CENTRE_RELATIVE_TOLERANCE = 0.001
+MAX_CYCLE_MOVES = 1_000_000     # one canned-cycle block expands to at most this many moves
 SAME_POINT_MM = 1e-9            # an arc's end this close to its start is a full circle
 
 AXES = "XYZ"
@@ -134,6 +135,7 @@ class _Words:
     m: dict[str, tuple[int, Word]]
     letters: dict[str, Word]
     used: set[str]
+    coolant: list[tuple[int, Word]]     # M7, M8, M9 (M7 and M8 may share a block)
 
     def has(self, letter: str) -> bool:
         return letter in self.letters
@@ -323,7 +325,7 @@ class _Machine:
                 self.spindle = "cw" if code == 3 else "ccw"
                 self._event("spindle_cw" if code == 3 else "spindle_ccw", self.speed, line)
         # 11. coolant
-        for code, word in words.block_coolant:
+        for code, _word in words.coolant:
             self._event({7: "mist_on", 8: "flood_on", 9: "coolant_off"}[code], 0, line)
         # 12. overrides
         if "override" in words.m:
@@ -495,9 +497,7 @@ class _Machine:
                 and any(c in letters for c in AXES + EXTRA_AXES + "@^")):
             self._fail(g["motion"][1], f"{g['non-modal'][1].text.strip()} and "
                                        f"{g['motion'][1].text.strip()} both use the axis words")
-        words = _Words(block, g, m, letters, set())
-        words.block_coolant = coolant
-        return words
+        return _Words(block, g, m, letters, set(), coolant)
 
     def _check_unused(self, words: _Words) -> None:
         for letter, word in words.letters.items():
@@ -735,6 +735,16 @@ class _Machine:
                 self._fail(words.word("L"), "the number of repeats L must be a whole number "
                                             ">= 1")
             repeats = int(value)
+        pecks = 1
+        if code in (73, 83):
+            depth = (sticky["R"] - (sticky["depth"] if self.absolute else sticky["R"] +
+                                    sticky["depth"]))
+            pecks = max(1, math.ceil(depth / q)) if depth > 0 else 1
+        if repeats * (pecks * (3 if code == 83 else 2) + 3) > MAX_CYCLE_MOVES:
+            word = words.word("L") if words.has("L") and pecks < MAX_CYCLE_MOVES / 4 else (
+                words.word("Q") if words.has("Q") else mword)
+            self._fail(word, f"this canned cycle would make more than {MAX_CYCLE_MOVES} moves "
+                             f"({repeats} holes of {pecks} pecks)")
         current = self.position[ic]
         if self.cycle_initial is None:
             self.cycle_initial = current
