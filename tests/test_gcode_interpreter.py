@@ -445,6 +445,14 @@ def test_spindle_coolant_outputs_and_stops():
     assert paths(text) == []                                   # nothing after M30 runs
 
 
+def test_tool_selected_in_the_block_of_m6():
+    assert events("M6 T2") == [("tool_change", 2, 1), ("pause", 6, 1)]
+
+
+def test_home_parameters_assigned_by_the_program():
+    assert ends("#5161 = 5\n#5183 = -1\nG28\nG30", g30=(7, 8, 9)) == [(5, 0, 0), (7, 8, -1)]
+
+
 def test_stop_comes_after_the_motion_of_its_block():
     ms = moves("G1 X1 F10 M2")
     assert isinstance(ms[0], Line) and ms[1] == Event("program_end", 2, 1)
