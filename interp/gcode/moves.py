@@ -79,3 +79,6 @@ class Program:
     end_work: Point = (0.0, 0.0, 0.0)     # final position in work coordinates, program units
     units: str = "mm"                     # the units in force at the end: "mm" or "inch"
     end_machine: Point = (0.0, 0.0, 0.0)  # final position in machine coordinates, mm
+    # path-control mode changes, for the planner: (line, "G61" | "G61.1" | "G64", P, Q), P and Q
+    # (G64's blending tolerance and naive-CAM tolerance) in mm or None when not programmed
+    path_modes: list[tuple[int, str, float | None, float | None]] = field(default_factory=list)

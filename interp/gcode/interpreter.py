@@ -1,0 +1,965 @@
+# SPDX-License-Identifier: Apache-2.0
+"""RS274NGC machine semantics: blocks of words -> moves in machine millimetres.
+
+`interpret(text)` runs the language layer (`iterate_blocks`: lexing, parsing,
+expressions, O-word control flow) and gives each block the meaning LinuxCNC's
+interpreter gives it: modal groups, the order of execution within a block,
+units, distance modes, work offsets (G54..G59.3, G92, G10), tool length offsets,
+arcs in any plane, helices, canned cycles, dwells and M-word events.  The
+result is a `Program` (moves.py).  Anything it cannot run faithfully is
+refused with one `GcodeError` naming the line, column and word.
+
+Internally every position and offset is kept in machine millimetres; the
+parameters the program can read (#5420.. the position, #5221.. the
+coordinate systems, ...) are written back in program units after each block.
+docs/gcode-semantics.md describes the accepted words and the differences from
+LinuxCNC and Grbl.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from . import cycles
+from .errors import GcodeError
+from .language import Block, Parameters, Word, iterate_blocks
+from .moves import PLANES, Arc, Dwell, Event, Line, Point, Program
+
+MM_PER_INCH = 25.4
+
+# Arc tolerances, in program units.  Zero radius and the R form's reach: LinuxCNC's
+# RADIUS_TOLERANCE (0.00005 inch).  Centre form: the rule of LinuxCNC's G2/G3 documentation,
+# an error if the radii to the start and the end differ by more than 0.05 inch (0.5 mm), or
+# by more than 0.0005 inch (0.005 mm) and 0.1 % of the radius.
+RADIUS_TOLERANCE = {"inch": 0.00005, "mm": 0.00005 * MM_PER_INCH}
+CENTRE_ABSOLUTE_TOLERANCE = {"inch": 0.05, "mm": 0.5}
+CENTRE_SMALL_TOLERANCE = {"inch": 0.0005, "mm": 0.005}
+CENTRE_RELATIVE_TOLERANCE = 0.001
+MAX_CYCLE_MOVES = 1_000_000     # one canned-cycle block expands to at most this many moves
+SAME_POINT_MM = 1e-9            # an arc's end this close to its start is a full circle
+
+AXES = "XYZ"
+EXTRA_AXES = "ABCUVW"           # axes this machine does not have
+PLANE_OF = {170: "XY", 180: "ZX", 190: "YZ"}
+PLANE_CODE = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
+
+# G codes in tenths (G59.1 -> 591) -> modal group
+G_GROUPS: dict[int, str] = {}
+for _codes, _group in (
+        ((0, 10, 20, 30, 800, 730, 810, 820, 830, 850, 890), "motion"),
+        ((40, 100, 280, 281, 300, 301, 530, 920, 921, 922, 923), "non-modal"),
+        ((170, 180, 190), "plane"), ((900, 910), "distance"), ((901, 911), "arc distance"),
+        ((930, 940), "feed mode"), ((200, 210), "units"), ((400,), "cutter compensation"),
+        ((430, 431, 490), "tool length"), ((980, 990), "return mode"),
+        ((540, 550, 560, 570, 580, 590, 591, 592, 593), "coordinate system"),
+        ((610, 611, 640), "path control"), ((970,), "spindle speed mode"),
+        ((80,), "lathe diameter mode")):
+    for _code in _codes:
+        G_GROUPS[_code] = _group
+
+G_REFUSED = {
+    410: "cutter radius compensation is not supported",
+    420: "cutter radius compensation is not supported",
+    411: "cutter radius compensation is not supported",
+    421: "cutter radius compensation is not supported",
+    50: "cubic spline moves (G5) are not supported",
+    51: "quadratic spline moves (G5.1) are not supported",
+    52: "NURBS moves (G5.2) are not supported",
+    53: "NURBS moves (G5.3) are not supported",
+    70: "lathe diameter mode is not supported",
+    330: "spindle-synchronized motion is not supported",
+    331: "rigid tapping is not supported",
+    382: "probing is not supported", 383: "probing is not supported",
+    384: "probing is not supported", 385: "probing is not supported",
+    740: "tapping cycles need a spindle encoder: not supported",
+    840: "tapping cycles need a spindle encoder: not supported",
+    760: "threading cycles are not supported",
+    860: "G86 (stop the spindle in the hole) is not supported",
+    870: "back boring (G87) is not supported",
+    880: "G88 (manual retract) is not supported",
+    432: "G43.2 (additional tool offset) is not supported",
+    171: "UVW planes are not supported", 181: "UVW planes are not supported",
+    191: "UVW planes are not supported",
+    950: "feed per revolution (G95) is not supported",
+    960: "constant surface speed (G96) is not supported",
+    520: "G52 is not an RS274NGC code (use G92)",
+}
+
+M_GROUPS: dict[int, str] = {}
+for _codes, _group in (((0, 1, 2, 30, 60), "stopping"), ((3, 4, 5), "spindle"),
+                       ((6, 61), "tool change"), ((7, 8, 9), "coolant"),
+                       ((48, 49, 50, 51, 52, 53), "override"),
+                       ((62, 63, 64, 65), "output")):
+    for _code in _codes:
+        M_GROUPS[_code] = _group
+
+MOTION_NAMES = {0: "G0", 10: "G1", 20: "G2", 30: "G3", 800: "G80", 730: "G73", 810: "G81",
+                820: "G82", 830: "G83", 850: "G85", 890: "G89"}
+CYCLE_CODES = {730: 73, 810: 81, 820: 82, 830: 83, 850: 85, 890: 89}
+AXIS_USERS = {100: "G10", 280: "G28", 300: "G30", 920: "G92"}
+VALID_LETTERS = set("ABCDFGHIJKLMNPQRSTUVWXYZ@^")
+
+
+def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0, 0.0),
+              tools: dict[int, dict] | None = None) -> Program:
+    """Run a G-code program: text -> Program of moves in machine mm (see moves.py).
+
+    g28, g30: the G28 / G30 home positions in machine mm (#5161.., #5181..);
+    tools: T -> {"length_mm": float, "diameter_mm": float}, the tool table
+    (G10 L1/L10 change a copy of it).  Raises GcodeError for anything it
+    cannot run.
+    """
+    params = Parameters()
+    machine = _Machine(params, g28, g30, tools or {})
+    for block in iterate_blocks(text, params):
+        if block.delete:
+            continue                                  # block delete switch on
+        machine.run_block(block)
+        if machine.ended:
+            break
+    program = machine.program
+    # the language layer's warnings and ours, in line order
+    program.warnings = sorted(list(getattr(params, "warnings", [])) + program.warnings,
+                              key=_warning_line)
+    program.end_machine = tuple(machine.position)
+    program.end_work = machine.work_position()
+    program.units = machine.units
+    return program
+
+
+@dataclass
+class _Words:
+    """A block's words sorted out: G and M codes (tenths / integers) and the other letters."""
+    block: Block
+    g: dict[str, tuple[int, Word]]       # modal group -> (code, word)
+    m: dict[str, tuple[int, Word]]
+    letters: dict[str, Word]
+    used: set[str]
+    coolant: list[tuple[int, Word]]     # M7, M8, M9 (M7 and M8 may share a block)
+
+    def has(self, letter: str) -> bool:
+        return letter in self.letters
+
+    def value(self, letter: str) -> float:
+        self.used.add(letter)
+        return self.letters[letter].value
+
+    def get(self, letter: str, default=None):
+        return self.value(letter) if letter in self.letters else default
+
+    def word(self, letter: str) -> Word:
+        return self.letters[letter]
+
+
+class _Machine:
+    def __init__(self, params: Parameters, g28: Point, g30: Point, tools: dict[int, dict]):
+        self.params = params
+        self.program = Program()
+        self.tools = {int(t): dict(v) for t, v in tools.items()}
+        self.position = [0.0, 0.0, 0.0]          # machine mm
+        self.units = "mm"
+        self.plane = "XY"
+        self.absolute = True                     # G90
+        self.arc_absolute = False                # G91.1
+        self.inverse_time = False                # G93
+        self.feed: float | None = None           # mm/min (G94)
+        self.motion = 800                        # G80
+        self.motion_before_cycle: int | None = None   # G0 / G1 in force before a canned cycle
+        self.coordinate_system = 1               # G54
+        self.work_offsets = [[0.0, 0.0, 0.0] for _ in range(9)]
+        self.g92 = [0.0, 0.0, 0.0]               # applied G92 offset
+        self.g92_stored = [0.0, 0.0, 0.0]        # #5211.. (kept while G92.2 suspends)
+        self.g92_enabled = False
+        self.tool_offset = [0.0, 0.0, 0.0]
+        self.homes = {280: list(map(float, g28)), 300: list(map(float, g30))}
+        self.r_plane_retract = True              # G99 (LinuxCNC's start-up mode)
+        self.cycle_initial: float | None = None
+        self.cycle_sticky: dict[str, float] = {}
+        self.spindle: str | None = None          # "cw", "ccw" or None
+        self.speed = 0.0
+        self.tool_selected = 0
+        self.tool_loaded = 0
+        self.ended = False
+        self.written: dict[int, float] = {}
+        self.settings_changed = True             # the offset parameters need writing
+        self._write_parameters()
+
+    # ---- coordinates ----------------------------------------------------------------
+    @property
+    def scale(self) -> float:
+        return MM_PER_INCH if self.units == "inch" else 1.0
+
+    def offset(self, axis: int) -> float:
+        return (self.work_offsets[self.coordinate_system - 1][axis] + self.g92[axis]
+                + self.tool_offset[axis])
+
+    def work_position(self) -> Point:
+        return tuple(_clean((self.position[a] - self.offset(a)) / self.scale) for a in range(3))
+
+    # ---- parameters -----------------------------------------------------------------
+    def _parameter_map(self) -> dict[int, float]:
+        s = self.scale
+        values = {5220: float(self.coordinate_system), 5210: 1.0 if self.g92_enabled else 0.0,
+                  5400: float(self.tool_loaded)}
+        for a in range(3):
+            values[5211 + a] = _clean(self.g92_stored[a] / s)
+            values[5161 + a] = _clean(self.homes[280][a] / s)
+            values[5181 + a] = _clean(self.homes[300][a] / s)
+            values[5401 + a] = _clean(self.tool_offset[a] / s)
+            for n in range(9):
+                values[5221 + 20 * n + a] = _clean(self.work_offsets[n][a] / s)
+        return values
+
+    def _write_parameters(self) -> None:
+        """Write the parameters that changed: the position after every block, the offsets,
+        homes and tool after a block that changed them (or the units)."""
+        values = dict(zip((5420, 5421, 5422), self.work_position()))
+        if self.settings_changed:
+            values.update(self._parameter_map())
+            self.settings_changed = False
+        for key, value in values.items():
+            if self.written.get(key) != value:
+                self.params.set(key, value)
+                self.written[key] = value
+
+    def _read_offsets(self, system: int) -> None:
+        """Select a coordinate system: its offsets from #5221.. (the program may have set them),
+        as LinuxCNC reads them when G54..G59.3 is programmed."""
+        for a in range(3):
+            key = 5221 + 20 * (system - 1) + a
+            if self.params.get(key) != self.written.get(key):
+                self.work_offsets[system - 1][a] = self.params.get(key) * self.scale
+
+    def _read_vector(self, base: int, vector: list[float]) -> None:
+        for a in range(3):
+            if self.params.get(base + a) != self.written.get(base + a):
+                vector[a] = self.params.get(base + a) * self.scale
+
+    # ---- output ---------------------------------------------------------------------
+    def _event(self, name: str, value: float, line: int) -> None:
+        self.program.moves.append(Event(name, float(value), line))
+
+    def _warn(self, line: int, text: str) -> None:
+        self.program.warnings.append(f"line {line}: {text}")
+
+    def _line_to(self, target: list[float], feed: float | None, line: int) -> None:
+        start = tuple(self.position)
+        end = tuple(target)
+        if start != end:
+            self.program.moves.append(Line(start, end, feed, line))
+        self.position = list(target)
+
+    # ---- one block ------------------------------------------------------------------
+    def run_block(self, block: Block) -> None:
+        for comment in block.comments:
+            text = comment.strip()
+            if text[:4].upper() == "MSG,":
+                self.program.messages.append(f"line {block.line}: {text[4:].strip()}")
+        words = self._sort_words(block)
+        line = block.line
+        if words.g.keys() & {"non-modal", "units", "tool length", "coordinate system"} or \
+                "tool change" in words.m:
+            self.settings_changed = True
+
+        # 3. feed rate mode, 4. feed rate
+        feed_mode = words.g.get("feed mode")
+        if feed_mode is not None:
+            inverse = feed_mode[0] == 930
+            if inverse != self.inverse_time:
+                self.feed = None
+            self.inverse_time = inverse
+        units = words.g.get("units")
+        block_units = self.units if units is None else ("inch" if units[0] == 200 else "mm")
+        block_scale = MM_PER_INCH if block_units == "inch" else 1.0
+        inverse_f = None
+        if words.has("F"):
+            f = words.value("F")
+            if f <= 0:
+                self._fail(words.word("F"), "the feed rate must be positive")
+            if self.inverse_time:
+                inverse_f = f
+            else:
+                self.feed = f * block_scale
+        # 5. spindle speed
+        if words.has("S"):
+            s = words.value("S")
+            if s < 0:
+                self._fail(words.word("S"), "the spindle speed cannot be negative")
+            if self.spindle is not None and s != self.speed and "spindle" not in words.m:
+                self._event("spindle_speed", s, line)
+            self.speed = s
+        # 6. select tool
+        if words.has("T"):
+            t = words.value("T")
+            if t < 0 or t != int(t):
+                self._fail(words.word("T"), "the tool number must be a whole number >= 0")
+            self.tool_selected = int(t)
+        # 7. outputs
+        if "output" in words.m:
+            code, word = words.m["output"]
+            if not words.has("P"):
+                self._fail(word, "needs a P word (the output number)")
+            number = words.value("P")
+            self._event("output_on" if code in (62, 64) else "output_off", number, line)
+        # 8. tool change
+        if "tool change" in words.m:
+            code, word = words.m["tool change"]
+            if code == 6:
+                self._event("tool_change", self.tool_selected, line)
+                self._event("pause", 6, line)
+                self.tool_loaded = self.tool_selected
+            else:                                            # M61 Q: set the loaded tool
+                if not words.has("Q"):
+                    self._fail(word, "needs a Q word (the tool number)")
+                q = words.value("Q")
+                if q < 0 or q != int(q):
+                    self._fail(words.word("Q"), "the tool number must be a whole number >= 0")
+                self.tool_loaded = int(q)
+        # 9. spindle
+        if "spindle" in words.m:
+            code = words.m["spindle"][0]
+            if code == 5:
+                self.spindle = None
+                self._event("spindle_off", 0, line)
+            else:
+                self.spindle = "cw" if code == 3 else "ccw"
+                self._event("spindle_cw" if code == 3 else "spindle_ccw", self.speed, line)
+        # 11. coolant
+        for code, _word in words.coolant:
+            self._event({7: "mist_on", 8: "flood_on", 9: "coolant_off"}[code], 0, line)
+        # 12. overrides
+        if "override" in words.m:
+            code, word = words.m["override"]
+            if code in (50, 51, 52, 53) and words.has("P"):
+                words.value("P")
+            self._warn(line, f"{word.text}: overrides are not modelled; ignored")
+        # 14. dwell
+        nonmodal = words.g.get("non-modal")
+        if nonmodal is not None and nonmodal[0] == 40:
+            if not words.has("P"):
+                self._fail(nonmodal[1], "needs a P word (seconds)")
+            p = words.value("P")
+            if p < 0:
+                self._fail(words.word("P"), "the dwell time cannot be negative")
+            self.program.moves.append(Dwell(p, line))
+        # 15. plane, 16. units
+        if "plane" in words.g:
+            self.plane = PLANE_OF[words.g["plane"][0]]
+        self.units = block_units
+        # 18. tool length offset
+        axes_taken = False
+        if "tool length" in words.g:
+            axes_taken = self._tool_length(words)
+        # 19. coordinate system
+        if "coordinate system" in words.g:
+            code = words.g["coordinate system"][0]
+            self.coordinate_system = {540: 1, 550: 2, 560: 3, 570: 4, 580: 5, 590: 6,
+                                      591: 7, 592: 8, 593: 9}[code]
+            self._read_offsets(self.coordinate_system)
+        # 20. path control
+        if "path control" in words.g:
+            code, word = words.g["path control"]
+            p = q = None
+            if code == 640:
+                p = words.get("P")
+                q = words.get("Q")
+                p = None if p is None else p * self.scale
+                q = None if q is None else q * self.scale
+            self.program.path_modes.append((line, {610: "G61", 611: "G61.1", 640: "G64"}[code],
+                                            p, q))
+        # 21. distance modes, 22. return mode
+        if "distance" in words.g:
+            self.absolute = words.g["distance"][0] == 900
+        if "arc distance" in words.g:
+            self.arc_absolute = words.g["arc distance"][0] == 901
+        if "return mode" in words.g:
+            self.r_plane_retract = words.g["return mode"][0] == 990
+        # 23. home, G10, G92
+        axis_letters = [c for c in AXES + EXTRA_AXES + "@^" if words.has(c)]
+        if nonmodal is not None and nonmodal[0] != 40 and nonmodal[0] != 530:
+            axes_taken = self._non_modal(words, nonmodal) or axes_taken
+        # 24. motion
+        motion = words.g.get("motion")
+        if motion is not None:
+            if motion[0] in CYCLE_CODES and self.motion not in CYCLE_CODES:
+                self.cycle_initial = None
+            new_mode = motion[0]
+        else:
+            new_mode = self.motion
+        g53 = nonmodal is not None and nonmodal[0] == 530
+        if g53 and new_mode not in (0, 10):
+            self._fail(nonmodal[1], "G53 needs G0 or G1")
+        if g53 and not self.absolute:
+            self._fail(nonmodal[1], "G53 cannot be used in incremental mode (G91)")
+        if new_mode == 800:
+            if motion is not None and axis_letters and not axes_taken:
+                self._fail(motion[1], "axis words cannot be used with G80")
+            if axis_letters and not axes_taken:
+                word = words.word(axis_letters[0])
+                if self.motion_before_cycle is None:
+                    self._fail(word, "axis word without a motion mode (G0, G1, G2, G3 or a "
+                                     "cycle) in force")
+                # Fanuc and Mach3 keep the motion mode from before the canned cycle in force
+                # after G80 (LinuxCNC and Grbl refuse the block): run it, with a warning.
+                new_mode = self.motion_before_cycle
+                self._warn(line, f"{word.text.strip()}: axis word after G80: moved in "
+                                 f"{MOTION_NAMES[new_mode]}, the motion mode in force before "
+                                 "the canned cycle (as Fanuc and Mach3 do; LinuxCNC refuses it)")
+                self._straight(words, new_mode, g53, inverse_f)
+            self.cycle_initial = None
+        elif not axes_taken and (axis_letters or (motion is not None and new_mode in (20, 30)
+                                                  and any(words.has(c) for c in "IJKR"))):
+            if new_mode in (0, 10):
+                self._straight(words, new_mode, g53, inverse_f)
+            elif new_mode in (20, 30):
+                self._arc(words, new_mode, motion, inverse_f)
+            else:
+                self._cycle(words, new_mode, motion)
+        if new_mode not in CYCLE_CODES:
+            self.cycle_initial = None
+        if new_mode in (0, 10):
+            self.motion_before_cycle = new_mode
+        elif new_mode in (20, 30):
+            self.motion_before_cycle = None
+        self.motion = new_mode
+        self._check_unused(words)
+        # 25. stop
+        if "stopping" in words.m:
+            code = words.m["stopping"][0]
+            if code in (2, 30):
+                self._event("program_end", code, line)
+                self.ended = True
+            else:
+                self._event("pause", code, line)
+        self._write_parameters()
+
+    # ---- words ----------------------------------------------------------------------
+    def _fail(self, word: Word | None, text: str, line: int | None = None):
+        if word is None:
+            raise GcodeError(line if line is not None else self._line, 1, "", text)
+        raise GcodeError(self._line, word.column, word.text.strip(), text)
+
+    def _sort_words(self, block: Block) -> _Words:
+        self._line = block.line
+        g: dict[str, tuple[int, Word]] = {}
+        m: dict[str, tuple[int, Word]] = {}
+        letters: dict[str, Word] = {}
+        coolant: list[tuple[int, Word]] = []
+        for word in block.words:
+            letter = word.letter.upper()
+            if letter == "G":
+                code = round(word.value * 10)
+                if abs(word.value * 10 - code) > 1e-6 or word.value < 0:
+                    self._fail(word, "unknown G code")
+                if code in G_REFUSED:
+                    self._fail(word, G_REFUSED[code])
+                group = G_GROUPS.get(code)
+                if group is None:
+                    self._fail(word, "unknown or unsupported G code")
+                if group == "motion" and group in g and 800 in (code, g[group][0]) and \
+                        {code, g[group][0]} & {0, 10, 20, 30}:
+                    # Fanuc's safe-start idiom "G0 G17 G40 G80 G90": there G80 (cycle cancel)
+                    # has a group of its own; here G0..G3 end any cycle anyway.
+                    if code != 800:
+                        g[group] = (code, word)
+                    continue
+                if group in g:
+                    self._fail(word, f"two G codes of the {group} group in one block "
+                                     f"({g[group][1].text.strip()} and {word.text.strip()})")
+                g[group] = (code, word)
+            elif letter == "M":
+                code = round(word.value)
+                if abs(word.value - code) > 1e-6 or word.value < 0:
+                    self._fail(word, "unknown M code")
+                group = M_GROUPS.get(code)
+                if group is None:
+                    self._fail(word, "unsupported M code")
+                if group == "coolant":
+                    if any(c == 9 or code == 9 or c == code for c, _ in coolant):
+                        self._fail(word, "two M codes of the coolant group in one block")
+                    coolant.append((code, word))
+                    m[group] = (code, word)
+                    continue
+                if group in m:
+                    self._fail(word, f"two M codes of the {group} group in one block "
+                                     f"({m[group][1].text.strip()} and {word.text.strip()})")
+                m[group] = (code, word)
+            elif letter == "N":
+                continue
+            else:
+                if letter not in VALID_LETTERS:
+                    self._fail(word, f"{letter} is not an RS274NGC word")
+                if letter in letters:
+                    self._fail(word, f"two {letter} words in one block")
+                letters[letter] = word
+        if ("non-modal" in g and g["non-modal"][0] in AXIS_USERS and "motion" in g
+                and g["motion"][0] != 800
+                and any(c in letters for c in AXES + EXTRA_AXES + "@^")):
+            self._fail(g["motion"][1], f"{g['non-modal'][1].text.strip()} and "
+                                       f"{g['motion'][1].text.strip()} both use the axis words")
+        return _Words(block, g, m, letters, set(), coolant)
+
+    def _check_unused(self, words: _Words) -> None:
+        for letter, word in words.letters.items():
+            if letter not in words.used and letter not in "FST":
+                if letter == "D":
+                    self._fail(word, "D word without cutter radius compensation (G41/G42 are "
+                                     "not supported)")
+                if letter == "H":
+                    self._fail(word, "H word without G43")
+                self._fail(word, "word not used by any command in this block")
+
+    def _axis_value(self, words: _Words, letter: str) -> float:
+        return words.value(letter)
+
+    def _extra_axes(self, words: _Words) -> None:
+        """A/B/C/U/V/W: accepted only if they do not move (the machine has X, Y and Z)."""
+        for letter in EXTRA_AXES:
+            if words.has(letter):
+                if words.value(letter) != 0:
+                    self._fail(words.word(letter), f"this machine has no {letter} axis")
+
+    def _target(self, words: _Words, g53: bool = False) -> list[float]:
+        """The end point of a straight or arc move (machine mm) from the axis words."""
+        s = self.scale
+        target = list(self.position)
+        self._extra_axes(words)
+        polar = words.has("@") or words.has("^")
+        if polar:
+            for letter in "XY":
+                if words.has(letter):
+                    self._fail(words.word(letter), "X or Y cannot be used with polar "
+                                                   "coordinates (@ ^)")
+            if self.plane != "XY":
+                self._fail(words.word("@" if words.has("@") else "^"),
+                           "polar coordinates need the XY plane (G17)")
+            work = [(self.position[a] - self.offset(a)) / s for a in range(2)]
+            radius, theta = self._polar(words, work)
+            target[0] = radius * math.cos(theta) * s + self.offset(0)
+            target[1] = radius * math.sin(theta) * s + self.offset(1)
+        for axis, letter in enumerate(AXES):
+            if not words.has(letter):
+                continue
+            v = words.value(letter) * s
+            if g53:
+                target[axis] = v
+            elif self.absolute:
+                target[axis] = v + self.offset(axis)
+            else:
+                target[axis] = self.position[axis] + v
+        return target
+
+    def _polar(self, words: _Words, work: list[float]) -> tuple[float, float]:
+        radius, theta = math.hypot(work[0], work[1]), math.atan2(work[1], work[0])
+        if self.absolute:
+            if words.has("@"):
+                radius = words.value("@")
+            if words.has("^"):
+                theta = math.radians(words.value("^"))
+        else:
+            if work[0] == 0 and work[1] == 0:
+                word = words.word("@" if words.has("@") else "^")
+                self._fail(word, "incremental polar motion is undefined at the origin")
+            if words.has("@"):
+                radius += words.value("@")
+            if words.has("^"):
+                theta += math.radians(words.value("^"))
+        return radius, theta
+
+    def _feed_for(self, length_mm: float, inverse_f: float | None, word: Word | None) -> float:
+        if self.inverse_time:
+            if inverse_f is None:
+                self._fail(word, "inverse time mode (G93) needs an F word on every feed move")
+            return length_mm * inverse_f
+        if self.feed is None:
+            self._fail(word, "feed move without a feed rate (no F word yet)")
+        return self.feed
+
+    # ---- motion ---------------------------------------------------------------------
+    def _straight(self, words: _Words, mode: int, g53: bool, inverse_f: float | None) -> None:
+        target = self._target(words, g53)
+        if mode == 0:
+            self._line_to(target, None, self._line)
+            return
+        length = math.dist(self.position, target)
+        feed = self._feed_for(length, inverse_f, self._motion_word(words))
+        self._line_to(target, feed, self._line)
+
+    def _motion_word(self, words: _Words) -> Word:
+        if "motion" in words.g:
+            return words.g["motion"][1]
+        for letter in AXES + EXTRA_AXES + "@^":
+            if words.has(letter):
+                return words.word(letter)
+        return words.block.words[0]
+
+    def _arc(self, words: _Words, mode: int, motion, inverse_f: float | None) -> None:
+        s = self.scale
+        units = self.units
+        iu, iv, iw = PLANES[self.plane]
+        lu, lv = AXES[iu], AXES[iv]
+        ou, ov, ow = "IJK"[iu], "IJK"[iv], "IJK"[iw]
+        mword = motion[1] if motion is not None else self._motion_word(words)
+        if words.has("@") or words.has("^"):
+            self._fail(words.word("@" if words.has("@") else "^"),
+                       "polar coordinates cannot be used with arcs")
+        target = self._target(words)
+        start = list(self.position)
+        if words.has(ow):
+            if words.value(ow) != 0:
+                self._fail(words.word(ow), f"{ow} is not an offset of the "
+                                           f"{PLANE_CODE[self.plane]} plane")
+        turns = 1
+        if words.has("P"):
+            p = words.value("P")
+            if p != int(p) or p < 1:
+                self._fail(words.word("P"), "the number of turns must be a whole number >= 1")
+            turns = int(p)
+        su, sv = start[iu], start[iv]
+        eu, ev = target[iu], target[iv]
+        if words.has("R"):
+            for letter in (ou, ov):
+                if words.has(letter):
+                    self._fail(words.word(letter), "an arc takes either R or I/J/K, not both")
+            r_word = words.word("R")
+            radius = words.value("R")
+            if su == eu and sv == ev:
+                self._fail(r_word, "an R arc needs an end point different from its start")
+            abs_r = abs(radius) * s
+            half = math.hypot(eu - su, ev - sv) / 2
+            if half - abs_r > RADIUS_TOLERANCE[units] * s:
+                self._fail(r_word, f"the radius is too small to reach the end point "
+                                   f"(half the chord is {half / s:.4f})")
+            if abs_r == 0:
+                self._fail(r_word, "zero-radius arc")
+            if half / abs_r > 1 - 1e-12:
+                half = abs_r
+            ccw = mode == 30
+            theta = math.atan2(ev - sv, eu - su)
+            theta += -math.pi / 2 if (not ccw) == (radius > 0) else math.pi / 2
+            offset = abs_r * math.cos(math.asin(half / abs_r))
+            cu = (su + eu) / 2 + offset * math.cos(theta)
+            cv = (sv + ev) / 2 + offset * math.sin(theta)
+        else:
+            if not (words.has(ou) or words.has(ov)):
+                self._fail(mword, f"an arc in the {PLANE_CODE[self.plane]} plane needs "
+                                  f"{ou} or {ov} (the centre) or R")
+            if self.arc_absolute:
+                for letter in (ou, ov):
+                    if not words.has(letter):
+                        self._fail(mword, f"G90.1 (absolute centre) needs both {ou} and {ov}")
+                cu = words.value(ou) * s + self.offset(iu)
+                cv = words.value(ov) * s + self.offset(iv)
+            else:
+                cu = su + words.get(ou, 0.0) * s
+                cv = sv + words.get(ov, 0.0) * s
+            r1 = math.hypot(su - cu, sv - cv) / s
+            r2 = math.hypot(eu - cu, ev - cv) / s
+            word = words.word(ou) if words.has(ou) else words.word(ov)
+            if r1 < RADIUS_TOLERANCE[units] or r2 < RADIUS_TOLERANCE[units]:
+                self._fail(word, f"zero-radius arc (radius {r1:.4f} at the start, "
+                                 f"{r2:.4f} at the end)")
+            error = abs(r1 - r2)
+            if error > CENTRE_ABSOLUTE_TOLERANCE[units] or (
+                    error > CENTRE_SMALL_TOLERANCE[units]
+                    and error / max(r1, r2) > CENTRE_RELATIVE_TOLERANCE):
+                self._fail(word, f"the radius to the end ({r2:.4f}) differs from the radius "
+                                 f"to the start ({r1:.4f}) by {error:.4g} {units}, more than "
+                                 f"{CENTRE_ABSOLUTE_TOLERANCE[units]:g}, or more than "
+                                 f"{CENTRE_SMALL_TOLERANCE[units]:g} and 0.1 %")
+        if math.hypot(eu - su, ev - sv) < SAME_POINT_MM:
+            target[iu], target[iv] = su, sv
+            eu, ev = su, sv
+        centre = list(start)
+        centre[iu], centre[iv] = cu, cv
+        ccw = mode == 30
+        a0 = math.atan2(sv - cv, su - cu)
+        a1 = math.atan2(ev - cv, eu - cu)
+        sweep = (a1 - a0) if ccw else (a0 - a1)
+        sweep %= 2 * math.pi
+        if sweep == 0:
+            sweep = 2 * math.pi
+        sweep += 2 * math.pi * (turns - 1)
+        radius_mm = math.hypot(su - cu, sv - cv)
+        length = math.hypot(radius_mm * sweep, target[iw] - start[iw])
+        feed = self._feed_for(length, inverse_f, mword)
+        self.program.moves.append(Arc(tuple(start), tuple(target), tuple(centre), self.plane,
+                                      ccw, turns, feed, self._line))
+        self.position = target
+
+    def _cycle(self, words: _Words, mode: int, motion) -> None:
+        line = self._line
+        code = CYCLE_CODES[mode]
+        mword = motion[1] if motion is not None else self._motion_word(words)
+        s = self.scale
+        ia, ib, ic = PLANES[self.plane]
+        la, lb, lc = AXES[ia], AXES[ib], AXES[ic]
+        same_mode = self.motion == mode
+        if self.inverse_time:
+            self._fail(mword, "canned cycles cannot be used in inverse time mode (G93)")
+        if self.feed is None:
+            self._fail(mword, "canned cycle without a feed rate (no F word yet)")
+        self._extra_axes(words)
+        sticky = self.cycle_sticky
+        if words.has("R"):
+            sticky["R"] = words.value("R")
+        elif not same_mode or "R" not in sticky:
+            self._fail(mword, "canned cycle without an R word (the retract plane)")
+        if words.has(lc):
+            sticky["depth"] = words.value(lc)
+        elif not same_mode or "depth" not in sticky:
+            self._fail(mword, f"canned cycle without a {lc} word (the bottom of the hole)")
+        q = p = 0.0
+        if code in (73, 83):
+            if words.has("Q"):
+                sticky["Q"] = words.value("Q")
+            elif not same_mode or "Q" not in sticky:
+                self._fail(mword, "needs a Q word (the peck depth)")
+            q = sticky["Q"]
+            if q <= 0:
+                self._fail(words.word("Q") if words.has("Q") else mword,
+                           "the peck depth Q must be positive")
+        if code in (82, 89):
+            if words.has("P"):
+                sticky["P"] = words.value("P")
+            elif not same_mode or "P" not in sticky:
+                self._fail(mword, "needs a P word (the dwell in seconds)")
+            p = sticky["P"]
+            if p < 0:
+                self._fail(words.word("P") if words.has("P") else mword,
+                           "the dwell time cannot be negative")
+        repeats = 1
+        if words.has("L"):
+            value = words.value("L")
+            if value != int(value) or value < 1:
+                self._fail(words.word("L"), "the number of repeats L must be a whole number "
+                                            ">= 1")
+            repeats = int(value)
+        pecks = 1
+        if code in (73, 83):
+            depth = (sticky["R"] - (sticky["depth"] if self.absolute else sticky["R"] +
+                                    sticky["depth"]))
+            pecks = max(1, math.ceil(depth / q)) if depth > 0 else 1
+        if repeats * (pecks * (3 if code == 83 else 2) + 3) > MAX_CYCLE_MOVES:
+            word = words.word("L") if words.has("L") and pecks < MAX_CYCLE_MOVES / 4 else (
+                words.word("Q") if words.has("Q") else mword)
+            self._fail(word, f"this canned cycle would make more than {MAX_CYCLE_MOVES} moves "
+                             f"({repeats} holes of {pecks} pecks)")
+        current = self.position[ic]
+        if self.cycle_initial is None:
+            self.cycle_initial = current
+        old = self.cycle_initial
+        polar = words.has("@") or words.has("^")
+        if polar and self.plane != "XY":
+            self._fail(words.word("@" if words.has("@") else "^"),
+                       "polar coordinates need the XY plane (G17)")
+        if polar:
+            for letter in "XY":
+                if words.has(letter):
+                    self._fail(words.word(letter), "X or Y cannot be used with polar "
+                                                   "coordinates (@ ^)")
+        holes: list[tuple[float, float]] = []
+        if self.absolute:
+            r = sticky["R"] * s + self.offset(ic)
+            bottom = sticky["depth"] * s + self.offset(ic)
+            a, b = self.position[ia], self.position[ib]
+            if polar:
+                work = [(self.position[k] - self.offset(k)) / s for k in range(2)]
+                radius, theta = self._polar(words, work)
+                a = radius * math.cos(theta) * s + self.offset(0)
+                b = radius * math.sin(theta) * s + self.offset(1)
+            if words.has(la):
+                a = words.value(la) * s + self.offset(ia)
+            if words.has(lb):
+                b = words.value(lb) * s + self.offset(ib)
+            holes = [(a, b)] * repeats
+        else:
+            r = sticky["R"] * s + old
+            bottom = r + sticky["depth"] * s
+            da = words.value(la) * s if words.has(la) else 0.0
+            db = words.value(lb) * s if words.has(lb) else 0.0
+            a, b = self.position[ia], self.position[ib]
+            d_radius = words.value("@") if words.has("@") else 0.0
+            d_theta = math.radians(words.value("^")) if words.has("^") else 0.0
+            for _ in range(repeats):
+                a, b = a + da, b + db
+                if polar:
+                    wa, wb = (a - self.offset(0)) / s, (b - self.offset(1)) / s
+                    if wa == 0 and wb == 0:
+                        self._fail(words.word("@" if words.has("@") else "^"),
+                                   "incremental polar motion is undefined at the origin")
+                    radius = math.hypot(wa, wb) + d_radius
+                    theta = math.atan2(wb, wa) + d_theta
+                    a = radius * math.cos(theta) * s + self.offset(0)
+                    b = radius * math.sin(theta) * s + self.offset(1)
+                holes.append((a, b))
+        if r < bottom:
+            self._fail(mword, f"the R plane is below the bottom of the hole ({lc})")
+        if old < r:
+            raised = list(self.position)
+            raised[ic] = r
+            self._line_to(raised, None, line)
+            old = r
+        clear = r if self.r_plane_retract else old
+        for kind, value in cycles.expand(code, axes=(ia, ib, ic), start=tuple(self.position),
+                                         holes=holes, r=r, bottom=bottom, clear=clear, q=q * s,
+                                         p=p):
+            if kind == "dwell":
+                self.program.moves.append(Dwell(value, line))
+            else:
+                self._line_to(list(value), None if kind == "rapid" else self.feed, line)
+
+    # ---- G4 excepted non-modal codes --------------------------------------------------
+    def _non_modal(self, words: _Words, nonmodal: tuple[int, Word]) -> bool:
+        """G10, G28, G28.1, G30, G30.1, G92, G92.1, G92.2, G92.3; True if it used the axis words."""
+        code, word = nonmodal
+        s = self.scale
+        line = self._line
+        if code == 100:
+            self._g10(words, word)
+            return True
+        if code in (280, 300):
+            self._extra_axes(words)
+            named = [a for a in range(3) if words.has(AXES[a])]
+            if words.has("@") or words.has("^"):
+                self._fail(words.word("@" if words.has("@") else "^"),
+                           "polar coordinates cannot be used with G28/G30")
+            home = self.homes[code]
+            self._read_vector(5161 if code == 280 else 5181, home)
+            if named:
+                self._line_to(self._target(words), None, line)
+                final = list(self.position)
+                for a in named:
+                    final[a] = home[a]
+            else:
+                final = list(home)
+            self._line_to(final, None, line)
+            return True
+        if code in (281, 301):
+            self.homes[code - 1] = list(self.position)
+            return False
+        if code == 920:
+            for letter in EXTRA_AXES:                 # offsets of absent axes: no effect
+                if words.has(letter):
+                    words.value(letter)
+            named = [a for a in range(3) if words.has(AXES[a])]
+            if not named and not any(words.has(c) for c in EXTRA_AXES):
+                self._fail(word, "G92 needs at least one axis word")
+            for a in named:
+                self.g92[a] = (self.position[a] - self.work_offsets[self.coordinate_system - 1][a]
+                               - self.tool_offset[a] - words.value(AXES[a]) * s)
+            self.g92_stored = list(self.g92)
+            self.g92_enabled = True
+            return True
+        if code == 921:
+            self.g92 = [0.0, 0.0, 0.0]
+            self.g92_stored = [0.0, 0.0, 0.0]
+            self.g92_enabled = False
+            return False
+        if code == 922:
+            self.g92 = [0.0, 0.0, 0.0]
+            self.g92_enabled = False
+            return False
+        if code == 923:
+            self._read_vector(5211, self.g92_stored)
+            self.g92 = list(self.g92_stored)
+            self.g92_enabled = True
+            return False
+        raise AssertionError(code)
+
+    def _g10(self, words: _Words, word: Word) -> None:
+        s = self.scale
+        if not words.has("L"):
+            self._fail(word, "G10 needs an L word (L1, L2, L10, L11 or L20)")
+        l_word = words.word("L")
+        level = words.value("L")
+        if not words.has("P"):
+            self._fail(word, "G10 needs a P word")
+        p_word = words.word("P")
+        p = words.value("P")
+        if p != int(p):
+            self._fail(p_word, "P must be a whole number")
+        p = int(p)
+        if level in (2, 20):
+            if not 0 <= p <= 9:
+                self._fail(p_word, "the coordinate system P must be 0 (the current one) to 9")
+            system = self.coordinate_system if p == 0 else p
+            if words.has("R") and words.value("R") != 0:
+                self._fail(words.word("R"), "rotated coordinate systems are not supported")
+            for letter in EXTRA_AXES:
+                if words.has(letter):
+                    words.value(letter)
+            offsets = self.work_offsets[system - 1]
+            for a in range(3):
+                if words.has(AXES[a]):
+                    v = words.value(AXES[a]) * s
+                    if level == 2:
+                        offsets[a] = v
+                    else:
+                        offsets[a] = self.position[a] - self.g92[a] - self.tool_offset[a] - v
+            return
+        if level in (1, 10, 11):
+            if p < 1:
+                self._fail(p_word, "the tool number P must be 1 or more")
+            entry = self.tools.setdefault(p, {"length_mm": 0.0, "diameter_mm": 0.0})
+            for letter in "XY" + EXTRA_AXES:
+                if words.has(letter):
+                    words.value(letter)
+            if words.has("R"):
+                entry["diameter_mm"] = 2 * words.value("R") * s
+            if words.has("Q"):
+                words.value("Q")
+            if words.has("Z"):
+                z = words.value("Z") * s
+                if level == 1:
+                    entry["length_mm"] = z
+                elif level == 10:
+                    entry["length_mm"] = (self.position[2] - self.g92[2]
+                                          - self.work_offsets[self.coordinate_system - 1][2] - z)
+                else:
+                    entry["length_mm"] = self.position[2] - self.work_offsets[8][2] - z
+            return
+        self._fail(l_word, "unsupported G10 form (L1, L2, L10, L11 and L20 are supported)")
+
+    def _tool_length(self, words: _Words) -> bool:
+        code, word = words.g["tool length"]
+        line = self._line
+        if code == 490:
+            self.tool_offset = [0.0, 0.0, 0.0]
+            return False
+        elif code == 430:
+            tool = self.tool_loaded
+            if words.has("H"):
+                h = words.value("H")
+                if h < 0 or h != int(h):
+                    self._fail(words.word("H"), "H must be a whole number >= 0")
+                tool = int(h)
+            if tool == 0:
+                length = 0.0
+            elif tool not in self.tools:
+                self._warn(line, f"G43: tool {tool} is not in the tool table; its length is "
+                                 "taken as 0")
+                length = 0.0
+            else:
+                length = float(self.tools[tool].get("length_mm", 0.0))
+            self.tool_offset = [0.0, 0.0, length]
+            return False
+        else:                                       # G43.1: dynamic offsets from axis words
+            self._extra_axes(words)
+            offset = [0.0, 0.0, 0.0]
+            for a in range(3):
+                if words.has(AXES[a]):
+                    offset[a] = words.value(AXES[a]) * self.scale
+            self.tool_offset = offset
+            return True
+
+
+def _warning_line(text: str) -> int:
+    head = text.split(":", 1)[0]
+    return int(head[5:]) if head.startswith("line ") and head[5:].isdigit() else 0
+
+
+def _clean(value: float) -> float:
+    """Round off the binary noise of unit conversions (1e-12 of a unit) for the parameters."""
+    rounded = round(value, 9)
+    return 0.0 if rounded == 0 else rounded
