@@ -170,6 +170,8 @@ def _flatten(where: str, data: dict) -> dict[str, dict]:
             out[name] = body
         elif name in SCHEMA:
             raise MachineError(f"{where}: {name} must be a section [{name}]")
+        elif not isinstance(body, dict):
+            raise MachineError(f"{where}: unknown key {name}")
         else:
             raise MachineError(f"{where}: unknown section [{name}]")
     return out
