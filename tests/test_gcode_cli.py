@@ -107,6 +107,12 @@ def test_simulation_summary_and_files(fakes, nc, tmp_path, capsys):
     assert steps.read_text().startswith("cycle,dx,dy,dz\n")
 
 
+def test_plot_without_steps_file(fakes, nc, tmp_path):
+    png = tmp_path / "p.png"
+    assert main(["gcode", str(nc), "--plot", str(png)]) == 0
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
 def test_end_mismatch_and_rtl_errors_exit_1(fakes, nc, capsys):
     fakes.setattr(gcode, "run_simulation", lambda *a, **k: fake_harness(*a, **k, shift=(1, 0, 0)))
     assert main(["gcode", str(nc)]) == 1

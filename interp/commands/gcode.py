@@ -106,7 +106,7 @@ def fmt(value: float) -> str:
 def summary(program, compiled: Compiled, machine: Machine) -> dict:
     """The --check --json object."""
     unit = "mm" if program.units == "mm" else "in"
-    return {"end": [round(v, 6) for v in program.end_work], "units": unit,
+    return {"end": [round(v, 6) for v in program.end_work], "units": program.units,
             "end_machine_mm": [round(v, 6) for v in program.end_machine],
             "end_steps": list(compiled.end_steps), "moves": compiled.moves, "arcs": compiled.arcs,
             "chord_arcs": compiled.chords, "corrected_arcs": compiled.corrected,
@@ -157,6 +157,15 @@ def ideal_xy(program, machine: Machine) -> list[tuple[float, float]]:
                 p[iu], p[iv] = m.centre[iu] + r * math.cos(a), m.centre[iv] + r * math.sin(a)
                 pts.append((p[0] * s, p[1] * s))
     return pts
+
+
+def plot_program(path, program, rows, machine: Machine, name: str) -> float | None:
+    """PNG of a run's XY steps over the programmed path, drawn in mm; the largest deviation (steps)."""
+    from ..plots.paths import plot_path
+
+    scale = machine.steps_per_mm[0]
+    return plot_path(path, rows, ideal_xy(program, machine), unit="mm", scale=scale,
+                     title=f"interp gcode {name}: motion_top, {scale:g} steps/mm")
 
 
 def read_step_rows(path) -> list[tuple[int, ...]]:
@@ -246,12 +255,7 @@ def simulate_program(args, program, compiled: Compiled, machine: Machine) -> int
         finally:
             progress.close()
         if args.plot:
-            from ..plots.paths import plot_path
-
-            plot_path(args.plot, read_step_rows(steps_path), ideal_xy(program, machine), unit="mm",
-                      scale=machine.steps_per_mm[0],
-                      title=f"interp gcode {Path(args.file).name}: motion_top, "
-                            f"{machine.steps_per_mm[0]:g} steps/mm")
+            plot_program(args.plot, program, read_step_rows(steps_path), machine, Path(args.file).name)
     if args.events:
         write_events(args.events, result["events"], compiled)
     cycles = result["cycles"]
