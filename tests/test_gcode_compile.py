@@ -358,3 +358,49 @@ def test_machine_time_and_counts():
     out = compile_program(prog, MACHINE)
     assert abs(out.machine_time_s - (6 + 2 * math.pi + 1.5)) < 1e-9
     assert (out.moves, out.arcs) == (2, 1)
+
+
+# ---------------- the commands through the step-level model of motion_top ----------------
+
+def test_commands_through_the_step_model():
+    """Random small programs (lines, arcs and helices in every plane, dwells, events): the
+    step-level model of motion_top's cores (interp.models.motion.queue_steps at W = 32) ends
+    exactly at the compiled end point, with no error."""
+    from interp.models import motion
+
+    if not hasattr(motion, "helix_steps"):
+        pytest.skip("interp.models.motion has no plane/helix step model yet")
+    seed = random.randrange(1 << 30)
+    print("seed", seed)
+    rng = random.Random(seed)
+    for _ in range(20):
+        here, moves = (0.0, 0.0, 0.0), []
+        for n in range(1, 8):
+            kind = rng.choice(["line", "arc", "dwell", "event"])
+            if kind == "line":
+                end = tuple(h + rng.uniform(-3, 3) for h in here)
+                moves.append(Line(here, end, rng.choice([None, 300.0]), n))
+                here = end
+            elif kind == "arc":
+                plane = rng.choice(list(PLANES))
+                iu, iv, iw = PLANES[plane]
+                r, a0, a1 = rng.uniform(0.05, 2), rng.uniform(0, 6.3), rng.uniform(0, 6.3)
+                c = list(here)
+                c[iu] -= r * math.cos(a0)
+                c[iv] -= r * math.sin(a0)
+                end = list(c)
+                off = rng.uniform(-1, 1) * linuxcnc_tolerance(r)
+                end[iu] += (r + off) * math.cos(a1)
+                end[iv] += (r + off) * math.sin(a1)
+                end[iw] = here[iw] + rng.choice([0, rng.uniform(-2, 2)])
+                moves.append(Arc(here, tuple(end), tuple(c), plane, rng.random() < 0.5, rng.choice([1, 2]), 500, n))
+                here = tuple(end)
+            elif kind == "dwell":
+                moves.append(Dwell(0.001, n))
+            else:
+                moves.append(Event("spindle_cw", 1000, n))
+        out = compile_program(Program(moves), MACHINE)
+        steps, errors = motion.queue_steps(out.commands, 32)
+        assert errors == [], seed
+        assert [sum(s[k] for s in steps) for k in range(3)] == list(out.end_steps) == steps_of(here), seed
+        assert all(max(abs(v) for v in s) <= 1 for s in steps), seed
