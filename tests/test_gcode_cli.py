@@ -219,3 +219,28 @@ def test_demo_program_end_to_end(tmp_path, capsys):
     assert names == ["spindle_cw", "spindle_off", "program_end"]
     rows = list(csv.reader((tmp_path / "s.csv").open()))[1:]
     assert [sum(int(r[k]) for r in rows) for k in (1, 2, 3)] == info["end_steps"]
+
+
+SMALL = """G21 G90 G17
+G01 X0.3 Y0.1 F3000
+M3 S6000
+G02 X0.5 Y0.3 I0 J0.2 F3000
+G18 G03 X0.3 Z0.2 I-0.2 K0
+M5
+G17 G00 X0 Y0 Z0
+"""
+
+
+@real
+@pytest.mark.skipif(not _have("cocotb"), reason="needs cocotb")
+def test_icarus_and_verilator_give_the_same_steps(tmp_path, capsys):
+    src = tmp_path / "small.nc"
+    src.write_text(SMALL)
+    files = {}
+    for sim in ("verilator", "icarus"):
+        steps, events = tmp_path / f"{sim}_steps.csv", tmp_path / f"{sim}_events.csv"
+        assert main(["gcode", str(src), "--clock-hz", "20000", "--sim", sim, "--steps", str(steps),
+                     "--events", str(events)]) == 0
+        files[sim] = (steps.read_text(), events.read_text())
+    assert files["verilator"] == files["icarus"]
+    assert files["verilator"][1].count("spindle") == 2

@@ -59,6 +59,13 @@ def interpret_program(text: str, machine: Machine):
     return interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools)
 
 
+def compile_text(text: str, machine: Machine | None = None, pause_seconds: float = 0.0):
+    """(Program, Compiled) of a program's text, as `interp gcode` makes them (default machine)."""
+    machine = machine or load_machine()
+    program = interpret_program(text, machine)
+    return program, compile_program(program, machine, pause_seconds)
+
+
 def run_simulation(commands_path: str, sim: str, *, steps_path, timing: dict, max_cycles: int,
                    progress, vcd) -> dict:
     """motion_top on the command file (interface 3); the harness's result dict."""
@@ -220,9 +227,7 @@ def cmd_gcode(args) -> int:
     if not args.check:
         for option in ("steps", "events", "vcd", "plot"):
             check_output(getattr(args, option), f"--{option}")
-    text = read_program(args.file)
-    program = interpret_program(text, machine)
-    compiled = compile_program(program, machine, args.pause_seconds)
+    program, compiled = compile_text(read_program(args.file), machine, args.pause_seconds)
     for message in program.messages:
         print(f"interp: message: {message}", file=sys.stderr)
     for warning in program.warnings + compiled.warnings:
