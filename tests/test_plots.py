@@ -139,14 +139,18 @@ def test_every_core_plots_in_user_coordinates(name, tmp_path, figures):
 
 
 def test_gcode_plot_is_in_program_units(tmp_path, figures):
-    prog = gcode.parse("G21 G90\nG01 X10 Y5 F50\n", scale=10)        # 10 steps per mm
+    from interp.gcode.machine import load_machine
+    from interp.gcode.moves import Line, Program
+
+    prog = Program([Line((0, 0, 0), (10, 5, 0), 50, 2)])                # G01 X10 Y5 at 10 steps per mm
+    machine = load_machine(sets=["axis.x.steps_per_mm=10", "axis.y.steps_per_mm=10"])
     rows, y = [], 0
     for k in range(1, 101):                                             # a DDA of (100, 50) steps
         ny = round(k * 50 / 100)
         rows.append((k, 1, ny - y))
         y = ny
     png = tmp_path / "g.png"
-    worst = gcode.plot_program(png, prog, rows, 10, "line.nc")
+    worst = gcode.plot_program(png, prog, rows, machine, "line.nc")
     assert png.read_bytes()[:8] == PNG
     fig = figures[-1]
     assert check(fig, unit="mm") == pytest.approx(worst, abs=5e-4) and worst <= 0.5

@@ -74,7 +74,8 @@ def write_overview(path, work, sim: str = "icarus") -> None:
     """A line, an arc, a curve and the G-code demo through the RTL, in one small PNG."""
     from ..cli import build_parser
     from ..plots.paths import plot_overview
-    from .gcode import DEMO, UNIT, ideal_path, parse
+    from ..gcode.machine import load_machine
+    from .gcode import DEMO, DEMO_OPTIONS, ideal_xy, interpret_program
 
     work = ensure_dir(work)
     parser = build_parser()
@@ -90,10 +91,14 @@ def write_overview(path, work, sim: str = "icarus") -> None:
                        "title": f"{label}, {core.toplevel}: {' '.join(options)}", **core.plot_options(job)})
     src = work / "gcode_demo.nc"
     src.write_text(DEMO)
-    job = parser.parse_args(["gcode", str(src), "--sim", sim, "--steps", str(work / "gcode_steps.csv")])
-    job.func(job)
-    panels.append({"steps": read_steps(job.steps), "ideal": ideal_path(parse(DEMO)), "unit": UNIT,
-                   "title": "G-code, motion_top: the demo program (1 step/mm)"})
+    job = parser.parse_args(["gcode", str(src), *DEMO_OPTIONS, "--sim", sim, "--steps", str(work / "gcode_steps.csv")])
+    if job.func(job):
+        raise RuntimeError("the G-code demo failed")
+    machine = load_machine()
+    scale = machine.steps_per_mm[0]
+    panels.append({"steps": read_steps(job.steps), "ideal": ideal_xy(interpret_program(DEMO, machine), machine),
+                   "unit": "mm", "scale": scale,
+                   "title": f"G-code, motion_top: the demo program ({scale:g} steps/mm)"})
     ensure_dir(Path(path).parent)
     plot_overview(path, panels)
 

@@ -1,216 +1,334 @@
 # SPDX-License-Identifier: Apache-2.0
-"""`interp gcode FILE`: a G-code program through rtl/motion_top.v.
+"""`interp gcode FILE`: a G-code program through rtl/motion_top.v (docs/gcode-cli.md).
 
-  interp gcode FILE [--sim icarus|verilator] [--scale STEPS_PER_UNIT] --steps FILE
-                    [--vcd FILE] [--plot FILE.png] [--rapid FEED] [--pulse-width N]
-                    [--setup N] [--hold N]
+  interp gcode FILE [--machine FILE.toml] [--set KEY=VALUE]... [--clock-hz HZ]
+                    [--check [--json]] [--sim verilator|icarus] [--steps FILE]
+                    [--events FILE] [--pause-seconds S] [--max-seconds S]
+                    [--vcd FILE] [--plot FILE.png]
 
-Understood: G00/G01 (lines), G02/G03 with I/J (centre relative to the start),
-G04 P (dwell), G90/G91, G17 and G21 (accepted, no effect), F, X/Y/Z, N
-(ignored), comments in ( ) or after ;.  With --clock-hz HZ, F is the path
-speed in units per minute and G04 P is in seconds, as on a machine; without
-it (simulation-sized numbers), F is in units per 1000 clock cycles and P in
-clock cycles.  Anything else is an error naming its line.
+The program is read with LinuxCNC RS274NGC semantics (interp.gcode.interpreter),
+compiled for the machine (interp.gcode.compile) and, unless --check, simulated:
+Verilator through the native harness, Icarus through cocotb.
 """
 from __future__ import annotations
 
+import csv
 import json
 import math
-import re
+import os
+import sys
 import tempfile
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..cores import UsageError
-from ..models.motion import ARC_CCW, ARC_CW, DWELL, ERROR_TEXT, LINE, Command
-from ..simulation.output import ensure_dir, write_steps
-from ..simulation.runner import SIMULATORS
+from ..gcode.compile import EVENT_NAMES, Compiled, compile_program, write_commands
+from ..gcode.machine import AXES, Machine, load_machine
+from ..simulation.output import ensure_dir
 
-# motion_top as the benches build it (tb/motion_top): the CLI reuses that build.
-PARAMETERS = {"W": 16, "QDEPTH": 4, "QLW": 3, "SDEPTH": 2, "TW": 4}
-WIDTH, FRAC, FEED_MAX, TIMING_MAX = 16, 16, (1 << 16) - 1, 15
-LINE_MAX = (1 << (WIDTH - 1)) - 1           # longest line command; longer moves are split
-ARC_LIMIT = 1 << (WIDTH - 3)                # circ_arc: |point - centre| < 2^(W-3) per axis
+SIMS = ("verilator", "icarus")
 
+# `interp demo`'s program: real units (mm, F in mm/min), the default machine file.  It runs
+# with a 50 kHz clock (DEMO_OPTIONS): the same steps as at 50 MHz, in a thousandth of the cycles.
 DEMO = """\
-( interp gcode demo: a rounded slot, a 3-axis move and a dwell )
+( interp gcode demo: a line, arcs in G17 and G18, a helix, spindle on and off )
 G21 G90 G17
-G00 X0 Y0 Z0
-G01 X40 Y0 F250          ; a line along X
-G03 X50 Y10 I0 J10       ; quarter circle, counter-clockwise
-G01 Y30 F150             ; slower
-G03 X40 Y40 I-10 J0
-G01 X10 Y40 F250
-G03 X0 Y30 I0 J-10
-G02 X0 Y10 I0 J-10       ; half circle, clockwise
-G01 Y0
-G04 P40                  ; dwell 40 clock cycles
-G91 G01 X5 Y-10 Z6 F200  ; relative, 3 axes
-G90 G00 X0 Y0 Z0         ; rapid home
+G00 X0 Y0 Z1
+M3 S12000                    ; spindle on, clockwise
+G01 Z0 F1500
+G01 X10 F3000                ; a line along X
+G03 X15 Y5 I0 J5             ; quarter circle, counter-clockwise
+G03 X10 Y10 Z-1 I-5 J0       ; a quarter turn of a helix, 1 mm down
+G01 X0
+G18 G02 X-4 Z-1 I-2 K0       ; half circle in the ZX plane
+G17 G01 Y0
+G00 Z1
+M5                           ; spindle off
+G04 P0.01                    ; dwell 10 ms
+G00 X0 Y0
+M2
 """
-
-WORD = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
-
-
-class GcodeError(UsageError):
-    def __init__(self, line: int, text: str):
-        super().__init__(f"line {line}: {text}")
+DEMO_OPTIONS = ["--clock-hz", "50000"]
 
 
-@dataclass
-class Program:
-    commands: list[Command] = field(default_factory=list)
-    path: list[list[tuple[float, float]]] = field(default_factory=list)   # programmed XY polylines (steps)
-    end: tuple[int, int, int] = (0, 0, 0)                                  # programmed end point, steps
-    z_moves: bool = False
+# ---------------- the layers below, behind small functions (tests replace them) ----------------
+
+def interpret_program(text: str, machine: Machine):
+    """The program's moves in machine mm (interface 1)."""
+    from ..gcode.interpreter import interpret
+
+    return interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools)
 
 
-def clocks_per_f_unit(clock_hz: float | None) -> float:
-    """Clock cycles in F's time unit: a minute at clock_hz, else 1000 cycles."""
-    return 60 * clock_hz if clock_hz else 1000
+def compile_text(text: str, machine: Machine | None = None, pause_seconds: float = 0.0):
+    """(Program, Compiled) of a program's text, as `interp gcode` makes them (default machine)."""
+    machine = machine or load_machine()
+    program = interpret_program(text, machine)
+    return program, compile_program(program, machine, pause_seconds)
 
 
-def feed_word(f: float, scale: float, clock_hz: float | None = None) -> int:
-    """F (units per minute, or per 1000 clocks) -> motion_top's feed (steps per clock x 2^FRAC)."""
-    return round(f * scale / clocks_per_f_unit(clock_hz) * (1 << FRAC))
+def run_simulation(commands_path: str, sim: str, *, steps_path, timing: dict, max_cycles: int,
+                   progress, vcd) -> dict:
+    """motion_top on the command file (interface 3); the harness's result dict."""
+    try:
+        from ..simulation import native
+    except ImportError as err:
+        raise RuntimeError(f"the simulation harness is not available: {err}") from None
+    arguments = {"steps_path": steps_path, "timing": (timing["pulse_width"], timing["setup"], timing["hold"]),
+                 "max_cycles": max_cycles, "progress": progress, "vcd": vcd}
+    if sim == "verilator":
+        return native.run_native(commands_path, **arguments)
+    return native.run_cocotb_job(commands_path, sim=sim, **arguments)
 
 
-def words(line: str, number: int) -> list[tuple[str, float]]:
-    text = re.sub(r"\(.*?\)", " ", line.split(";", 1)[0]).upper().strip()
-    found = WORD.findall(text)
-    rest = WORD.sub("", text).strip()
-    if rest:
-        raise GcodeError(number, f"cannot read {rest!r}")
-    return [(letter, float(value)) for letter, value in found]
+# ---------------- helpers ----------------
+
+def check_output(path: str | None, option: str) -> None:
+    """An output file's folder must exist and be writable, before anything runs."""
+    if not path:
+        return
+    target = Path(path)
+    folder = target.parent if str(target.parent) else Path(".")
+    if target.is_dir():
+        raise UsageError(f"{option} {path}: is a folder")
+    if not folder.is_dir():
+        raise UsageError(f"{option} {path}: folder {folder} does not exist")
+    if not os.access(folder, os.W_OK) or (target.exists() and not os.access(target, os.W_OK)):
+        raise UsageError(f"{option} {path}: not writable")
 
 
-def parse(text: str, scale: float = 1.0, rapid: int = FEED_MAX, clock_hz: float | None = None) -> Program:
-    """G-code -> motion_top commands (relative, in steps) and the programmed path."""
-    prog = Program()
-    units = [0.0, 0.0, 0.0]             # programmed position in units
-    here = (0, 0, 0)                    # the same in steps (rounded once, no drift)
-    mode, relative, feed = 0, False, None
-    for number, line in enumerate(text.splitlines(), 1):
-        if line.strip() in ("", "%"):
-            continue
-        ws = words(line, number)
-        values: dict[str, float] = {}
-        dwell = False
-        for letter, value in ws:
-            if letter == "G":
-                g = int(value) if value == int(value) else None
-                if g in (0, 1, 2, 3):
-                    mode = g
-                elif g in (90, 91):
-                    relative = g == 91
-                elif g == 4:
-                    dwell = True
-                elif g not in (17, 21):
-                    raise GcodeError(number, f"unsupported G-code G{value:g}")
-            elif letter in "XYZIJFPN":
-                if letter in values:
-                    raise GcodeError(number, f"{letter} given twice")
-                values[letter] = value
-            else:
-                raise GcodeError(number, f"unsupported word {letter}{value:g}")
-        if "F" in values:
-            if values["F"] <= 0 or feed_word(values["F"], scale, clock_hz) == 0:
-                raise GcodeError(number, f"feed F{values['F']:g} is 0 at this scale (feed 0)")
-            if feed_word(values["F"], scale, clock_hz) > FEED_MAX:
-                top = FEED_MAX * clocks_per_f_unit(clock_hz) / scale / (1 << FRAC)
-                raise GcodeError(number, f"feed F{values['F']:g} is above the maximum F{top:.6g} (1 step per clock)")
-            feed = feed_word(values["F"], scale, clock_hz)
-        if dwell:
-            p = values.get("P", 0)
-            cycles = round(p * clock_hz) if clock_hz else p
-            if cycles < 0 or cycles != int(cycles) or cycles > LINE_MAX:
-                raise GcodeError(number, f"dwell P{p:g}: want 0 .. {LINE_MAX} whole clock cycles")
-            prog.commands.append(Command(DWELL, 0, int(cycles), source=number))
-            continue
-        if "P" in values:
-            raise GcodeError(number, "P without G04")
-        moves = any(a in values for a in "XYZ")
-        if mode in (2, 3) and not moves and any(a in values for a in "IJ"):
-            moves = True                                    # full circle
-        if not moves:
-            if any(a in values for a in "IJ"):
-                raise GcodeError(number, "I/J without an arc")
-            continue
-        for k, a in enumerate("XYZ"):
-            if a in values:
-                units[k] = units[k] + values[a] if relative else values[a]
-        target = tuple(round(u * scale) for u in units)
-        delta = tuple(t - h for t, h in zip(target, here))
-        if mode in (0, 1):
-            if any(a in values for a in "IJ"):
-                raise GcodeError(number, "I/J on a line move")
-            if mode == 1 and feed is None:
-                raise GcodeError(number, "G01 without a feed rate (F)")
-            f = rapid if mode == 0 else feed
-            pieces = max(1, math.ceil(max(abs(d) for d in delta) / LINE_MAX))
-            done = (0, 0, 0)
-            for p in range(1, pieces + 1):
-                part = tuple(round(d * p / pieces) for d in delta)
-                step = tuple(a - b for a, b in zip(part, done))
-                prog.commands.append(Command(LINE, f, *step, source=number))
-                done = part
-            prog.path.append([here[:2], target[:2]])
-        else:
-            if feed is None:
-                raise GcodeError(number, f"G0{mode} without a feed rate (F)")
-            if delta[2]:
-                raise GcodeError(number, "helical arcs (Z on G02/G03) are not supported")
-            ci, cj = round(values.get("I", 0) * scale), round(values.get("J", 0) * scale)
-            r0 = math.hypot(ci, cj)
-            r1 = math.hypot(delta[0] - ci, delta[1] - cj)
-            if r0 == 0:
-                raise GcodeError(number, "arc centre is the start point (radius 0)")
-            if abs(r1 - r0) > 0.5:
-                raise GcodeError(number, f"arc with inconsistent centre: start radius {r0:.3f}, "
-                                 f"end radius {r1:.3f} steps (more than half a step apart)")
-            if max(abs(ci), abs(cj), abs(delta[0] - ci), abs(delta[1] - cj)) >= ARC_LIMIT:
-                raise GcodeError(number, f"arc too large for the arc core (radius limit {ARC_LIMIT} steps)")
-            ccw = mode == 3
-            prog.commands.append(Command(ARC_CCW if ccw else ARC_CW, feed, delta[0], delta[1], 0,
-                                         ci, cj, source=number))
-            prog.path.append(arc_points(here, delta, (ci, cj), ccw))
-        prog.z_moves |= delta[2] != 0
-        here = target
-    prog.end = here
-    return prog
+def read_program(path: str) -> str:
+    try:
+        data = Path(path).read_bytes()
+    except IsADirectoryError:
+        raise UsageError(f"cannot read {path}: is a folder") from None
+    except OSError as err:
+        raise UsageError(f"cannot read {path}: {err.strerror or err}") from None
+    return data.decode("utf-8", errors="surrogateescape")
 
 
-def arc_points(start, delta, centre, ccw: bool, n: int = 96):
-    cx, cy = start[0] + centre[0], start[1] + centre[1]
-    a0 = math.atan2(start[1] - cy, start[0] - cx)
-    a1 = math.atan2(start[1] + delta[1] - cy, start[0] + delta[0] - cx)
-    sweep = (a1 - a0) % (2 * math.pi) if ccw else -((a0 - a1) % (2 * math.pi))
-    if sweep == 0:
-        sweep = 2 * math.pi if ccw else -2 * math.pi
-    r = math.hypot(start[0] - cx, start[1] - cy)
-    n = max(n, math.ceil(abs(sweep) / math.sqrt(0.008 / max(r, 1))))     # chords within 0.001 step
-    return [(cx + r * math.cos(a0 + sweep * k / n), cy + r * math.sin(a0 + sweep * k / n)) for k in range(n + 1)]
+def fmt(value: float) -> str:
+    return f"{value:.6g}" if value != int(value) else str(int(value))
 
 
-UNIT = "mm"         # G21 (the only units accepted); plots are drawn in program units
+def summary(program, compiled: Compiled, machine: Machine) -> dict:
+    """The --check --json object."""
+    unit = "mm" if program.units == "mm" else "in"
+    return {"end": [round(v, 6) for v in program.end_work], "units": program.units,
+            "end_machine_mm": [round(v, 6) for v in program.end_machine],
+            "end_steps": list(compiled.end_steps), "moves": compiled.moves, "arcs": compiled.arcs,
+            "chord_arcs": compiled.chords, "corrected_arcs": compiled.corrected,
+            "events": len(compiled.events), "commands": len(compiled.commands),
+            "machine_time_s": round(compiled.machine_time_s, 6), "clock_hz": machine.clock_hz,
+            "warnings": program.warnings + compiled.warnings, "messages": list(program.messages)}
 
 
-def ideal_path(prog: Program) -> list[tuple[float, float]]:
-    """The programmed XY path as one polyline, in steps."""
-    return [pt for piece in prog.path for pt in piece]
+def where(program, compiled: Compiled) -> str:
+    unit = "mm" if program.units == "mm" else "in"
+    work = " ".join(f"{a.upper()}{fmt(round(v, 4))}" for a, v in zip(AXES, program.end_work))
+    return f"{work} {unit} (work) = {tuple(compiled.end_steps)} steps"
 
 
-def plot_program(path, prog: Program, rows, scale: float, name: str) -> float | None:
-    """PNG of a program's steps over its programmed XY path, in program units."""
+def write_events(path, events, compiled: Compiled) -> None:
+    with open(path, "w", newline="") as f:
+        out = csv.writer(f)
+        out.writerow(["cycle", "event", "value"])
+        for n, (cycle, code, value) in enumerate(events):
+            name = EVENT_NAMES.get(code, f"code{code}")
+            if n < len(compiled.events) and compiled.events[n][0] == name:
+                value = compiled.events[n][1]
+            out.writerow([cycle, name, fmt(value)])
+
+
+def ideal_xy(program, machine: Machine) -> list[tuple[float, float]]:
+    """The programmed XY path in steps (X's steps per mm on both axes, for the plot)."""
+    from ..gcode.moves import PLANES, Arc, Line
+
+    s = machine.steps_per_mm[0]
+    pts = []
+    for m in program.moves:
+        if isinstance(m, Line):
+            pts += [(m.start[0] * s, m.start[1] * s), (m.end[0] * s, m.end[1] * s)]
+        elif isinstance(m, Arc):
+            iu, iv, _ = PLANES[m.plane]
+            r = math.hypot(m.start[iu] - m.centre[iu], m.start[iv] - m.centre[iv])
+            a0 = math.atan2(m.start[iv] - m.centre[iv], m.start[iu] - m.centre[iu])
+            a1 = math.atan2(m.end[iv] - m.centre[iv], m.end[iu] - m.centre[iu])
+            part = (a1 - a0) % (2 * math.pi) if m.ccw else -((a0 - a1) % (2 * math.pi))
+            if part == 0:
+                part = 2 * math.pi if m.ccw else -2 * math.pi
+            sweep = part + math.copysign(2 * math.pi * (max(m.turns, 1) - 1), part)
+            n = max(8, min(2000, math.ceil(abs(sweep) * 32)))
+            for k in range(n + 1):
+                a, t = a0 + sweep * k / n, k / n
+                p = [m.start[j] + (m.end[j] - m.start[j]) * t for j in range(3)]
+                p[iu], p[iv] = m.centre[iu] + r * math.cos(a), m.centre[iv] + r * math.sin(a)
+                pts.append((p[0] * s, p[1] * s))
+    return pts
+
+
+def plot_program(path, program, rows, machine: Machine, name: str) -> float | None:
+    """PNG of a run's XY steps over the programmed path, drawn in mm; the largest deviation (steps)."""
     from ..plots.paths import plot_path
 
-    return plot_path(path, rows, ideal_path(prog), unit=UNIT, scale=scale,
-                     title=f"interp gcode {name}: motion_top, {scale:g} step{'s' * (scale != 1)}/{UNIT}")
+    scale = machine.steps_per_mm[0]
+    return plot_path(path, rows, ideal_xy(program, machine), unit="mm", scale=scale,
+                     title=f"interp gcode {name}: motion_top, {scale:g} steps/mm")
 
 
-def simulate(commands: list[Command], sim: str, timing: dict, vcd: str | None = None,
-             max_cycles: int = 5_000_000) -> dict:
-    """Run the commands through motion_top; the driver's result (pulses, errors, position)."""
+def read_step_rows(path) -> list[tuple[int, ...]]:
+    with open(path, newline="") as f:
+        rows = csv.reader(f)
+        next(rows, None)
+        return [tuple(int(v) for v in row) for row in rows]
+
+
+class Progress:
+    """The tqdm bar (stderr, only on a terminal) and the dispatch history for error lines."""
+
+    def __init__(self, compiled: Compiled, clock_hz: float, show: bool):
+        self.compiled, self.history = compiled, []
+        self.bar = None
+        if show:
+            from tqdm import tqdm
+
+            total = max(1, int(compiled.machine_time_s * clock_hz))
+            self.bar = tqdm(total=total, unit="cyc", unit_scale=True, file=sys.stderr, mininterval=0.5,
+                            dynamic_ncols=True, leave=False, desc="motion_top")
+
+    def line_of(self, dispatched: int) -> int:
+        cmds = self.compiled.commands
+        return cmds[min(max(dispatched, 1), len(cmds)) - 1].source if cmds else 0
+
+    def __call__(self, cycle: int, steps: int, dispatched: int) -> None:
+        self.history.append((cycle, dispatched))
+        if self.bar is not None:
+            self.bar.set_postfix_str(f"steps {steps}, line {self.line_of(dispatched)}", refresh=False)
+            self.bar.update(min(cycle, self.bar.total) - self.bar.n)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+    def line_at(self, cycle: int) -> str:
+        before = [d for c, d in self.history if c <= cycle]
+        return f"line {self.line_of(before[-1])}" if before else "an unknown line"
+
+
+# ---------------- the command ----------------
+
+def cmd_gcode(args) -> int:
+    if args.json and not args.check:
+        raise UsageError("--json goes with --check")
+    if not args.pause_seconds >= 0 or not math.isfinite(args.pause_seconds):
+        raise UsageError("--pause-seconds must be 0 or more")
+    if args.max_seconds is not None and not args.max_seconds > 0:
+        raise UsageError("--max-seconds must be positive")
+    machine = load_machine(args.machine, args.set, args.clock_hz)
+    if not args.check:
+        for option in ("steps", "events", "vcd", "plot"):
+            check_output(getattr(args, option), f"--{option}")
+    program, compiled = compile_text(read_program(args.file), machine, args.pause_seconds)
+    for message in program.messages:
+        print(f"interp: message: {message}", file=sys.stderr)
+    for warning in program.warnings + compiled.warnings:
+        print(f"interp: warning: {warning}", file=sys.stderr)
+    if args.check:
+        info = summary(program, compiled, machine)
+        if args.json:
+            print(json.dumps(info))
+        else:
+            print(f"{Path(args.file).name}: {info['moves']} moves ({info['arcs']} arcs), {info['events']} events, "
+                  f"{info['commands']} commands, machine time {compiled.machine_time_s:.3f} s, "
+                  f"end {where(program, compiled)}, {len(info['warnings'])} warnings")
+        return 0
+    return simulate_program(args, program, compiled, machine)
+
+
+def simulate_program(args, program, compiled: Compiled, machine: Machine) -> int:
+    clock = machine.clock_hz
+    max_seconds = args.max_seconds if args.max_seconds is not None else 2 * compiled.machine_time_s + 10
+    max_cycles = math.ceil(max_seconds * clock)
+    progress = Progress(compiled, clock, sys.stderr.isatty())
+    with tempfile.TemporaryDirectory(prefix="interp_gcode_") as tmp:
+        commands_path = Path(tmp) / "commands.txt"
+        write_commands(commands_path, compiled.commands)
+        steps_path = args.steps or (str(Path(tmp) / "steps.csv") if args.plot else None)
+        try:
+            result = run_simulation(str(commands_path), args.sim, steps_path=steps_path,
+                                    timing=machine.timing(), max_cycles=max_cycles, progress=progress,
+                                    vcd=args.vcd)
+        finally:
+            progress.close()
+        if args.plot:
+            plot_program(args.plot, program, read_step_rows(steps_path), machine, Path(args.file).name)
+    if args.events:
+        write_events(args.events, result["events"], compiled)
+    cycles = result["cycles"]
+    failures = []
+    for cycle, code in result["errors"]:
+        from ..models.motion import ERROR_TEXT
+
+        failures.append(f"motion_top error {code} ({ERROR_TEXT.get(code, 'unknown')}) at cycle {cycle}, "
+                        f"{progress.line_at(cycle)}")
+    position = tuple(result["position"])
+    if not failures and position != tuple(compiled.end_steps):
+        late = " (--max-seconds reached)" if cycles >= max_cycles else ""
+        failures.append(f"the RTL ended at {position} steps, the program at {tuple(compiled.end_steps)}{late}")
+    if not failures and len(result["events"]) != len(compiled.events):
+        failures.append(f"motion_top gave {len(result['events'])} events, the program has {len(compiled.events)}")
+    print(f"{result['steps']} step cycles, end {where(program, compiled)}, {cycles} clock cycles, "
+          f"{cycles / clock:.6g} s machine time at {clock:g} Hz, {len(result['events'])} events")
+    for failure in failures:
+        print(f"interp: error: {failure}", file=sys.stderr)
+    return 1 if failures else 0
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("gcode", help="run a G-code program through the motion subsystem RTL")
+    p.add_argument("file", help="G-code file (RS274NGC, as LinuxCNC reads it)")
+    p.add_argument("--machine", metavar="FILE.toml", help="machine file (default: the shipped default machine)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                   help="override one machine-file key, e.g. axis.x.steps_per_mm=80 (repeatable)")
+    p.add_argument("--clock-hz", type=float, metavar="HZ", help="shorthand for --set controller.clock_hz=HZ")
+    p.add_argument("--check", action="store_true", help="read and compile only; print a summary")
+    p.add_argument("--json", action="store_true", help="with --check: one JSON object")
+    p.add_argument("--sim", choices=SIMS, default="verilator",
+                   help="simulator: verilator (native harness, default) or icarus (cocotb)")
+    p.add_argument("--steps", metavar="FILE", help="CSV of steps: cycle,dx,dy,dz")
+    p.add_argument("--events", metavar="FILE", help="CSV of events: cycle,event,value")
+    p.add_argument("--pause-seconds", type=float, default=0.0, metavar="S",
+                   help="machine time of each pause (M0, M1, M6, M60), default 0")
+    p.add_argument("--max-seconds", type=float, metavar="S",
+                   help="machine-time limit (default 2 x the estimate + 10 s)")
+    p.add_argument("--vcd", metavar="FILE", help="waveform file")
+    p.add_argument("--plot", metavar="FILE.png", help="PNG of the stepped XY path over the programmed one")
+    p.set_defaults(func=cmd_gcode)
+
+
+def demo(out, sim: str) -> None:
+    """`interp demo`: the built-in program through the RTL."""
+    from ..cli import build_parser
+
+    out = ensure_dir(out)
+    src = out / "gcode_demo.nc"
+    src.write_text(DEMO)
+    sim = sim if sim in SIMS else "icarus"
+    args = build_parser().parse_args(["gcode", str(src), *DEMO_OPTIONS, "--sim", sim,
+                                      "--steps", str(out / "gcode_demo_steps.csv"),
+                                      "--events", str(out / "gcode_demo_events.csv"),
+                                      "--vcd", str(out / "gcode_demo.vcd"), "--plot", str(out / "gcode_demo.png")])
+    if args.func(args):
+        raise RuntimeError("the G-code demo failed")
+    print(f"gcode demo: {out / 'gcode_demo.png'} {out / 'gcode_demo_steps.csv'} {out / 'gcode_demo.vcd'}")
+
+
+# ---------------- the benches' 16-bit build (interp.benchmarks.motion, interp.simulation.harness) ----------------
+PARAMETERS = {"W": 16, "QDEPTH": 4, "QLW": 3, "SDEPTH": 2, "TW": 4}
+FRAC, FEED_MAX = 16, (1 << 16) - 1
+
+
+def simulate(commands, sim: str, timing: dict, vcd: str | None = None, max_cycles: int = 5_000_000) -> dict:
+    """Commands through the benches' motion_top build with cocotb; the driver's result."""
     from ..simulation.runner import run_cocotb
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -221,77 +339,3 @@ def simulate(commands: list[Command], sim: str, timing: dict, vcd: str | None = 
                    parameters=PARAMETERS, env={"INTERP_JOB": json.dumps(job)}, waves=vcd,
                    name="motion_top", test_dir=Path(tmp), quiet=True)
         return json.loads(out.read_text())
-
-
-def step_rows(result: dict, axes: str) -> list[tuple[int, ...]]:
-    rows = []
-    for cycle, step, dirs in result["pulses"]:
-        rows.append((cycle, *[(-1 if dirs >> k & 1 else 1) if step >> k & 1 else 0
-                              for k in range(len(axes))]))
-    return rows
-
-
-def run_program(text: str, args) -> int:
-    prog = parse(text, args.scale, args.rapid, args.clock_hz)
-    timing = {"pulse_width": args.pulse_width, "setup": args.setup, "hold_time": args.hold}
-    result = simulate(prog.commands, args.sim, timing, args.vcd)
-    axes = "xyz" if prog.z_moves else "xy"
-    rows = step_rows(result, axes)
-    write_steps(args.steps, rows, axes)
-    if args.plot:
-        plot_program(args.plot, prog, rows, args.scale, Path(args.file).name)
-    for cycle, code in result["errors"]:        # the front end's checks should leave none
-        print(f"interp: motion_top error at cycle {cycle}: code {code}, {ERROR_TEXT.get(code, '?')}")
-    if result["errors"]:
-        return 1
-    if tuple(result["position"]) != prog.end:
-        raise RuntimeError(f"end position {result['position']} != programmed {prog.end}")
-    print(f"{len(prog.commands)} commands, {len(rows)} step cycles, {result['cycles']} clock cycles, "
-          f"end position {tuple(result['position'])}")
-    return 0
-
-
-def cmd_gcode(args) -> int:
-    if args.scale <= 0:
-        raise UsageError("--scale must be positive")
-    if not 1 <= args.rapid <= FEED_MAX:
-        raise UsageError(f"--rapid must be 1 .. {FEED_MAX}")
-    for name in ("pulse_width", "setup", "hold"):
-        if not 0 <= getattr(args, name) <= TIMING_MAX:
-            raise UsageError(f"--{name.replace('_', '-')} must be 0 .. {TIMING_MAX} clock cycles")
-    try:
-        text = Path(args.file).read_text()
-    except OSError as err:
-        raise UsageError(f"cannot read {args.file}: {err.strerror}") from None
-    return run_program(text, args)
-
-
-def add_parser(sub) -> None:
-    p = sub.add_parser("gcode", help="run a G-code program through the motion subsystem RTL")
-    p.add_argument("file", help="G-code file")
-    p.add_argument("--sim", choices=SIMULATORS, default="icarus", help="simulator (default icarus)")
-    p.add_argument("--scale", type=float, default=1.0, help="steps per unit (default 1: coordinates in steps)")
-    p.add_argument("--clock-hz", type=float, help="clock frequency: F in units/minute, G04 P in seconds "
-                   "(default: F in units per 1000 clocks, P in clocks)")
-    p.add_argument("--steps", required=True, metavar="FILE", help="CSV of steps: cycle,dx,dy[,dz]")
-    p.add_argument("--vcd", metavar="FILE", help="waveform file")
-    p.add_argument("--plot", metavar="FILE", help="PNG of the stepped path over the programmed one")
-    p.add_argument("--rapid", type=int, default=FEED_MAX,
-                   help=f"feed word for G00 (steps per clock x 2^{FRAC}; default {FEED_MAX})")
-    p.add_argument("--pulse-width", type=int, default=1, help="step pulse width, clock cycles (default 1)")
-    p.add_argument("--setup", type=int, default=0, help="dir setup time, clock cycles (default 0)")
-    p.add_argument("--hold", type=int, default=0, help="dir hold time, clock cycles (default 0)")
-    p.set_defaults(func=cmd_gcode)
-
-
-def demo(out, sim: str) -> None:
-    """`interp demo`: the built-in program through the RTL."""
-    out = ensure_dir(out)
-    src = out / "gcode_demo.nc"
-    src.write_text(DEMO)
-    from ..cli import build_parser
-
-    args = build_parser().parse_args(["gcode", str(src), "--sim", sim, "--steps", str(out / "gcode_demo_steps.csv"),
-                                      "--vcd", str(out / "gcode_demo.vcd"), "--plot", str(out / "gcode_demo.png")])
-    args.func(args)
-    print(f"gcode demo: {out / 'gcode_demo.png'} {out / 'gcode_demo_steps.csv'} {out / 'gcode_demo.vcd'}")

@@ -1,0 +1,264 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The machine file: a TOML description of the controller, axes, output timing and tools.
+
+    machine = load_machine("my.toml", sets=["axis.x.steps_per_mm=80"], clock_hz=1e6)
+
+Every key, its unit, default and range is in SCHEMA (docs/machine.md is the
+user's page).  A missing file means the shipped default machine
+(default_machine.toml next to this module, equal to the defaults below).  An
+unknown section or key, a wrong type or a value out of range is a
+MachineError (a UsageError: one line, exit status 2) that names the file and
+the key, e.g. "machine.toml: unknown key axis.x.steps_per_inch".
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..cores import UsageError
+
+AXES = "xyz"
+TIMING_MAX = (1 << 16) - 1      # output-stage timing registers (TW = 16 bits), clock cycles
+POSITION_MAX = (1 << 31) - 1    # motion_top's position counters (POS_W = 32, signed)
+
+
+class MachineError(UsageError):
+    """A bad machine file or --set override."""
+
+
+# (type, default, low, high, unit, meaning); low/high None = unbounded; low inclusive unless
+# the type is "float>" / "int>" (strictly above).
+def _axis():
+    return {
+        "steps_per_mm": ("float>", 100.0, 0, 1e7, "steps/mm", "steps per millimetre"),
+        "max_rate_mm_min": ("float>", 6000.0, 0, 1e7, "mm/min", "fastest speed of the axis (rapids; feeds are capped to it)"),
+        "accel_mm_s2": ("float>", 500.0, 0, 1e9, "mm/s^2", "acceleration (recorded for the planner; this build's RTL has no ramps)"),
+        "min_mm": ("float", -1000.0, -1e7, 1e7, "mm", "soft limit: the lowest machine coordinate"),
+        "max_mm": ("float", 1000.0, -1e7, 1e7, "mm", "soft limit: the highest machine coordinate"),
+    }
+
+
+SCHEMA: dict[str, dict[str, tuple]] = {
+    "controller": {
+        "clock_hz": ("float>", 50e6, 0, 1e10, "Hz", "clock frequency of motion_top"),
+    },
+    **{f"axis.{a}": _axis() for a in AXES},
+    "motion": {
+        "junction_deviation_mm": ("float>", 0.01, 0, 1e3, "mm", "cornering tolerance (recorded for the planner)"),
+        "profile": ("choice", "trapezoid", ("trapezoid", "scurve"), None, "", "speed profile (recorded for the planner)"),
+        "jerk_mm_s3": ("float>", 20000.0, 0, 1e12, "mm/s^3", "jerk of the S-curve profile (recorded for the planner)"),
+    },
+    "output": {
+        "pulse_ns": ("float>", 1000.0, 0, 1e9, "ns", "step pulse width"),
+        "dir_setup_ns": ("float", 1000.0, 0, 1e9, "ns", "direction set-up before a step pulse"),
+        "dir_hold_ns": ("float", 1000.0, 0, 1e9, "ns", "direction hold after a step pulse"),
+    },
+    "spindle": {
+        "max_s": ("float>", 24000.0, 0, 1e9, "rpm", "the S value of 100 % PWM duty"),
+        "pwm_hz": ("float>", 1000.0, 0, 1e9, "Hz", "PWM frequency (recorded for the spindle output)"),
+    },
+    "home": {
+        "g28": ("point", (0.0, 0.0, 0.0), -1e7, 1e7, "mm", "the G28 position, machine coordinates"),
+        "g30": ("point", (0.0, 0.0, 0.0), -1e7, 1e7, "mm", "the G30 position, machine coordinates"),
+    },
+}
+TOOL_SCHEMA = {
+    "length_mm": ("float", 0.0, -1e5, 1e5, "mm", "tool length offset (G43)"),
+    "diameter_mm": ("float", 0.0, 0, 1e5, "mm", "tool diameter (cutter compensation)"),
+}
+TOOL_MAX = 99999
+
+
+@dataclass(frozen=True)
+class Axis:
+    steps_per_mm: float
+    max_rate_mm_min: float
+    accel_mm_s2: float
+    min_mm: float
+    max_mm: float
+
+
+@dataclass
+class Machine:
+    values: dict[str, dict]                      # every section's keys, defaults filled in
+    tools: dict[int, dict] = field(default_factory=dict)
+    source: str = "default machine"
+
+    @property
+    def clock_hz(self) -> float:
+        return self.values["controller"]["clock_hz"]
+
+    @property
+    def axes(self) -> tuple[Axis, Axis, Axis]:
+        return tuple(Axis(**self.values[f"axis.{a}"]) for a in AXES)
+
+    @property
+    def steps_per_mm(self) -> tuple[float, float, float]:
+        return tuple(self.values[f"axis.{a}"]["steps_per_mm"] for a in AXES)
+
+    @property
+    def g28(self):
+        return tuple(self.values["home"]["g28"])
+
+    @property
+    def g30(self):
+        return tuple(self.values["home"]["g30"])
+
+    @property
+    def max_s(self) -> float:
+        return self.values["spindle"]["max_s"]
+
+    def timing(self) -> dict[str, int]:
+        """Output-stage timing in clock cycles (rounded up): pulse_width, setup, hold."""
+        out = {}
+        for name, key in (("pulse_width", "pulse_ns"), ("setup", "dir_setup_ns"), ("hold", "dir_hold_ns")):
+            out[name] = _cycles(self.values["output"][key], self.clock_hz)
+        out["pulse_width"] = max(out["pulse_width"], 1)
+        return out
+
+
+def _cycles(ns: float, clock_hz: float) -> int:
+    return math.ceil(ns * clock_hz / 1e9 - 1e-9)
+
+
+def default_machine_text() -> str:
+    return (Path(__file__).parent / "default_machine.toml").read_text()
+
+
+def _check(where: str, key: str, spec: tuple, value):
+    kind, _, low, high = spec[:4]
+    name = f"{where}: {key}"
+    if kind == "choice":
+        if value not in low:
+            raise MachineError(f"{name} must be one of {', '.join(map(repr, low))} (got {value!r})")
+        return value
+    if kind == "point":
+        if not isinstance(value, list) or len(value) != 3:
+            raise MachineError(f"{name} must be a list of three numbers [x, y, z] in mm (got {value!r})")
+        return tuple(_check(where, f"{key}[{n}]", ("float", None, low, high), v) for n, v in enumerate(value))
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise MachineError(f"{name} must be a number (got {value!r})")
+    value = float(value)
+    if not math.isfinite(value):
+        raise MachineError(f"{name} must be a finite number (got {value!r})")
+    strict = kind.endswith(">")
+    if (value <= low if strict else value < low) or value > high:
+        rel = ">" if strict else ">="
+        raise MachineError(f"{name} must be {rel} {low:g} and <= {high:g} (got {value:g})")
+    return value
+
+
+def _tool_number(where: str, section: str) -> int:
+    number = section.split(".", 1)[1]
+    if not number.isdigit() or int(number) > TOOL_MAX:
+        raise MachineError(f"{where}: unknown section [{section}] (tools are [tool.N], N = 0 .. {TOOL_MAX})")
+    return int(number)
+
+
+def _flatten(where: str, data: dict) -> dict[str, dict]:
+    """{"axis": {"x": {...}}, "tool": {"3": {...}}} -> {"axis.x": {...}, "tool.3": {...}}."""
+    out: dict[str, dict] = {}
+    for name, body in data.items():
+        if name in ("axis", "tool") and isinstance(body, dict):
+            for sub, inner in body.items():
+                if not isinstance(inner, dict):
+                    raise MachineError(f"{where}: unknown key {name}.{sub}")
+                out[f"{name}.{sub}"] = inner
+        elif name in SCHEMA and isinstance(body, dict):
+            out[name] = body
+        elif name in SCHEMA:
+            raise MachineError(f"{where}: {name} must be a section [{name}]")
+        elif not isinstance(body, dict):
+            raise MachineError(f"{where}: unknown key {name}")
+        else:
+            raise MachineError(f"{where}: unknown section [{name}]")
+    return out
+
+
+def _schema_of(where: str, section: str) -> dict:
+    if section in SCHEMA:
+        return SCHEMA[section]
+    if section.startswith("tool."):
+        _tool_number(where, section)
+        return TOOL_SCHEMA
+    raise MachineError(f"{where}: unknown section [{section}]")
+
+
+def _apply(where: str, values: dict[str, dict], sections: dict[str, dict]) -> None:
+    for section, body in sections.items():
+        schema = _schema_of(where, section)
+        target = values.setdefault(section, {k: spec[1] for k, spec in schema.items()})
+        for key, value in body.items():
+            if key not in schema:
+                raise MachineError(f"{where}: unknown key {section}.{key}")
+            target[key] = _check(where, f"{section}.{key}", schema[key], value)
+
+
+def parse_set(text: str) -> tuple[str, str, object]:
+    """'axis.x.steps_per_mm=80' -> ("axis.x", "steps_per_mm", 80); the value is read as TOML
+    (numbers like 1e6 or 50_000_000, lists, quoted strings), else taken as a plain string."""
+    where = f"--set {text}"
+    if "=" not in text:
+        raise MachineError(f"{where}: want KEY=VALUE, e.g. axis.x.steps_per_mm=80")
+    key, raw = (s.strip() for s in text.split("=", 1))
+    if "." not in key:
+        raise MachineError(f"{where}: want SECTION.KEY=VALUE, e.g. controller.clock_hz=1e6")
+    section, name = key.rsplit(".", 1)
+    try:
+        value = tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = raw
+    return section, name, value
+
+
+def load_machine(path: str | None = None, sets: list[str] = (), clock_hz: float | None = None) -> Machine:
+    """The machine: the defaults, then the file (if any), then each --set, then --clock-hz."""
+    if path is None:
+        where, text = "default machine", default_machine_text()
+    else:
+        where = str(path)
+        try:
+            text = Path(path).read_bytes().decode("utf-8")
+        except OSError as err:
+            raise MachineError(f"cannot read machine file {path}: {err.strerror or err}") from None
+        except UnicodeDecodeError as err:
+            raise MachineError(f"{where}: not UTF-8 text (byte {err.start})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise MachineError(f"{where}: not valid TOML: {err}") from None
+    values = {section: {k: spec[1] for k, spec in schema.items()} for section, schema in SCHEMA.items()}
+    _apply(where, values, _flatten(where, data))
+    for item in sets:
+        section, name, value = parse_set(item)
+        _apply(f"--set {item}", values, {section: {name: value}})
+    if clock_hz is not None:
+        _apply("--clock-hz", values, {"controller": {"clock_hz": clock_hz}})
+    tools = {_tool_number(where, s): dict(v) for s, v in values.items() if s.startswith("tool.")}
+    machine = Machine({s: v for s, v in values.items() if not s.startswith("tool.")}, tools, where)
+    _consistent(machine)
+    return machine
+
+
+def _consistent(machine: Machine) -> None:
+    """Checks between keys: travel order, positions and rates the hardware can hold."""
+    where = machine.source
+    clock = machine.clock_hz
+    for a, axis in zip(AXES, machine.axes):
+        if axis.min_mm >= axis.max_mm:
+            raise MachineError(f"{where}: axis.{a}.min_mm ({axis.min_mm:g}) must be below axis.{a}.max_mm "
+                               f"({axis.max_mm:g})")
+        for key in ("min_mm", "max_mm"):
+            if abs(getattr(axis, key)) * axis.steps_per_mm > POSITION_MAX:
+                raise MachineError(f"{where}: axis.{a}.{key} x steps_per_mm is beyond the 32-bit position "
+                                   f"counter (+-{POSITION_MAX} steps)")
+        rate = axis.max_rate_mm_min * axis.steps_per_mm / 60
+        if rate > clock:
+            raise MachineError(f"{where}: axis.{a}.max_rate_mm_min ({axis.max_rate_mm_min:g} mm/min = {rate:.6g} "
+                               f"steps/s) is more than one step per clock at controller.clock_hz = {clock:g}")
+    for name, key in (("pulse_width", "pulse_ns"), ("setup", "dir_setup_ns"), ("hold", "dir_hold_ns")):
+        if _cycles(machine.values["output"][key], clock) > TIMING_MAX:
+            raise MachineError(f"{where}: output.{key} is more than {TIMING_MAX} clock cycles at "
+                               f"controller.clock_hz = {clock:g}")

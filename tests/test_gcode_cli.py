@@ -1,0 +1,246 @@
+# SPDX-License-Identifier: Apache-2.0
+"""`interp gcode`: options, --check --json, the summary, one-line errors with exit status 2.
+
+The language layer and the simulator are replaced by fakes here (a hand-built
+Program; a harness that adds up the commands), so these tests run without
+them; the end-to-end tests at the bottom run the real ones and are skipped
+where interp.gcode.interpreter or interp.simulation.native is missing.
+"""
+import csv
+import importlib.util
+import json
+import os
+
+import pytest
+
+from interp.cli import main
+from interp.commands import gcode
+from interp.gcode.compile import EVENT, EVENT_CODES
+from interp.gcode.moves import Arc, Dwell, Event, Line, Program
+from interp.models.motion import ARC_CCW, ARC_CW, LINE
+
+PROGRAM = Program(moves=[Line((0, 0, 0), (10, 0, 5), None, 2), Event("spindle_cw", 12000, 3),
+                         Line((10, 0, 5), (10, 0, -1), 300, 4),
+                         Arc((10, 0, -1), (0, 10, -1), (0, 0, -1), "XY", True, 1, 1200, 5),
+                         Dwell(0.5, 6), Event("spindle_off", 0, 7), Event("program_end", 2, 8)],
+                  warnings=["line 1: something the interpreter noticed"], end_work=(0.0, 10.0, -1.0),
+                  units="mm", end_machine=(0.0, 10.0, -1.0))
+
+
+def fake_harness(commands_path, sim, *, steps_path, timing, max_cycles, progress, vcd, shift=(0, 0, 0),
+                 errors=()):
+    """Adds up the command file's moves; one step row per command, one event per EVENT."""
+    pos, events, rows = [0, 0, 0], [], []
+    with open(commands_path) as f:
+        for n, line in enumerate(f, 1):
+            kind, plane, feed, x, y, z, i, j, k, l = map(int, line.split())
+            if kind == LINE:
+                pos = [p + d for p, d in zip(pos, (x, y, z))]
+            elif kind in (ARC_CW, ARC_CCW):
+                iu, iv, iw = [(0, 1, 2), (2, 0, 1), (1, 2, 0)][plane]
+                pos[iu] += x
+                pos[iv] += y
+                pos[iw] += z
+            elif kind == EVENT:
+                events.append([n * 10, x, y])
+            rows.append((n * 10, 1, 0, 0))
+            if progress:
+                progress(n * 10, n, n)
+    if steps_path:
+        with open(steps_path, "w", newline="") as f:
+            out = csv.writer(f)
+            out.writerow(["cycle", "dx", "dy", "dz"])
+            out.writerows(rows)
+    return {"cycles": 1000, "position": [p + s for p, s in zip(pos, shift)], "errors": [list(e) for e in errors],
+            "events": events, "steps": len(rows)}
+
+
+@pytest.fixture
+def fakes(monkeypatch):
+    monkeypatch.setattr(gcode, "interpret_program", lambda text, machine: PROGRAM)
+    monkeypatch.setattr(gcode, "run_simulation", fake_harness)
+    return monkeypatch
+
+
+@pytest.fixture
+def nc(tmp_path):
+    src = tmp_path / "p.nc"
+    src.write_text("G0 X10\n")
+    return src
+
+
+def one_line_error(capsys, code, argv, text):
+    assert main(argv) == code
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and text in err[0] and "Traceback" not in err[0], err
+
+
+def test_check_json_fields(fakes, nc, capsys):
+    assert main(["gcode", str(nc), "--check", "--json"]) == 0
+    captured = capsys.readouterr()
+    info = json.loads(captured.out)
+    assert info["end"] == [0, 10, -1] and info["end_steps"] == [0, 1000, -100]
+    assert (info["moves"], info["arcs"], info["events"]) == (3, 1, 3)
+    assert info["warnings"] == ["line 1: something the interpreter noticed"]
+    # 10 mm x, 5 z at the axes' rate; 6 mm at 300 mm/min; a quarter of r = 10 at 1200 mm/min; 0.5 s
+    rapid = (10 ** 2 + 5 ** 2) ** 0.5 / (6000 * (10 ** 2 + 5 ** 2) ** 0.5 / 10) * 60
+    want = rapid + 6 / 300 * 60 + 3.14159265 * 5 / 1200 * 60 + 0.5
+    assert abs(info["machine_time_s"] - want) < 1e-6
+    assert "interp: warning: line 1: something the interpreter noticed" in captured.err
+
+
+def test_check_summary_line(fakes, nc, capsys):
+    assert main(["gcode", str(nc), "--check", "--set", "axis.x.steps_per_mm=80"]) == 0
+    out = capsys.readouterr().out.strip().splitlines()
+    assert len(out) == 1 and "3 moves (1 arcs)" in out[0] and "(0, 1000, -100) steps" in out[0]
+
+
+def test_simulation_summary_and_files(fakes, nc, tmp_path, capsys):
+    steps, events = tmp_path / "s.csv", tmp_path / "e.csv"
+    assert main(["gcode", str(nc), "--steps", str(steps), "--events", str(events), "--clock-hz", "1e6"]) == 0
+    out = capsys.readouterr().out.strip().splitlines()
+    assert len(out) == 1 and out[0].startswith("7 step cycles, end X0 Y10 Z-1 mm (work) = (0, 1000, -100) steps, "
+                                               "1000 clock cycles, 0.001 s machine time at 1e+06 Hz, 3 events")
+    rows = list(csv.reader(events.open()))
+    assert rows[0] == ["cycle", "event", "value"]
+    assert [r[1:] for r in rows[1:]] == [["spindle_cw", "12000"], ["spindle_off", "0"], ["program_end", "2"]]
+    assert steps.read_text().startswith("cycle,dx,dy,dz\n")
+
+
+def test_plot_without_steps_file(fakes, nc, tmp_path):
+    png = tmp_path / "p.png"
+    assert main(["gcode", str(nc), "--plot", str(png)]) == 0
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_end_mismatch_and_rtl_errors_exit_1(fakes, nc, capsys):
+    fakes.setattr(gcode, "run_simulation", lambda *a, **k: fake_harness(*a, **k, shift=(1, 0, 0)))
+    assert main(["gcode", str(nc)]) == 1
+    err = capsys.readouterr().err
+    assert "interp: error: the RTL ended at (1, 1000, -100) steps, the program at (0, 1000, -100)" in err
+    fakes.setattr(gcode, "run_simulation", lambda *a, **k: fake_harness(*a, **k, errors=[(35, 4)]))
+    assert main(["gcode", str(nc)]) == 1
+    err = capsys.readouterr().err
+    assert "motion_top error 4 (the core refused the command) at cycle 35, line 4" in err
+
+
+def test_event_codes_in_the_commands(fakes, nc, tmp_path):
+    seen = {}
+
+    def harness(path, sim, **kw):
+        seen["lines"] = open(path).read().splitlines()
+        return fake_harness(path, sim, **kw)
+
+    fakes.setattr(gcode, "run_simulation", harness)
+    assert main(["gcode", str(nc)]) == 0
+    kinds = [list(map(int, line.split())) for line in seen["lines"]]
+    assert [k[3] for k in kinds if k[0] == EVENT] == [EVENT_CODES[n] for n in ("spindle_cw", "spindle_off",
+                                                                               "program_end")]
+    assert all(len(k) == 10 for k in kinds)
+
+
+@pytest.mark.parametrize("argv,text", [
+    (["gcode", "/nonexistent/p.nc", "--check"], "cannot read /nonexistent/p.nc"),
+    (["gcode", "{nc}", "--machine", "/nonexistent/m.toml"], "cannot read machine file /nonexistent/m.toml"),
+    (["gcode", "{nc}", "--set", "axis.x.steps_per_inch=3"], "unknown key axis.x.steps_per_inch"),
+    (["gcode", "{nc}", "--clock-hz", "fast"], "invalid float value"),
+    (["gcode", "{nc}", "--steps", "/nonexistent/dir/s.csv"], "--steps /nonexistent/dir/s.csv: folder"),
+    (["gcode", "{nc}", "--events", "{tmp}"], "is a folder"),
+    (["gcode", "{nc}", "--json"], "--json goes with --check"),
+    (["gcode", "{nc}", "--pause-seconds", "-1"], "--pause-seconds"),
+    (["gcode", "{nc}", "--sim", "questa"], "invalid choice"),
+])
+def test_errors_are_one_line_exit_2(fakes, nc, tmp_path, capsys, argv, text):
+    def harness(*a, **k):
+        raise AssertionError("the simulation must not start")
+
+    fakes.setattr(gcode, "run_simulation", harness)
+    argv = [a.format(nc=nc, tmp=tmp_path) for a in argv]
+    one_line_error(capsys, 2, argv, text)
+
+
+def test_bad_machine_file_one_line(fakes, nc, tmp_path, capsys):
+    m = tmp_path / "machine.toml"
+    m.write_text("[axis.x]\nsteps_per_inch = 3\n")
+    one_line_error(capsys, 2, ["gcode", str(nc), "--machine", str(m)], "machine.toml: unknown key axis.x.steps_per_inch")
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes anywhere")
+def test_unwritable_output(fakes, nc, tmp_path, capsys):
+    locked = tmp_path / "locked"
+    locked.mkdir(mode=0o500)
+    one_line_error(capsys, 2, ["gcode", str(nc), "--steps", str(locked / "s.csv")], "not writable")
+
+
+def test_soft_limit_error_one_line(fakes, nc, capsys):
+    one_line_error(capsys, 2, ["gcode", str(nc), "--check", "--set", "axis.z.min_mm=0"],
+                   "line 4: Z -1 mm is beyond the Z travel 0 .. 1000 mm (machine file)")
+
+
+def test_bad_bytes_reach_the_interpreter_as_surrogates(monkeypatch, tmp_path, capsys):
+    seen = {}
+
+    def interpret(text, machine):
+        seen["text"] = text
+        return Program()
+
+    monkeypatch.setattr(gcode, "interpret_program", interpret)
+    src = tmp_path / "bad.nc"
+    src.write_bytes(b"G0 X1\n(caf\xe9)\n")
+    assert main(["gcode", str(src), "--check"]) == 0
+    assert seen["text"] == "G0 X1\n(caf\udce9)\n"
+
+
+# ---------------- end to end: the real interpreter and simulator ----------------
+
+def _have(module: str) -> bool:
+    try:
+        return importlib.util.find_spec(module) is not None
+    except ModuleNotFoundError:
+        return False
+
+
+real = pytest.mark.skipif(not (_have("interp.gcode.interpreter") and _have("interp.simulation.native")),
+                          reason="needs interp.gcode.interpreter and interp.simulation.native")
+
+
+@real
+def test_demo_program_end_to_end(tmp_path, capsys):
+    src = tmp_path / "demo.nc"
+    src.write_text(gcode.DEMO)
+    events = tmp_path / "e.csv"
+    assert main(["gcode", str(src), *gcode.DEMO_OPTIONS, "--check", "--json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert main(["gcode", str(src), *gcode.DEMO_OPTIONS, "--steps", str(tmp_path / "s.csv"),
+                 "--events", str(events)]) == 0
+    out = capsys.readouterr().out
+    assert f"= {tuple(info['end_steps'])} steps" in out
+    names = [r[1] for r in list(csv.reader(events.open()))[1:]]
+    assert names == ["spindle_cw", "spindle_off", "program_end"]
+    rows = list(csv.reader((tmp_path / "s.csv").open()))[1:]
+    assert [sum(int(r[k]) for r in rows) for k in (1, 2, 3)] == info["end_steps"]
+
+
+SMALL = """G21 G90 G17
+G01 X0.3 Y0.1 F3000
+M3 S6000
+G02 X0.5 Y0.3 I0 J0.2 F3000
+G18 G03 X0.3 Z0.2 I-0.2 K0
+M5
+G17 G00 X0 Y0 Z0
+"""
+
+
+@real
+@pytest.mark.skipif(not _have("cocotb"), reason="needs cocotb")
+def test_icarus_and_verilator_give_the_same_steps(tmp_path, capsys):
+    src = tmp_path / "small.nc"
+    src.write_text(SMALL)
+    files = {}
+    for sim in ("verilator", "icarus"):
+        steps, events = tmp_path / f"{sim}_steps.csv", tmp_path / f"{sim}_events.csv"
+        assert main(["gcode", str(src), "--clock-hz", "20000", "--sim", sim, "--steps", str(steps),
+                     "--events", str(events)]) == 0
+        files[sim] = (steps.read_text(), events.read_text())
+    assert files["verilator"] == files["icarus"]
+    assert files["verilator"][1].count("spindle") == 2

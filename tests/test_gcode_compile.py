@@ -1,0 +1,406 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The machine file and the compiler from moves (machine mm) to motion_top commands.
+
+Programs here are built by hand from interp.gcode.moves, so these tests need
+neither the G-code language layer nor the simulator.
+"""
+import math
+import random
+import tomllib
+
+import pytest
+
+from interp.gcode.compile import (ARC_LIMIT, DWELL_MAX, EVENT, EVENT_CODES, FRAC, LINE_MAX, PWM_FULL, CompileError,
+                                  Compiler, compile_program, steps_estimate)
+from interp.gcode.machine import SCHEMA, MachineError, default_machine_text, load_machine
+from interp.gcode.moves import PLANES, Arc, Dwell, Event, Line, Program
+from interp.models.arc import arc_error, arc_steps
+from interp.models.motion import ARC_CCW, ARC_CW, DWELL, LINE
+
+MACHINE = load_machine()
+
+
+def total(commands) -> list[int]:
+    """The displacement of a command list in steps (x, y, z), arcs mapped from (u, v, w)."""
+    pos = [0, 0, 0]
+    for c in commands:
+        if c.kind == LINE:
+            pos = [p + d for p, d in zip(pos, (c.x, c.y, c.z))]
+        elif c.kind in (ARC_CW, ARC_CCW):
+            iu, iv, iw = list(PLANES.values())[c.plane]
+            pos[iu] += c.x
+            pos[iv] += c.y
+            pos[iw] += c.z
+    return pos
+
+
+def steps_of(point, spm=(100, 100, 100)) -> list[int]:
+    return [math.floor(p * s + 0.5) for p, s in zip(point, spm)]
+
+
+# ---------------- the machine file ----------------
+
+def test_default_file_is_the_documented_defaults():
+    shipped = tomllib.loads(default_machine_text())
+    for section, keys in SCHEMA.items():
+        head, _, sub = section.partition(".")
+        body = shipped[head][sub] if sub else shipped[head]
+        assert set(body) == set(keys), section
+        for key, spec in keys.items():
+            value = tuple(body[key]) if isinstance(body[key], list) else body[key]
+            assert value == spec[1], (section, key)
+    assert MACHINE.clock_hz == 50e6 and MACHINE.steps_per_mm == (100, 100, 100)
+    assert MACHINE.timing() == {"pulse_width": 50, "setup": 50, "hold": 50}
+
+
+def test_omitted_keys_take_the_defaults(tmp_path):
+    f = tmp_path / "m.toml"
+    f.write_text("[axis.x]\nsteps_per_mm = 80\n[tool.3]\nlength_mm = 12.5\n")
+    m = load_machine(str(f))
+    assert m.steps_per_mm == (80, 100, 100) and m.axes[0].max_rate_mm_min == 6000
+    assert m.tools == {3: {"length_mm": 12.5, "diameter_mm": 0.0}} and m.clock_hz == 50e6
+
+
+@pytest.mark.parametrize("text,message", [
+    ("[axis.x]\nsteps_per_inch = 3\n", "m.toml: unknown key axis.x.steps_per_inch"),
+    ("[axis.w]\nsteps_per_mm = 3\n", "m.toml: unknown section [axis.w]"),
+    ("[spindel]\nmax_s = 3\n", "m.toml: unknown section [spindel]"),
+    ("[axis.x]\nsteps_per_mm = \"many\"\n", "m.toml: axis.x.steps_per_mm must be a number"),
+    ("[axis.x]\nsteps_per_mm = 0\n", "m.toml: axis.x.steps_per_mm must be > 0"),
+    ("[axis.y]\nmin_mm = 10\nmax_mm = 5\n", "axis.y.min_mm (10) must be below axis.y.max_mm"),
+    ("[motion]\nprofile = \"cubic\"\n", "m.toml: motion.profile must be one of"),
+    ("[home]\ng28 = [1, 2]\n", "m.toml: home.g28 must be a list of three numbers"),
+    ("[controller]\nclock_hz = true\n", "m.toml: controller.clock_hz must be a number"),
+    ("[controller]\nclock_hz = 1000\n", "axis.x.max_rate_mm_min (6000 mm/min = 10000 steps/s) is more than one step"),
+    ("[output]\npulse_ns = 2e6\n", "output.pulse_ns is more than 65535 clock cycles"),
+    ("[tool.a]\nlength_mm = 1\n", "m.toml: unknown section [tool.a]"),
+    ("axis = 3\n", "m.toml: unknown key"),
+    ("[axis.x\n", "m.toml: not valid TOML"),
+])
+def test_bad_machine_files(tmp_path, text, message):
+    f = tmp_path / "m.toml"
+    f.write_text(text)
+    with pytest.raises(MachineError) as err:
+        load_machine(str(f))
+    assert message in str(err.value) and "\n" not in str(err.value)
+
+
+def test_overrides():
+    m = load_machine(sets=["axis.x.steps_per_mm=80", "controller.clock_hz=1e6", "motion.profile=scurve",
+                           "home.g28=[1, 2, 3]", "tool.7.diameter_mm=6"], clock_hz=None)
+    assert m.steps_per_mm[0] == 80 and m.clock_hz == 1e6 and m.values["motion"]["profile"] == "scurve"
+    assert m.g28 == (1, 2, 3) and m.tools[7]["diameter_mm"] == 6
+    assert load_machine(sets=["controller.clock_hz=1e6"], clock_hz=2e8).clock_hz == 2e8    # --clock-hz last
+    for bad, message in (("axis.x.steps_per_inch=3", "unknown key axis.x.steps_per_inch"),
+                         ("axis.x.steps_per_mm=abc", "axis.x.steps_per_mm must be a number"),
+                         ("clock_hz=5", "want SECTION.KEY=VALUE"), ("axis.x.steps_per_mm", "want KEY=VALUE")):
+        with pytest.raises(MachineError, match=message):
+            load_machine(sets=[bad])
+    with pytest.raises(MachineError, match="cannot read machine file"):
+        load_machine("/nonexistent/m.toml")
+
+
+# ---------------- lines, rounding, limits ----------------
+
+def test_rounding_once_no_drift():
+    moves, here = [], (0.0, 0.0, 0.0)
+    for n in range(1, 101):                              # 100 x 0.003 mm relative = 0.3 mm = 30 steps
+        end = (0.003 * n, -0.0071 * n, 0.0)
+        moves.append(Line(here, end, 500, n))
+        here = end
+    out = compile_program(Program(moves), MACHINE)
+    assert total(out.commands) == steps_of(here) == [30, -71, 0]
+    assert out.end_steps == (30, -71, 0) and all(c.kind == LINE for c in out.commands)
+    # each command moves from the previous rounded point to the next
+    pos = [0, 0, 0]
+    for c in out.commands:
+        pos = [p + d for p, d in zip(pos, (c.x, c.y, c.z))]
+        assert pos == steps_of(moves[c.source - 1].end)
+
+
+def test_long_lines_split_exactly():
+    spm = (LINE_MAX // 1000)
+    m = load_machine(sets=[f"axis.x.steps_per_mm={spm}", "axis.x.max_rate_mm_min=1000", "controller.clock_hz=1e9"])
+    c = Compiler(m)
+    c.line_to([2 * LINE_MAX + 5, -3, LINE_MAX + 1], 7, 1, 1.0)
+    cmds = c.out.commands
+    assert len(cmds) == 3 and total(cmds) == [2 * LINE_MAX + 5, -3, LINE_MAX + 1]
+    assert all(max(abs(x.x), abs(x.y), abs(x.z)) <= LINE_MAX for x in cmds)
+    out = compile_program(Program([Line((0, 0, 0), (-1000, 0, 0), None, 1),
+                                   Line((-1000, 0, 0), (1000, 0, 0), None, 2)]), m)
+    assert total(out.commands) == [1000 * spm, 0, 0] and len(out.commands) == 3
+
+
+def test_soft_limits():
+    m = load_machine(sets=["axis.x.min_mm=0", "axis.x.max_mm=300"])
+    with pytest.raises(CompileError) as err:
+        compile_program(Program([Line((0, 0, 0), (312.5, 0, 0), 100, 4)]), m)
+    assert str(err.value) == "line 4: X 312.5 mm is beyond the X travel 0 .. 300 mm (machine file)"
+    # an arc whose ends are inside but whose bulge is not
+    arc = Arc((290, 0, 0), (290, 24, 0), (290, 12, 0), "XY", True, 1, 500, 7)
+    with pytest.raises(CompileError, match=r"^line 7: X 302 mm is beyond the X travel 0 \.\. 300 mm"):
+        compile_program(Program([Line((0, 0, 0), (290, 0, 0), None, 6), arc]), m)
+    ok = Arc((290, 0, 0), (290, 24, 0), (290, 12, 0), "XY", False, 1, 500, 7)        # bulges to -X: fine
+    compile_program(Program([Line((0, 0, 0), (290, 0, 0), None, 6), ok]), m)
+
+
+# ---------------- arcs ----------------
+
+def arc_commands(out):
+    return [c for c in out.commands if c.kind in (ARC_CW, ARC_CCW)]
+
+
+@pytest.mark.parametrize("plane", ["XY", "ZX", "YZ"])
+def test_arc_in_each_plane(plane):
+    iu, iv, iw = PLANES[plane]
+    start, centre, end = [0.0] * 3, [0.0] * 3, [0.0] * 3
+    start[iu], centre[iu], centre[iv], end[iu], end[iv] = 10, 0, 0, 0, 10   # quarter, CCW
+    out = compile_program(Program([Line((0, 0, 0), tuple(start), None, 1),
+                                   Arc(tuple(start), tuple(end), tuple(centre), plane, True, 1, 600, 2)]), MACHINE)
+    (c,) = arc_commands(out)
+    assert (c.kind, c.plane, c.x, c.y, c.i, c.j, c.z) == (ARC_CCW, ["XY", "ZX", "YZ"].index(plane),
+                                                           -1000, 1000, -1000, 0, 0)
+    assert out.end_steps == tuple(steps_of(end))
+
+
+def linuxcnc_tolerance(r: float) -> float:
+    """How far off the circle an arc's end may be for LinuxCNC (mm mode): 0.005 mm, or 0.1 % of
+    the radius up to 0.5 mm."""
+    return max(0.005, min(0.001 * r, 0.5))
+
+
+def test_arc_end_correction_random():
+    seed = random.randrange(1 << 30)
+    print("seed", seed)
+    rng = random.Random(seed)
+    corrected = 0
+    for n in range(300):
+        plane = rng.choice(list(PLANES))
+        iu, iv, iw = PLANES[plane]
+        r = rng.choice([rng.uniform(0.02, 2), rng.uniform(2, 300)])
+        c = [rng.uniform(-300, 300) for _ in range(3)]
+        a0, a1 = rng.uniform(0, 2 * math.pi), rng.uniform(0, 2 * math.pi)
+        off = rng.uniform(-1, 1) * linuxcnc_tolerance(r)
+        start, end = list(c), list(c)
+        start[iu], start[iv] = c[iu] + r * math.cos(a0), c[iv] + r * math.sin(a0)
+        end[iu], end[iv] = c[iu] + (r + off) * math.cos(a1), c[iv] + (r + off) * math.sin(a1)
+        end[iw] += rng.choice([0, rng.uniform(-5, 5)])
+        arc = Arc(tuple(start), tuple(end), tuple(c), plane, rng.random() < 0.5, rng.choice([1, 1, 2]), 800, 2)
+        out = compile_program(Program([Line((0, 0, 0), tuple(start), None, 1), arc]), MACHINE)
+        assert total(out.commands) == steps_of(end), (seed, n)
+        # the arc commands go the programmed way round: their step counts add up to the source's
+        part = (a1 - a0) % (2 * math.pi) if arc.ccw else (a0 - a1) % (2 * math.pi)
+        sweep = (part + 2 * math.pi * (arc.turns - 1)) * (1 if arc.ccw else -1)
+        want = steps_estimate(r * 100, a0, sweep) if r * 100 >= 1 else 0
+        got = sum(cmd.k for cmd in arc_commands(out))
+        assert abs(got - want) <= 6 + abs(sweep) + 200 * linuxcnc_tolerance(r), (seed, n, got, want)
+        for cmd in arc_commands(out):
+            assert arc_error(cmd.i, cmd.j, 0, 0, cmd.x, cmd.y, 32) is None, (seed, n, cmd)
+            assert cmd.k >= 1
+            if cmd.k < 3000:        # the arc core's step model ends where the command says
+                path = arc_steps(cmd.i, cmd.j, 0, 0, cmd.x, cmd.y, cmd.kind == ARC_CCW, (cmd.x, cmd.y) == (0, 0))
+                assert (sum(p.dx for p in path), sum(p.dy for p in path)) == (cmd.x, cmd.y)
+        corrected += out.corrected
+    assert corrected > 10           # the test does exercise the correction
+
+
+def test_corrected_arc_keeps_its_sweep():
+    # 100 mm radius, end 0.1 mm outside the circle (LinuxCNC's 0.1 %): arc to the lattice point, then a line
+    arc = Arc((100, 0, 0), (0, 100.1, 0), (0, 0, 0), "XY", True, 1, 1000, 2)
+    out = compile_program(Program([Line((0, 0, 0), (100, 0, 0), None, 1), arc]), MACHINE)
+    kinds = [c.kind for c in out.commands]
+    assert kinds == [LINE, ARC_CCW, LINE] and out.corrected == 1
+    a = out.commands[1]
+    assert abs(a.x - -10000) <= 1 and abs(a.y - 10000) <= 1
+    assert total(out.commands) == [0, 10010, 0]
+    assert max(abs(v) for v in (out.commands[2].x, out.commands[2].y)) <= 12
+
+
+def test_tiny_arcs_never_become_full_circles():
+    # rounded start = rounded end, the source arc a tiny one: nothing (or a line), no full circle
+    for ccw, a in ((True, 1e-4), (False, -1e-4), (True, 4e-4), (False, -4e-4)):
+        arc = Arc((10, 0, 0), (10 * math.cos(a), 10 * math.sin(a), 0), (0, 0, 0), "XY", ccw, 1, 500, 2)
+        out = compile_program(Program([Line((0, 0, 0), (10, 0, 0), None, 1), arc]), MACHINE)
+        assert all(c.kind == LINE for c in out.commands)
+        assert total(out.commands) == steps_of(arc.end)
+    # ...but an almost-full circle whose ends round together is a full circle
+    arc = Arc((10, 0, 0), (10 * math.cos(-1e-4), 10 * math.sin(-1e-4), 0), (0, 0, 0), "XY", True, 1, 500, 2)
+    out = compile_program(Program([Line((0, 0, 0), (10, 0, 0), None, 1), arc]), MACHINE)
+    (c,) = arc_commands(out)
+    assert (c.x, c.y) == (0, 0)
+
+
+def test_full_circles_and_turns_and_helix():
+    arc = Arc((10, 0, 0), (10, 0, -3), (0, 0, 0), "XY", False, 3, 500, 2)        # P3, 3 mm down
+    out = compile_program(Program([Line((0, 0, 0), (10, 0, 0), None, 1), arc]), MACHINE)
+    cmds = arc_commands(out)
+    assert len(cmds) == 3 and all((c.kind, c.x, c.y, c.i, c.j) == (ARC_CW, 0, 0, -1000, 0) for c in cmds)
+    assert [c.z for c in cmds] == [-100, -100, -100] and out.end_steps == (1000, 0, -300)
+    for c in cmds:
+        assert abs(c.k - 8 * 1000 / math.sqrt(2)) <= 3
+
+
+def test_helix_counts_exact_for_small_arcs():
+    rng = random.Random(5)
+    for _ in range(30):
+        r = rng.uniform(0.05, 0.35)
+        a1 = rng.uniform(0.3, 6)
+        arc = Arc((r, 0, 0), (r * math.cos(a1), r * math.sin(a1), 1), (0, 0, 0), "XY", True, 1, 500, 2)
+        out = compile_program(Program([Line((0, 0, 0), (r, 0, 0), None, 1), arc]), MACHINE)
+        cmds = arc_commands(out)
+        if not cmds:
+            continue
+        c = cmds[0]
+        exact = len(arc_steps(c.i, c.j, 0, 0, c.x, c.y, True, (c.x, c.y) == (0, 0)))
+        assert c.k == exact and c.z == 100
+
+
+def test_step_estimate_close_to_the_model():
+    rng = random.Random(11)
+    for _ in range(100):
+        ci, cj = rng.randint(-300, 300), rng.randint(-300, 300)
+        if (ci, cj) == (0, 0):
+            continue
+        n = len(arc_steps(ci, cj, 0, 0, 0, 0, True, True))
+        assert abs(steps_estimate(math.hypot(ci, cj), math.atan2(-cj, -ci), 2 * math.pi) - n) <= 3
+
+
+def test_chords_for_unequal_steps_and_huge_radius():
+    m = load_machine(sets=["axis.y.steps_per_mm=80"])
+    arc = Arc((10, 0, 0), (0, 10, 0), (0, 0, 0), "XY", True, 1, 500, 9)
+    out = compile_program(Program([Line((0, 0, 0), (10, 0, 0), None, 1), arc]), m)
+    assert not arc_commands(out) and out.chords == 1 and len(out.commands) > 5
+    assert any("line 9: arc run as" in w and "different steps_per_mm" in w for w in out.warnings)
+    assert out.end_steps == (0, 800, 0)
+    # every chord vertex within a quarter step (+ rounding) of the circle, in steps
+    pos = [1000, 0]
+    for c in out.commands[1:]:
+        pos = [pos[0] + c.x, pos[1] + c.y]
+        assert abs(math.hypot(pos[0] / 100, pos[1] / 80) - 10) * 100 < 1.0
+    # a radius beyond the core's limit (2^29 steps): chords
+    spm = 2 * ARC_LIMIT / 1000
+    m = load_machine(sets=[f"axis.x.steps_per_mm={spm}", f"axis.y.steps_per_mm={spm}",
+                           "controller.clock_hz=1e10", "axis.x.max_mm=1000", "axis.y.max_mm=1000"])
+    arc = Arc((600, 0, 0), (0, 600, 0), (0, 0, 0), "XY", True, 1, 500, 3)
+    out = compile_program(Program([Line((0, 0, 0), (600, 0, 0), None, 1), arc]), m)
+    assert not arc_commands(out) and any("radius is beyond the arc core" in w for w in out.warnings)
+    assert total(out.commands) == steps_of((0, 600, 0), (spm, spm, 100))
+
+
+# ---------------- feeds ----------------
+
+@pytest.mark.parametrize("clock", [1e6, 50e6, 200e6])
+@pytest.mark.parametrize("feed", [1, 10, 100, 1000, 6000])
+def test_feed_word_accuracy(clock, feed):
+    m = load_machine(clock_hz=clock)
+    out = compile_program(Program([Line((0, 0, 0), (5, 0, 0), feed, 1)]), m)
+    word = out.commands[0].feed
+    achieved = word / (1 << FRAC) * clock * 60 / 100
+    assert abs(achieved - feed) / feed < 1e-4 and not out.warnings
+
+
+def test_feed_caps_rapids_and_errors():
+    m = load_machine(sets=["axis.z.max_rate_mm_min=600"])
+    out = compile_program(Program([Line((0, 0, 0), (0, 0, -10), 2000, 5)]), m)
+    assert out.commands[0].feed == round(600 * 100 / 60 / 50e6 * (1 << FRAC))
+    assert any(w.startswith("line 5: F2000 mm/min is above") for w in out.warnings)
+    # a rapid: the slowest axis involved limits it (z at 600 mm/min over 10 of a 10.05 mm path)
+    out = compile_program(Program([Line((0, 0, 0), (1, 0, -10), None, 6)]), m)
+    speed = out.commands[0].feed / (1 << FRAC) * 50e6 * 60 / 100
+    assert abs(speed * 10 / math.hypot(1, 10) - 600) < 0.01
+    with pytest.raises(CompileError, match="line 7: feed F1e-08 mm/min is too slow"):
+        compile_program(Program([Line((0, 0, 0), (1, 0, 0), 1e-8, 7)]), m)
+    out = compile_program(Program([Line((0, 0, 0), (1, 0, 0), 0.001, 8)]), load_machine(clock_hz=200e6))
+    assert any("line 8: F0.001 mm/min is off by" in w for w in out.warnings)
+
+
+def test_feed_with_unequal_steps_per_mm():
+    # the path's steps per mm along its direction: 3-4-5 in mm with x 100, y 50 steps/mm
+    m = load_machine(sets=["axis.y.steps_per_mm=50"])
+    out = compile_program(Program([Line((0, 0, 0), (3, 4, 0), 600, 1)]), m)
+    spm = math.hypot(300, 200) / 5
+    assert out.commands[0].feed == round(600 * spm / 60 / 50e6 * (1 << FRAC))
+
+
+# ---------------- dwells, events, time ----------------
+
+def test_dwells_split():
+    m = load_machine(clock_hz=200e6)
+    out = compile_program(Program([Dwell(60.0, 1), Dwell(0, 2)]), m)
+    cycles = [c.x for c in out.commands]
+    assert all(c.kind == DWELL for c in out.commands) and sum(cycles) == 12_000_000_000
+    assert max(cycles) <= DWELL_MAX and len(cycles) == 4 and cycles[-1] == 0
+    assert out.commands[0].fields()[3] == -1            # 2^32 - 1 as the port's signed bits
+    assert abs(out.machine_time_s - 60) < 1e-9
+    with pytest.raises(CompileError, match="line 3: dwell"):
+        compile_program(Program([Dwell(-1, 3)]), m)
+
+
+def test_events_and_pauses():
+    prog = Program([Event("spindle_cw", 12000, 1), Event("spindle_speed", 30000, 2), Event("output_on", 3, 3),
+                    Event("pause", 1, 4), Event("tool_change", 5, 5), Event("program_end", 30, 6)])
+    out = compile_program(prog, MACHINE, pause_seconds=2)
+    got = [(c.kind, c.x, c.y, c.source) for c in out.commands]
+    assert got == [(EVENT, EVENT_CODES["spindle_cw"], PWM_FULL // 2 + 1, 1),
+                   (EVENT, EVENT_CODES["spindle_speed"], PWM_FULL, 2), (EVENT, EVENT_CODES["output_on"], 3, 3),
+                   (EVENT, EVENT_CODES["pause"], 1, 4), (DWELL, 100_000_000, 0, 4),
+                   (EVENT, EVENT_CODES["tool_change"], 5, 5), (EVENT, EVENT_CODES["program_end"], 30, 6)]
+    assert any("line 2: S30000 is above" in w for w in out.warnings)
+    assert [e[0] for e in out.events] == ["spindle_cw", "spindle_speed", "output_on", "pause", "tool_change",
+                                          "program_end"]
+    assert out.machine_time_s == 2
+
+
+def test_machine_time_and_counts():
+    prog = Program([Line((0, 0, 0), (60, 0, 0), 600, 1),                     # 6 s
+                    Arc((60, 0, 0), (60, 0, 0), (50, 0, 0), "XY", True, 1, 600, 2),   # 2 pi 10 mm at 10 mm/s
+                    Dwell(1.5, 3)])
+    out = compile_program(prog, MACHINE)
+    assert abs(out.machine_time_s - (6 + 2 * math.pi + 1.5)) < 1e-9
+    assert (out.moves, out.arcs) == (2, 1)
+
+
+# ---------------- the commands through the step-level model of motion_top ----------------
+
+def test_commands_through_the_step_model():
+    """Random small programs (lines, arcs and helices in every plane, dwells, events): the
+    step-level model of motion_top's cores (interp.models.motion.queue_steps at W = 32) ends
+    exactly at the compiled end point, with no error."""
+    from interp.models import motion
+
+    if not hasattr(motion, "helix_steps"):
+        pytest.skip("interp.models.motion has no plane/helix step model yet")
+    seed = random.randrange(1 << 30)
+    print("seed", seed)
+    rng = random.Random(seed)
+    for _ in range(20):
+        here, moves = (0.0, 0.0, 0.0), []
+        for n in range(1, 8):
+            kind = rng.choice(["line", "arc", "dwell", "event"])
+            if kind == "line":
+                end = tuple(h + rng.uniform(-3, 3) for h in here)
+                moves.append(Line(here, end, rng.choice([None, 300.0]), n))
+                here = end
+            elif kind == "arc":
+                plane = rng.choice(list(PLANES))
+                iu, iv, iw = PLANES[plane]
+                r, a0, a1 = rng.uniform(0.05, 2), rng.uniform(0, 6.3), rng.uniform(0, 6.3)
+                c = list(here)
+                c[iu] -= r * math.cos(a0)
+                c[iv] -= r * math.sin(a0)
+                end = list(c)
+                off = rng.uniform(-1, 1) * linuxcnc_tolerance(r)
+                end[iu] += (r + off) * math.cos(a1)
+                end[iv] += (r + off) * math.sin(a1)
+                end[iw] = here[iw] + rng.choice([0, rng.uniform(-2, 2)])
+                moves.append(Arc(here, tuple(end), tuple(c), plane, rng.random() < 0.5, rng.choice([1, 2]), 500, n))
+                here = tuple(end)
+            elif kind == "dwell":
+                moves.append(Dwell(0.001, n))
+            else:
+                moves.append(Event("spindle_cw", 1000, n))
+        out = compile_program(Program(moves), MACHINE)
+        steps, errors = motion.queue_steps(out.commands, 32)
+        assert errors == [], seed
+        assert [sum(s[k] for s in steps) for k in range(3)] == list(out.end_steps) == steps_of(here), seed
+        assert all(max(abs(v) for v in s) <= 1 for s in steps), seed
