@@ -12,7 +12,7 @@ refused with one `GcodeError` naming the line, column and word.
 Internally every position and offset is kept in machine millimetres; the
 parameters the program can read (#5420.. the position, #5221.. the
 coordinate systems, ...) are written back in program units after each block.
-docs/gcode-semantics.md describes the accepted words and the differences from
+docs/gcode.md ("Machine semantics") describes the accepted words and the differences from
 LinuxCNC and Grbl.
 """
 from __future__ import annotations
