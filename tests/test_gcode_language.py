@@ -384,6 +384,7 @@ o1000 call [3] [0] [0] [10]
     ("G0\n  o<nope> call [1]", "line 2, column 3: o<nope> call [1]: o<nope> is not defined: no 'o<nope> sub' in the program"),
     ("o<a>", "line 1, column 1: o<a>: O-word without a command"),
     ("/o1 if [1]\no1 endif", "line 1, column 1: /: block delete is not allowed on an O-word line"),
+    ("  / o1 if [1]\no1 endif", "line 1, column 3: /: block delete is not allowed on an O-word line"),
     ("o1 while [#<u>]\no1 endwhile", "line 1, column 1: o1 while [#<u>]: #<u> is not defined"),
 ])
 def test_o_word_errors(text, message):
