@@ -9,7 +9,7 @@ import time
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, assume, given, settings, strategies as st
 
 from interp.cores import UsageError
 from interp.gcode import language
@@ -384,6 +384,7 @@ o1000 call [3] [0] [0] [10]
     ("G0\n  o<nope> call [1]", "line 2, column 3: o<nope> call [1]: o<nope> is not defined: no 'o<nope> sub' in the program"),
     ("o<a>", "line 1, column 1: o<a>: O-word without a command"),
     ("/o1 if [1]\no1 endif", "line 1, column 1: /: block delete is not allowed on an O-word line"),
+    ("  / o1 if [1]\no1 endif", "line 1, column 3: /: block delete is not allowed on an O-word line"),
     ("o1 while [#<u>]\no1 endwhile", "line 1, column 1: o1 while [#<u>]: #<u> is not defined"),
 ])
 def test_o_word_errors(text, message):
@@ -512,6 +513,10 @@ class Undefined(Exception):
     pass
 
 
+class TooLarge(Exception):
+    """Values so large that rounding makes the comparison meaningless: example skipped."""
+
+
 def oracle(node) -> float:
     """An independent evaluation of the test's expression trees."""
     if isinstance(node, float):
@@ -538,8 +543,10 @@ def oracle(node) -> float:
         "LE": lambda: float(a <= b), "AND": lambda: float(bool(a) and bool(b)),
         "OR": lambda: float(bool(a) or bool(b)), "XOR": lambda: float(bool(a) != bool(b)),
     }[op]()
-    if isinstance(result, complex) or not math.isfinite(result) or abs(result) > 1e12:
+    if isinstance(result, complex):
         raise Undefined
+    if not math.isfinite(result) or abs(result) > 1e12:
+        raise TooLarge
     return float(result)
 
 
@@ -587,7 +594,9 @@ def test_random_expressions_evaluate_as_predicted(tree, data):
     source = case(f"G1 X[{text}]\n#<r> = [{text}]\nY#<r>")
     try:
         expected = oracle(tree)
-    except (Undefined, OverflowError, ZeroDivisionError):
+    except (TooLarge, OverflowError):
+        assume(False)
+    except (Undefined, ZeroDivisionError):
         with pytest.raises(GcodeError):
             blocks(source)
         return

@@ -513,7 +513,7 @@ def _read_code(raw: str, number: int, warnings: list[str]) -> _Line | None:
     if parsed[0] == "o":
         _, delete, start, label, keyword, args = parsed
         if delete:
-            raise GcodeError(number, 1, "/", "block delete is not allowed on an O-word line")
+            raise GcodeError(number, column(0), "/", "block delete is not allowed on an O-word line")
         return _Line(number, keyword, comments=comments, label=label, args=args,
                      column=column(start), text=written(start, len(compact)))
     _, delete, found = parsed
