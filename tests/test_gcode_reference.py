@@ -110,3 +110,13 @@ def test_refusals(program, line):
     with pytest.raises(Refused) as error:
         run(program)
     assert error.value.line == line
+
+
+def test_fanuc_g80_habits():
+    program = "G0 G80 X1\nG0 Z5\nG98 G81 X2 Z-1 R1 F10\nG80\nZ7\nX3"
+    with pytest.raises(Refused):
+        run(program)
+    assert run(program, fanuc_g80=True).work == pytest.approx((3, 0, 7))
+    with pytest.raises(Refused) as error:                # no G0 / G1 before the cycle
+        run("G2 X1 I1 F10\nG81 X2 Z-1 R1\nG80\nZ7", fanuc_g80=True)
+    assert error.value.line == 4

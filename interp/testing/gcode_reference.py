@@ -208,7 +208,9 @@ def _apply(op: str, a: float, b: float, reader: _Reader) -> float:
 
 # ---------------------------------------------------------------------------- the machine
 class _Machine:
-    def __init__(self, g28, g30, tools):
+    def __init__(self, g28, g30, tools, fanuc_g80):
+        self.fanuc_g80 = fanuc_g80
+        self.last_straight = None                        # G0 or G1, while no arc mode came after
         self.numbered: dict[int, float] = {}
         self.frames: list[dict[str, float]] = [{}]       # named locals per call level
         self.globals: dict[str, float] = {}
@@ -377,12 +379,16 @@ def _execute(m: _Machine, number: int, words: list[tuple[str, float]]):
     polar = has("@") or has("^")
     non_modal = modes & {100, 280, 281, 300, 301, 920, 921, 922, 923}
     motion_codes = modes & ({0, 10, 20, 30, 800} | CYCLES)
+    if m.fanuc_g80 and 800 in motion_codes and len(motion_codes & {0, 10, 20, 30}) == 1:
+        motion_codes = motion_codes - {800}              # G0 ... G80: the motion word wins
     if len(motion_codes) > 1 or len(non_modal) > 1:
         fail("two G codes of one modal group")
     if motion_codes:
         m.motion = next(iter(motion_codes))
         if m.motion not in CYCLES:
             m.initial_level = None
+        if m.motion in (0, 10, 20, 30):
+            m.last_straight = m.motion if m.motion in (0, 10) else None
     if non_modal:
         code = non_modal.pop()
         if code == 100:
@@ -414,6 +420,8 @@ def _execute(m: _Machine, number: int, words: list[tuple[str, float]]):
             m.g92 = list(m.g92_saved)
     elif (axes or polar or motion_codes & ({20, 30} | CYCLES)
           or (m.motion in (20, 30) and {"i", "j", "k"} & set(other))):
+        if m.motion == 800 and m.fanuc_g80 and m.last_straight is not None:
+            m.motion = m.last_straight                   # Fanuc: the mode before the cycle
         if m.motion == 800:
             fail("axis words without a motion mode (G80 in force)")
         if 530 in modes:
@@ -577,9 +585,16 @@ def _parse(text: str):
     return program
 
 
-def run(text: str, *, g28=(0.0, 0.0, 0.0), g30=(0.0, 0.0, 0.0), tools=None) -> Result:
-    """The end of `text` as LinuxCNC would run it (see the module's docstring)."""
-    m = _Machine(g28, g30, tools or {})
+def run(text: str, *, g28=(0.0, 0.0, 0.0), g30=(0.0, 0.0, 0.0), tools=None,
+        fanuc_g80: bool = False) -> Result:
+    """The end of `text` as LinuxCNC would run it (see the module's docstring).
+
+    g28, g30: the G28 / G30 positions in machine mm; tools: T -> {"length_mm": ...} (a tool
+    missing from it has length 0).  fanuc_g80 allows two Fanuc habits LinuxCNC refuses:
+    G80 in a block with G0..G3 (the motion word wins), and axis words while G80 is in force
+    (they move in the G0 / G1 mode that was in force before the canned cycle).
+    """
+    m = _Machine(g28, g30, tools or {}, fanuc_g80)
     program = _parse(text)
     subs = {}
     for index, (number, kind, payload) in enumerate(program):
