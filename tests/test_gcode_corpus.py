@@ -6,7 +6,7 @@ folder next to this repository's root) runs through the front end with the defau
 file, and its end is compared with the tests' own independent reading of the program
 (interp.testing.gcode_reference): `end` (work coordinates, program units) within 1e-6, and
 `end_steps` with the reference's machine millimetres times the machine's steps/mm, rounded
-(either neighbour when the product lies on a half step), and the number of arcs.  A program
+(either neighbour when the product lies on a half step), and the numbers of arcs and events.  A program
 the front end refuses must be listed in REFUSED below with the line it is refused at, and the
 refusal must be one line naming the line and the column, with exit status 2.
 """
@@ -127,3 +127,4 @@ def test_corpus_program(path):
     assert all(steps_match(s, e) for s, e in zip(summary["end_steps"], exact)), \
         (summary["end_steps"], exact)
     assert summary["arcs"] == expected.arcs
+    assert summary["events"] == len(expected.events)

@@ -82,7 +82,7 @@ def test_counts_and_units():
 
 
 def test_events_in_order():
-    result = run("S1000 M3\nS2000\nM5\nM8\nM9\nT2 M6\nM62 P1\nM0\nM2")
+    result = run("S1000 M3\nS2000\nS2000\nS0 M5\nS10\nM8\nM9\nT2 M6\nM62 P1\nM0\nM2")
     assert result.events == [
         ("spindle_cw", 1000), ("spindle_speed", 2000), ("spindle_off", 0), ("flood_on", 0),
         ("coolant_off", 0), ("tool_change", 2), ("pause", 6), ("output_on", 1), ("pause", 0),

@@ -315,9 +315,9 @@ def _execute(m: _Machine, number: int, words: list[tuple[str, float]]):
     if has("f"):
         m.feed = other["f"]
     if has("s"):
+        if m.spindle and other["s"] != m.speed and not any(c in (3, 4, 5) for c in mc):
+            m.events.append(("spindle_speed", other["s"]))
         m.speed = other["s"]
-        if m.spindle and not any(c in (3, 4) for c in mc):
-            m.events.append(("spindle_speed", m.speed))
     if has("t"):
         m.selected_tool = int(other["t"])
     for code in mc:
