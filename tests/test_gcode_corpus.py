@@ -1,33 +1,24 @@
 # SPDX-License-Identifier: Apache-2.0
 """The public G-code corpus through `interp gcode FILE --check --json`.
 
-Every program of the corpus directory (INTERP_GCODE_CORPUS, by default the `shared/gcode`
-folder next to this repository's root) runs through the front end with the default machine
-file, and its end is compared with the tests' own independent reading of the program
-(interp.testing.gcode_reference): `end` (work coordinates, program units) within 1e-6, and
+Every program of the corpus directory (INTERP_GCODE_CORPUS; the default is CORPUS in
+interp.benchmarks.gcode_corpus) runs through the front end with the default machine file,
+and its end is compared with the tests' own independent reading of the program
+(interp.testing.gcode_reference): `end` (work coordinates, program units) within 1e-6,
 `end_steps` with the reference's machine millimetres times the machine's steps/mm, rounded
-(either neighbour when the product lies on a half step), and the numbers of arcs and events.  A program
-the front end refuses must be listed in REFUSED below with the line it is refused at, and the
-refusal must be one line naming the line and the column, with exit status 2.
+(either neighbour when the product lies on a half step), and the numbers of arcs and events.
+A program the front end refuses must be listed in REFUSED below with the line it is refused
+at, and the refusal must be one line naming the line and the column, with exit status 2.
 """
-import contextlib
 import importlib.util
-import io
 import json
-import math
-import os
 import re
-import tomllib
-from pathlib import Path
 
 import pytest
 
-from interp.testing.gcode_reference import Refused, run
-
-ROOT = Path(__file__).resolve().parents[1]
-CORPUS = Path(os.environ.get("INTERP_GCODE_CORPUS", ROOT.parent / "shared" / "gcode"))
-MACHINE = ROOT / "interp" / "gcode" / "default_machine.toml"
-PROGRAM_SUFFIXES = {".gcode", ".nc", ".ngc", ".tap"}
+from interp.benchmarks.gcode_corpus import (CORPUS, FANUC_HABITS, MACHINE, corpus_files,
+                                            interp_gcode, machine_file, reference, steps_match)
+from interp.testing.gcode_reference import Refused
 
 # Programs the front end refuses, with the line of the refusal and why that is right.
 REFUSED = {
@@ -42,55 +33,17 @@ REFUSED = {
     # A pen plotter's M300 S30/S50 servo commands (and M17/M18 motor power): not RS274NGC.
     "ur5_drawing.gcode": 7,
 }
-# The front end's documented departures from LinuxCNC that these programs need (Fusion 360
-# and textbook Fanuc habits: "G0 ... G80" in one block, axis words after G80); the reference
-# models them with fanuc_g80=True, and LinuxCNC itself would refuse these two programs.
-FANUC_HABITS = {"helman_simple_mill.gcode", "tap_HeatSunk_drill.tap"}
+# FANUC_HABITS (helman_simple_mill, tap_HeatSunk_drill) need the front end's documented
+# departures from LinuxCNC ("G0 ... G80" in one block, axis words after G80), which LinuxCNC
+# refuses; the reference models them there (fanuc_g80=True).
 
 REFUSAL = re.compile(r"interp: (error: )?line (\d+), column (\d+): \S.*")
-
-
-def corpus_files() -> list[Path]:
-    if not CORPUS.is_dir():
-        return []
-    return sorted(p for p in CORPUS.iterdir() if p.suffix.lower() in PROGRAM_SUFFIXES)
 
 
 def front_end_missing() -> str | None:
     if importlib.util.find_spec("interp.gcode.interpreter") is None or not MACHINE.is_file():
         return "the G-code front end (interp.gcode.interpreter, the default machine file) is not here"
     return None
-
-
-def machine_file() -> dict:
-    values = tomllib.loads(MACHINE.read_text())
-    tools = {int(n): dict(v) for n, v in values.get("tool", {}).items()}
-    home = values.get("home", {})
-    return {"steps_per_mm": [float(values["axis"][a]["steps_per_mm"]) for a in "xyz"],
-            "g28": tuple(home.get("g28", (0, 0, 0))), "g30": tuple(home.get("g30", (0, 0, 0))),
-            "tools": tools}
-
-
-def check(path: Path) -> tuple[int, str, str]:
-    """interp gcode PATH --check --json, in this process: (status, stdout, stderr)."""
-    from interp.cli import main
-
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        status = main(["gcode", str(path), "--check", "--json"])
-    return status, out.getvalue(), err.getvalue()
-
-
-def reference(path: Path, machine: dict):
-    text = path.read_text(encoding="utf-8", errors="surrogateescape")
-    return run(text, g28=machine["g28"], g30=machine["g30"], tools=machine["tools"],
-               fanuc_g80=path.name in FANUC_HABITS)
-
-
-def steps_match(steps: int, exact: float) -> bool:
-    if abs(abs(exact - math.floor(exact)) - 0.5) < 1e-6:        # on a half step: either side
-        return steps in (math.floor(exact), math.ceil(exact))
-    return steps == round(exact)
 
 
 FILES = corpus_files()
@@ -108,7 +61,7 @@ def test_corpus_program(path):
     missing = front_end_missing()
     if missing:
         pytest.skip(missing)
-    status, out, err = check(path)
+    status, out, err = interp_gcode([str(path), "--check", "--json"])
     if path.name in REFUSED:
         lines = err.strip().splitlines()
         assert status == 2 and out == "", (status, out)

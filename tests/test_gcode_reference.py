@@ -62,6 +62,7 @@ CASES = [
     ("N10 G0 X1\nN20 Y2 (modal G0)\nO1000\nn30\tz3", (1, 2, 3), (1, 2, 3)),
     ("g0x1y2\ng1 f10 z-1", (1, 2, -1), (1, 2, -1)),
     ("$H\n?\nG0 X1", (1, 0, 0), (1, 0, 0)),
+    ("G0 X1\r\r\nG0 Y2\r\n", (1, 2, 0), (1, 2, 0)),
 ]
 
 
@@ -105,6 +106,7 @@ def test_events_in_order():
     ("G1 F10 X1\nG81 X1 R1 F10", 2),                # first cycle block without Z
     ("G0 Z5\nG81 X1 Z6 R2 F10", 2),                 # R below the bottom
     ("G10 L1 P1 Z1", 1),
+    ("G0 X1\r\r\nG0 Y2\r\r\nG41 D1", 3),           # lines counted by their line feeds
 ])
 def test_refusals(program, line):
     with pytest.raises(Refused) as error:

@@ -560,7 +560,7 @@ def _cycle(m: _Machine, other, axes, polar, fail):
 def _parse(text: str):
     """[(line number, kind, payload)]: kind "block" (stripped text) or an O-word keyword."""
     program = []
-    for number, raw in enumerate(text.splitlines(), start=1):
+    for number, raw in enumerate(text.split("\n"), start=1):       # "\r\r\n" is one line end
         stripped = raw.strip()
         if not stripped or stripped[0] in "%$" or stripped[0] == "?" and _strip(raw, number) == "?":
             continue
