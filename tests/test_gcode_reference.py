@@ -1,6 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
 """The tests' own G-code reading (interp.testing.gcode_reference) on small programs
 whose end positions were worked out by hand."""
+import importlib.util
+import os
+import random
+
 import pytest
 
 from interp.testing.gcode_reference import Refused, run
@@ -122,3 +126,79 @@ def test_fanuc_g80_habits():
     with pytest.raises(Refused) as error:                # no G0 / G1 before the cycle
         run("G2 X1 I1 F10\nG81 X2 Z-1 R1\nG80\nZ7", fanuc_g80=True)
     assert error.value.line == 4
+
+
+# ---------------------------------------------------------------------------- against the front end
+def random_program(rng: random.Random) -> str:
+    """A random program of the features whose end the reference knows, all valid."""
+    def num(low=-20.0, high=20.0):
+        return f"{rng.uniform(low, high):.4f}"
+    lines = [rng.choice(["G21", "G20"]), "F100", rng.choice(["G98", "G99"])]
+    for n in range(1, 4):
+        lines.append(f"G10 L2 P{n} X{num()} Y{num()} Z{num(-5, 5)}")
+    lines.append(rng.choice(["G54", "G55", "G56"]))
+    for _ in range(rng.randrange(5, 25)):
+        kind = rng.randrange(12)
+        distance = rng.choice(["G90", "G91"])
+        if kind <= 2:
+            lines.append(f"{distance} G{rng.choice([0, 1])} X{num()} Y{num()} Z{num(-5, 5)}")
+        elif kind == 3:                     # an arc about a random centre, maybe a helix
+            radius, start = rng.uniform(1, 10), rng.uniform(0, 360)
+            sweep = rng.uniform(-300, 300)
+            centre = [f"[#5420 - {radius} * COS[{start}]]", f"[#5421 - {radius} * SIN[{start}]]"]
+            lines.append(f"#1 = {centre[0]} #2 = {centre[1]}")
+            end = start + sweep
+            lines.append(f"G90 G{2 if sweep < 0 else 3} X[#1 + {radius} * COS[{end}]] "
+                         f"Y[#2 + {radius} * SIN[{end}]] Z{num(-5, 5)} "
+                         f"I[{radius} * COS[{start}] * -1] J[{radius} * SIN[{start}] * -1]")
+        elif kind == 4:                     # R form in the plane of G18 or G19
+            plane, (u, v) = rng.choice([("G18", "ZX"), ("G19", "YZ"), ("G17", "XY")])
+            lines.append(f"{plane} G91 G{rng.choice([2, 3])} {u}{num(1, 5)} {v}{num(1, 5)} R{num(6, 9)}")
+            lines.append("G17 G90")
+        elif kind == 5:
+            lines.append(f"G92 X{num()} Z{num(-5, 5)}" if rng.random() < 0.7 else "G92.1")
+        elif kind == 6:
+            lines.append(f"G90 G53 G0 X{num()} Y{num()}")
+        elif kind == 7:                     # a canned cycle, absolute or incremental, repeated
+            cycle = rng.choice(["G81", "G82 P0.1", "G83 Q1", "G73 Q0.5", "G85", "G89 P0.2"])
+            if distance == "G90":
+                lines.append(f"G90 G0 Z{num(5, 10)}")
+                lines.append(f"G90 {cycle} X{num()} Y{num()} Z{num(-5, -1)} R{num(1, 4)}")
+                lines.append(f"X{num()}")
+            else:
+                lines.append(f"G91 {cycle} X{num(-3, 3)} Y{num(-3, 3)} Z{num(-6, -1)} "
+                             f"R{num(-2, 2)} L{rng.randrange(1, 5)}")
+            lines.append("G80")
+        elif kind == 8:
+            lines.append(f"#<_v> = [{num()} * 2 + #5422 / 4]")
+            lines.append(f"G90 G1 Z#<_v> X[#5420 + 1]")
+        elif kind == 9:
+            label = len(lines)
+            lines.append(f"o{label} repeat [{rng.randrange(1, 4)}]")
+            lines.append(f"G91 G1 X{num(-2, 2)} Y{num(-2, 2)}")
+            lines.append(f"o{label} endrepeat")
+        elif kind == 10:
+            lines.append(rng.choice(["G28", f"G28 Z{num(-5, 5)}", "G30", f"G30 X{num()}"]))
+        else:
+            lines.append(rng.choice(["G20", "G21", "G54", "G55", "G56", "G92.2", "G92.3"]))
+    lines.append(rng.choice(["M2", "M30", ""]))
+    return "\n".join(lines) + "\n"
+
+
+SEEDS = [int(s) for s in os.environ.get("GCODE_REFERENCE_SEEDS", "").split(",") if s] or \
+    list(range(40))
+
+
+@pytest.mark.skipif(importlib.util.find_spec("interp.gcode.interpreter") is None,
+                    reason="the G-code front end (interp.gcode.interpreter) is not here")
+@pytest.mark.parametrize("seed", SEEDS)
+def test_random_program_agrees_with_front_end(seed):
+    from interp.gcode.interpreter import interpret
+
+    program = random_program(random.Random(seed))
+    print(f"seed {seed} (GCODE_REFERENCE_SEEDS={seed} repeats it):\n{program}")
+    homes = {"g28": (1.0, -2.0, 3.0), "g30": (-4.0, 5.0, -6.0)}
+    front, expected = interpret(program, **homes), run(program, **homes)
+    assert front.end_work == pytest.approx(expected.work, abs=1e-6)
+    assert front.end_machine == pytest.approx(expected.machine, abs=1e-6)
+    assert front.units == expected.units
