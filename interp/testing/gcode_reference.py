@@ -25,7 +25,9 @@ from dataclasses import dataclass, field
 INCH = 25.4
 CYCLES = {730, 810, 820, 830, 850, 860, 890}          # G73, G81-G83, G85, G86, G89 (x10)
 COORDINATE_SYSTEMS = [540, 550, 560, 570, 580, 590, 591, 592, 593]
-IGNORED_G = {400, 610, 611, 640, 940, 930, 901, 911}   # no effect on positions
+KNOWN_G = {0, 10, 20, 30, 40, 100, 170, 180, 190, 200, 210, 280, 281, 300, 301, 530, 800, 430,
+           490, 900, 910, 920, 921, 922, 923, 980, 990,
+           400, 610, 611, 640, 901, 911, 930, 940} | CYCLES | set(COORDINATE_SYSTEMS)
 FUNCTIONS = {
     "abs": abs, "acos": lambda v: math.degrees(math.acos(v)),
     "asin": lambda v: math.degrees(math.asin(v)), "cos": lambda v: math.cos(math.radians(v)),
@@ -237,6 +239,7 @@ class _Machine:
         self.lines = self.arcs = 0
         self.events: list[tuple[str, float]] = []
         self.ended = False
+        self.polar_words: dict[str, float] = {}          # the block's @ and ^
 
     # parameters
     def get(self, key):
@@ -345,19 +348,14 @@ def _execute(m: _Machine, number: int, words: list[tuple[str, float]]):
         if not has("p"):
             fail("G4 without P")
     for code in modes:
+        if code in (410, 420, 411, 421):
+            fail("cutter radius compensation")
+        if code not in KNOWN_G:
+            fail(f"G{code / 10:g} unknown")
         if code in (170, 180, 190):
             m.plane = code
         elif code in (200, 210):
             m.factor = INCH if code == 200 else 1.0
-        elif code in (410, 420, 411, 421):
-            fail("cutter radius compensation")
-        elif code in IGNORED_G or code in (40, 530, 800, 0, 10, 20, 30) or code in CYCLES:
-            pass
-        elif code in (430, 490, 100, 280, 281, 300, 301, 920, 921, 922, 923, 900, 910, 980,
-                      990) or code in COORDINATE_SYSTEMS:
-            pass
-        else:
-            fail(f"G{code / 10:g} unknown")
     if 430 in modes:
         tool = int(other["h"]) if has("h") else m.current_tool
         m.tool_z = float(m.tools.get(tool, {}).get("length_mm", 0.0))
@@ -470,7 +468,7 @@ def _straight(m: _Machine, axes, polar, fail, count=True):
 
 
 def _polar(m: _Machine, work, fail):
-    args = m._polar_words
+    args = m.polar_words
     if m.plane != 170:
         fail("polar words outside G17")
     if m.absolute:
@@ -535,7 +533,7 @@ def _cycle(m: _Machine, other, axes, polar, fail):
         bottom = z
     else:
         dx, dy = axes.get(0, 0.0), axes.get(1, 0.0)
-        dr, da = m._polar_words.get("@", 0.0), math.radians(m._polar_words.get("^", 0.0))
+        dr, da = m.polar_words.get("@", 0.0), math.radians(m.polar_words.get("^", 0.0))
         r = r + old
         bottom = r + z
     if r < bottom:
@@ -638,7 +636,7 @@ def run(text: str, *, g28=(0.0, 0.0, 0.0), g30=(0.0, 0.0, 0.0), tools=None,
                 words, assignments = _words(reader)
             except KeyError as error:
                 raise Refused(number, f"named parameter #<{error.args[0]}> not defined")
-            m._polar_words = {c: v for c, v in words if c in "@^"}
+            m.polar_words = {c: v for c, v in words if c in "@^"}
             _execute(m, number, words)
             for key, val in assignments:
                 m.set(key, val)
