@@ -42,7 +42,7 @@ REFUSAL = re.compile(r"interp: (error: )?line (\d+), column (\d+): \S.*")
 
 def front_end_missing() -> str | None:
     if importlib.util.find_spec("interp.gcode.interpreter") is None or not MACHINE.is_file():
-        return "the G-code front end (interp.gcode.interpreter, the default machine file) is not here"
+        return "the G-code front end (interp.gcode.interpreter, default machine file) is not here"
     return None
 
 

@@ -3,10 +3,10 @@
 
 Each program runs through `interp gcode FILE --steps S.csv --events E.csv` at a 1 MHz
 controller clock (the default machine's 50 MHz would only multiply the cycles of these
-10..55 s programs; about 2e7 cycles/s natively; steps and events do not depend on it).  The steps in the CSV must add up
-to the end in steps that --check reports, which must be the tests' own reading of the
-program (interp.testing.gcode_reference) in machine mm times 100 steps/mm, and the events
-CSV must hold the events the program asks for, in order, at non-decreasing cycles.
+10..55 s programs; steps and events do not depend on the clock).  The steps in the CSV must
+add up to the end in steps that --check reports, which must be the tests' own reading of the
+program (interp.testing.gcode_reference) in machine mm times the machine's steps/mm, and the
+events CSV must hold the events the program asks for, in order, at non-decreasing cycles.
 Skipped while the native simulation module or the corpus (INTERP_GCODE_CORPUS) is absent.
 """
 import csv
@@ -23,7 +23,7 @@ SELECTION = {
     "lcnc_3dtest.ngc": "LinuxCNC sample: inch, full circles in G17, G18 and G19",
     "ugs_spiral.gcode": "helix: full circles and helical full circles (G3 ... Z20 I20)",
     "lcnc_hole-circle.ngc": "G81 drilling cycle repeated by L6 with a polar ^60 increment, inch",
-    "ugs_arc_rword_test.gcode": "CAM (SketchUcam) output in G20 with R-format arcs, M3 S15000 / M30",
+    "ugs_arc_rword_test.gcode": "CAM (SketchUcam) output: G20, R-format arcs, M3 S15000, M30",
     "unbt_unbt_laser_logo_0001_crosshair.gcode": "laser: M03 S1, S0.1 / S1 power changes, M05, M02",
     "tap_HeatSunk_drill.tap": "Fusion 360 .tap: G43 H1, G98 G73 peck drilling, M3 / M9 / M30",
 }
@@ -35,7 +35,7 @@ def missing() -> str | None:
     if importlib.util.find_spec("interp.simulation.native") is None:
         return "the native simulation (interp.simulation.native) is not here yet"
     if importlib.util.find_spec("interp.gcode.interpreter") is None or not MACHINE.is_file():
-        return "the G-code front end (interp.gcode.interpreter, the default machine file) is not here"
+        return "the G-code front end (interp.gcode.interpreter, default machine file) is not here"
     return None
 
 

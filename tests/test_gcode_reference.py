@@ -153,7 +153,8 @@ def random_program(rng: random.Random) -> str:
                          f"I[{radius} * COS[{start}] * -1] J[{radius} * SIN[{start}] * -1]")
         elif kind == 4:                     # R form in the plane of G18 or G19
             plane, (u, v) = rng.choice([("G18", "ZX"), ("G19", "YZ"), ("G17", "XY")])
-            lines.append(f"{plane} G91 G{rng.choice([2, 3])} {u}{num(1, 5)} {v}{num(1, 5)} R{num(6, 9)}")
+            lines.append(f"{plane} G91 G{rng.choice([2, 3])} {u}{num(1, 5)} {v}{num(1, 5)} "
+                         f"R{num(6, 9)}")
             lines.append("G17 G90")
         elif kind == 5:
             lines.append(f"G92 X{num()} Z{num(-5, 5)}" if rng.random() < 0.7 else "G92.1")

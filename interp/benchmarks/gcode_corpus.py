@@ -137,7 +137,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="with --simulate: skip programs whose machine time exceeds S "
                              "(default 300)")
     options = parser.parse_args(argv)
-    files = [p for p in corpus_files() if not options.only or any(t in p.name for t in options.only)]
+    files = [p for p in corpus_files()
+             if not options.only or any(text in p.name for text in options.only)]
     if not files:
         print(f"gcode_corpus: no programs in {CORPUS} (set INTERP_GCODE_CORPUS)", file=sys.stderr)
         return 2
