@@ -24,10 +24,16 @@ from .su1571551 import steps as su_steps
 AXES = "xyz"
 
 
+def rounded_root(n: int) -> int:
+    """round(sqrt(n)) for an integer n, exactly (as feed_rate.v's constant function)."""
+    r = math.isqrt(n)
+    return r + 1 if n - r * r > r else r
+
+
 def interval_costs(frac: int) -> dict[int, int]:
-    """Cost of a step on n axes in units of 2^-FRAC axial steps (rounded sqrt(n))."""
+    """Cost of a step on n axes in units of 2^-FRAC axial steps (sqrt(n) 2^FRAC, rounded)."""
     one = 1 << frac
-    return {0: one, 1: one, 2: int(math.sqrt(2) * one + 0.5), 3: int(math.sqrt(3) * one + 0.5)}
+    return {0: one, 1: one, 2: rounded_root(2 << 2 * frac), 3: rounded_root(3 << 2 * frac)}
 
 
 def line_order(d: tuple[int, int, int]) -> tuple[int, int, int]:
