@@ -3,9 +3,9 @@
 // Motion subsystem: segment queue -> interpolator cores ->
 // synchronization buffer -> speed-setting block -> step/dir output stage.
 //   segment queue ........... sync_fifo u_queue (commands, QDEPTH entries)
-//   line, 2 or 3 axes ....... two lin_exact sharing the leading axis:
-//                             core A makes (lead, minor 1), core B (lead, minor 2);
-//                             both get every tick, so each lead step is one tick
+//   line, 2 or 3 axes ....... line_pair u_lines: two lin_exact sharing the leading
+//                             axis: core A makes (lead, minor 1), core B (lead,
+//                             minor 2); both get every tick, so each lead step is one tick
 //   circular arc, helix ..... arc_plane u_arc: circ_arc in the plane's (u, v), the
 //                             helix axis w by line core A (lead N, minor cmd_z)
 //   curve ................... curve_tangent (the paper's tangent method)
@@ -123,20 +123,10 @@ module motion_top #(
 
     // ---------------- dispatcher ----------------
     reg  [2:0] state;
-    reg  [1:0] lead_q;          // line: leading axis 0 x, 1 y, 2 z
-    reg        lead_neg_q;
     reg  [FEED_W-1:0] feed_q;
     reg  [W-1:0] dwell_q;
 
     wire [W-1:0] min_w = {1'b1, {(W-1){1'b0}}};
-    wire [W-1:0] ax = h_x[W-1] ? -h_x : h_x;
-    wire [W-1:0] ay = h_y[W-1] ? -h_y : h_y;
-    wire [W-1:0] az = h_z[W-1] ? -h_z : h_z;
-    wire [1:0]   lead = (ax >= ay && ax >= az) ? 2'd0 : (ay >= az) ? 2'd1 : 2'd2;
-    wire [W-1:0] lead_len = lead == 2'd0 ? ax : lead == 2'd1 ? ay : az;
-    wire         lead_neg = lead == 2'd0 ? h_x[W-1] : lead == 2'd1 ? h_y[W-1] : h_z[W-1];
-    wire [W-1:0] minor1 = lead == 2'd0 ? h_y : h_x;     // x leads: (y, z); y: (x, z); z: (x, y)
-    wire [W-1:0] minor2 = lead == 2'd2 ? h_y : h_z;
 
     wire idle      = state == S_IDLE;
     wire is_move   = h_kind == K_LINE || h_kind == K_ARC_CW || h_kind == K_ARC_CCW || h_kind == K_CURVE;
@@ -155,40 +145,17 @@ module motion_top #(
     wire core_tick;             // ~STOP of the synchronization buffer
 
     // ---------------- cores ----------------
-    // Line core A also spreads an arc's helix axis (arc_plane lends it).
-    wire a_sx, a_sy, a_dx, a_dy, a_busy, a_done;
-    wire b_sx, b_sy, b_dx, b_dy, b_busy, b_done;
-    wire helix_start, helix_tick, helix_abort;
+    // Line core A also spreads an arc's helix axis (arc_plane borrows it).
+    wire [2:0]   line_step, line_dir;
+    wire         line_done, helix_start, helix_tick, helix_abort, helix_step, helix_dir;
     wire [W-1:0] helix_lead;
-    lin_exact #(.WIDTH(W)) u_line_a (
-        .clk(clk), .rst(rst | helix_abort), .start(start_line | helix_start),
-        .tick(state == S_ARC ? helix_tick : core_tick),
-        .x(is_arc ? helix_lead : lead_len), .y(is_arc ? h_z : minor1),
-        .step_x(a_sx), .step_y(a_sy), .dir_x(a_dx), .dir_y(a_dy), .busy(a_busy), .done(a_done)
+    line_pair #(.W(W)) u_lines (
+        .clk(clk), .rst(rst), .start(start_line), .tick(core_tick), .x(h_x), .y(h_y), .z(h_z),
+        .step(line_step), .dir(line_dir), .done(line_done),
+        .helix_select(is_arc), .helix_start(helix_start), .helix_lead(helix_lead), .helix_travel(h_z),
+        .lent(state == S_ARC), .helix_tick(helix_tick), .helix_abort(helix_abort),
+        .helix_step(helix_step), .helix_dir(helix_dir)
     );
-    lin_exact #(.WIDTH(W)) u_line_b (
-        .clk(clk), .rst(rst), .start(start_line), .tick(core_tick), .x(lead_len), .y(minor2),
-        .step_x(b_sx), .step_y(b_sy), .dir_x(b_dx), .dir_y(b_dy), .busy(b_busy), .done(b_done)
-    );
-    reg [2:0] line_step, line_dir;
-    always @* begin
-        line_step = 3'b000;
-        line_dir  = 3'b000;
-        case (lead_q)
-            2'd0: begin
-                line_step = {b_sy, a_sy, a_sx};
-                line_dir  = {b_dy, a_dy, lead_neg_q};
-            end
-            2'd1: begin
-                line_step = {b_sy, a_sx, a_sy};
-                line_dir  = {b_dy, lead_neg_q, a_dy};
-            end
-            default: begin
-                line_step = {a_sx, b_sy, a_sy};
-                line_dir  = {lead_neg_q, b_dy, a_dy};
-            end
-        endcase
-    end
 
     wire [2:0] arc_step, arc_dir;
     wire       arc_busy, arc_done, arc_error;
@@ -197,7 +164,7 @@ module motion_top #(
         .ccw(h_kind == K_ARC_CCW), .end_u(h_x), .end_v(h_y), .centre_u(h_i), .centre_v(h_j),
         .travel(h_z), .count(h_k),
         .helix_start(helix_start), .helix_lead(helix_lead), .helix_tick(helix_tick),
-        .helix_abort(helix_abort), .helix_step(a_sy), .helix_dir(a_dy),
+        .helix_abort(helix_abort), .helix_step(helix_step), .helix_dir(helix_dir),
         .step(arc_step), .dir(arc_dir), .busy(arc_busy), .done(arc_done), .error(arc_error)
     );
 
@@ -254,7 +221,7 @@ module motion_top #(
     assign {dir_z, dir_y, dir_x}    = drv_dir;
 
     // ---------------- state, position, errors ----------------
-    wire core_done  = (state == S_LINE  && a_done) ||
+    wire core_done  = (state == S_LINE  && line_done) ||
                       (state == S_ARC   && (arc_done | arc_error)) ||
                       (state == S_CURVE && (cv_done | cv_error));
     wire core_error = (state == S_ARC && arc_error) || (state == S_CURVE && cv_error);
@@ -271,8 +238,6 @@ module motion_top #(
     always @(posedge clk) begin
         if (rst) begin
             state      <= S_IDLE;
-            lead_q     <= 2'd0;
-            lead_neg_q <= 1'b0;
             feed_q     <= {FEED_W{1'b0}};
             dwell_q    <= {W{1'b0}};
             event_valid <= 1'b0;
@@ -292,11 +257,7 @@ module motion_top #(
                 S_IDLE: if (accept) begin
                     feed_q <= h_feed;
                     case (h_kind)
-                        K_LINE: begin
-                            state      <= S_LINE;
-                            lead_q     <= lead;
-                            lead_neg_q <= lead_neg;
-                        end
+                        K_LINE:  state <= S_LINE;
                         K_CURVE: state <= S_CURVE;
                         K_DWELL: begin
                             state   <= S_DRAIN;
@@ -344,6 +305,6 @@ module motion_top #(
         end
     end
 
-    wire unused = &{1'b0, a_dx, a_busy, b_sx, b_dx, b_busy, b_done, arc_busy, cv_busy, sync_level};
+    wire unused = &{1'b0, arc_busy, cv_busy, sync_level};
 endmodule
 `default_nettype wire

@@ -16,7 +16,7 @@ import csv
 import cocotb
 from cocotb.triggers import FallingEdge
 
-from interp.models.arc import arc_steps
+from interp.models.arc import arc_error, arc_steps
 from interp.models.motion import (ARC_CCW, ARC_CW, CURVE, DWELL, E_CORE, E_FEED, E_KIND, E_PLANE, E_QUEUE,
                                   E_RANGE, EVENT, LINE, Command, MotionTop, TimingMonitor, command_steps,
                                   queue_steps)
@@ -127,7 +127,9 @@ def random_arc(rng, r=12):
 
 
 def arc_count(cmd):
-    """N for a helix: the number of steps of the arc alone (the host's rule)."""
+    """N for a helix: the number of steps of the arc alone (the host's rule); 0 for a bad arc."""
+    if arc_error(cmd.i, cmd.j, 0, 0, cmd.x, cmd.y):
+        return 0
     return len(arc_steps(cmd.i, cmd.j, 0, 0, cmd.x, cmd.y, cmd.kind == ARC_CCW, (cmd.x, cmd.y) == (0, 0)))
 
 
