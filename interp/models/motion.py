@@ -8,8 +8,11 @@ Step level, written like the lecture's rules:
   * `line_steps`: a 2- or 3-axis line is two SU 1571551 lines that share the
     leading axis (each step of the leading axis is one tick of both);
   * `released`: what the drive sees, step by step.
-Cycle level: `SyncFifo`, `StepSync`, `FeedRate`, `StepDir` mirror the
-registers of rtl/sync_fifo.v, step_sync.v, feed_rate.v, step_dir.v; their
+  * `helix_steps`, `to_machine`: an arc in its plane's (u, v) with the helix
+    axis w spread by a line (N, travel) over its steps, mapped to (x, y, z).
+Cycle level: `SyncFifo`, `StepSync`, `FeedRate`, `StepDir`, `ArcPlane`,
+`MotionTop` mirror the registers of rtl/sync_fifo.v, step_sync.v, feed_rate.v,
+step_dir.v, arc_plane.v, motion_top.v (line_pair.v inline in MotionTop); their
 combinational outputs are properties of the current state and inputs.
 """
 from __future__ import annotations
