@@ -8,8 +8,11 @@ Step level, written like the lecture's rules:
   * `line_steps`: a 2- or 3-axis line is two SU 1571551 lines that share the
     leading axis (each step of the leading axis is one tick of both);
   * `released`: what the drive sees, step by step.
-Cycle level: `SyncFifo`, `StepSync`, `FeedRate`, `StepDir` mirror the
-registers of rtl/sync_fifo.v, step_sync.v, feed_rate.v, step_dir.v; their
+  * `helix_steps`, `to_machine`: an arc in its plane's (u, v) with the helix
+    axis w spread by a line (N, travel) over its steps, mapped to (x, y, z).
+Cycle level: `SyncFifo`, `StepSync`, `FeedRate`, `StepDir`, `ArcPlane`,
+`MotionTop` mirror the registers of rtl/sync_fifo.v, step_sync.v, feed_rate.v,
+step_dir.v, arc_plane.v, motion_top.v (line_pair.v inline in MotionTop); their
 combinational outputs are properties of the current state and inputs.
 """
 from __future__ import annotations
@@ -24,10 +27,16 @@ from .su1571551 import steps as su_steps
 AXES = "xyz"
 
 
+def rounded_root(n: int) -> int:
+    """round(sqrt(n)) for an integer n, exactly (as feed_rate.v's constant function)."""
+    r = math.isqrt(n)
+    return r + 1 if n - r * r > r else r
+
+
 def interval_costs(frac: int) -> dict[int, int]:
-    """Cost of a step on n axes in units of 2^-FRAC axial steps (rounded sqrt(n))."""
+    """Cost of a step on n axes in units of 2^-FRAC axial steps (sqrt(n) 2^FRAC, rounded)."""
     one = 1 << frac
-    return {0: one, 1: one, 2: int(math.sqrt(2) * one + 0.5), 3: int(math.sqrt(3) * one + 0.5)}
+    return {0: one, 1: one, 2: rounded_root(2 << 2 * frac), 3: rounded_root(3 << 2 * frac)}
 
 
 def line_order(d: tuple[int, int, int]) -> tuple[int, int, int]:
@@ -301,17 +310,42 @@ class TimingMonitor:
 
 # ---------------- segment queue (rtl/motion_top.v), step level ----------------
 
-LINE, ARC_CW, ARC_CCW, CURVE, DWELL = range(5)
-E_KIND, E_FEED, E_RANGE, E_CORE, E_QUEUE, E_SYNC = range(1, 7)
+LINE, ARC_CW, ARC_CCW, CURVE, DWELL, EVENT = range(6)
+E_KIND, E_FEED, E_RANGE, E_CORE, E_QUEUE, E_SYNC, E_PLANE = range(1, 8)
 ERROR_TEXT = {E_KIND: "unknown command kind", E_FEED: "feed 0", E_RANGE: "coordinate out of range",
               E_CORE: "the core refused the command", E_QUEUE: "queue overflow",
-              E_SYNC: "step buffer overflow"}
+              E_SYNC: "step buffer overflow", E_PLANE: "arc in plane 3"}
 FIELDS = ("x", "y", "z", "i", "j", "k", "l")
+PLANES = {0: "XY", 1: "ZX", 2: "YZ"}
+# plane -> the machine axes (0 x, 1 y, 2 z) of u, v, w
+PLANE_AXES = {0: (0, 1, 2), 1: (2, 0, 1), 2: (1, 2, 0)}
+
+
+def to_machine(plane: int, u: int, v: int, w: int) -> tuple[int, int, int]:
+    """A step (u, v, w) in the arc's plane as (x, y, z)."""
+    out = [0, 0, 0]
+    for axis, value in zip(PLANE_AXES[plane], (u, v, w)):
+        out[axis] = value
+    return tuple(out)
+
+
+def helix_steps(arc: list[tuple[int, int]], travel: int, count: int) -> list[tuple[int, int, int]]:
+    """(u, v, w) steps of a helix (rtl/arc_plane.v): core A runs (N, travel) with N = count,
+    or 0 for count <= 0, one tick per arc step; the w travel left when the arc ends follows
+    one step per entry."""
+    lead = max(count, 0)
+    spread = su_steps(lead, travel) if travel else []
+    out = []
+    for k, (u, v) in enumerate(arc):
+        out.append((u, v, spread[k].dy if k < len(spread) else 0))
+    left = abs(travel) - sum(abs(s[2]) for s in out)
+    sign = -1 if travel < 0 else 1
+    return out + [(0, 0, sign)] * left
 
 
 @dataclass
 class Command:
-    """One entry of motion_top's queue (the ports cmd_kind, cmd_feed, cmd_x ... cmd_l)."""
+    """One entry of motion_top's queue (the ports cmd_kind, cmd_feed, cmd_x ... cmd_l, cmd_plane)."""
 
     kind: int
     feed: int = 0
@@ -323,18 +357,19 @@ class Command:
     k: int = 0
     l: int = 0          # noqa: E741 (the port's name)
     source: int = 0     # G-code line number, for messages
+    plane: int = 0      # arcs: 0 XY, 1 ZX, 2 YZ
 
     def ports(self) -> dict[str, int]:
-        return {"cmd_kind": self.kind, "cmd_feed": self.feed,
+        return {"cmd_kind": self.kind, "cmd_plane": self.plane, "cmd_feed": self.feed,
                 **{f"cmd_{f}": getattr(self, f) for f in FIELDS}}
 
 
 def command_steps(cmd: Command, width: int = 16) -> tuple[list[tuple[int, int, int]], int]:
     """(steps, error code) of one command by the step-level models of its core."""
     lo = -(1 << (width - 1))
-    if cmd.kind > DWELL:
+    if cmd.kind > EVENT:
         return [], E_KIND
-    if cmd.kind != DWELL and cmd.feed == 0:
+    if cmd.kind not in (DWELL, EVENT) and cmd.feed == 0:
         return [], E_FEED
     if cmd.kind == LINE:
         if lo in (cmd.x, cmd.y, cmd.z):
@@ -343,11 +378,14 @@ def command_steps(cmd: Command, width: int = 16) -> tuple[list[tuple[int, int, i
     if cmd.kind in (ARC_CW, ARC_CCW):
         from .arc import arc_error, arc_steps     # the arc core's model (rtl/circ_arc.v)
 
-        # motion_top gives circ_arc the start (0, 0), the end (x, y), the centre (i, j)
+        if cmd.plane & 3 == 3:
+            return [], E_PLANE
+        # arc_plane gives circ_arc the start (0, 0), the end (x, y), the centre (i, j) in (u, v)
         if arc_error(cmd.i, cmd.j, 0, 0, cmd.x, cmd.y, width):
             return [], E_CORE
         path = arc_steps(cmd.i, cmd.j, 0, 0, cmd.x, cmd.y, cmd.kind == ARC_CCW, (cmd.x, cmd.y) == (0, 0))
-        return [(s.dx, s.dy, 0) for s in path], 0
+        uvw = helix_steps([(s.dx, s.dy) for s in path], cmd.z, cmd.k)
+        return [to_machine(cmd.plane & 3, *s) for s in uvw], 0
     if cmd.kind == CURVE:
         from .curve import Program, steps as curve_steps
 
@@ -370,12 +408,101 @@ def queue_steps(cmds, width: int = 16) -> tuple[list[tuple[int, int, int]], list
 
 # ---------------- motion_top, cycle level ----------------
 
-S_IDLE, S_LINE, S_ARC, S_CURVE, S_DRAIN, S_DWELL = range(6)
+S_IDLE, S_LINE, S_ARC, S_CURVE, S_DRAIN, S_DWELL, S_EVENT = range(7)
+P_IDLE, P_ARC, P_TAIL = range(3)
 
 
 def _signed(value: int, bits: int) -> int:
     value &= (1 << bits) - 1
     return value - (1 << bits) if value >> (bits - 1) else value
+
+
+class ArcPlane(CycleModel):
+    """Cycle model of rtl/arc_plane.v: circ_arc in (u, v), the arc step held a cycle, the
+    helix axis w from line core A (which the caller owns and clocks), the tail counter.
+
+    Combinational outputs (`helix_*`, `done`, `error`) read the registers and the
+    inputs given to `nets`; `step`/`dir` need core A's outputs (`helix_step`, `helix_dir`).
+    """
+
+    watch = {"step": False, "dir": False, "busy": False}
+
+    def __init__(self, w: int = 16):
+        from .arc import CircArc
+
+        self.w = w
+        self.arc = CircArc(w)
+        self.reset()
+
+    def reset(self) -> None:
+        self.arc.reset()
+        self.phase, self.plane_q, self.helix_q, self.w_neg_q = P_IDLE, 0, 0, 0
+        self.left_q, self.arc_q, self.tail_step_q = 0, 0, 0
+
+    @property
+    def busy(self) -> int:
+        return int(self.phase != P_IDLE)
+
+    def nets(self, i) -> dict[str, int]:
+        """The combinational outputs for inputs `i` (start, travel, count)."""
+        arc, in_arc = self.arc, self.phase == P_ARC
+        travel = _signed(i.get("travel", 0), self.w)
+        load = int(bool(i.get("start")) and self.phase == P_IDLE)
+        return {"load": load, "helix_start": int(load and travel != 0),
+                "helix_lead": max(_signed(i.get("count", 0), self.w), 0),
+                "helix_tick": int(in_arc and bool(arc.step_x or arc.step_y)),
+                "helix_abort": int(in_arc and bool(arc.done or arc.error)),
+                "done": int((in_arc and arc.done and not self.helix_q)
+                            or (self.phase == P_TAIL and self.left_q == 0)),
+                "error": int(in_arc and bool(arc.error))}
+
+    def outputs(self, helix_step: int, helix_dir: int) -> tuple[int, int]:
+        """(step, dir) bits {z, y, x} from the registers and core A's w step."""
+        in_arc, in_tail = self.phase == P_ARC, self.phase == P_TAIL
+        w_step = helix_step if in_arc else int(in_tail and self.tail_step_q)
+        w_dir = helix_dir if in_arc else self.w_neg_q
+        a = self.arc_q if in_arc else 0
+        axes = PLANE_AXES.get(self.plane_q, PLANE_AXES[0])
+        step = dirs = 0
+        for axis, s, d in zip(axes, (a & 1, a >> 1 & 1, w_step), (self.arc_q >> 2 & 1, self.arc_q >> 3 & 1, w_dir)):
+            step |= s << axis
+            dirs |= d << axis
+        return step, dirs
+
+    def clock(self, i, nets: dict[str, int], helix_step: int) -> None:
+        """The edge; `nets` from nets(i) before it, helix_step core A's output before it."""
+        w = self.w
+        arc = self.arc
+        arc_done, arc_error = arc.done, arc.error
+        arc_out = arc.step_x | arc.step_y << 1 | arc.dir_x << 2 | arc.dir_y << 3
+        end_u, end_v = _signed(i["end_u"], w), _signed(i["end_v"], w)
+        arc_tick = int(bool(i["tick"]) and not self.arc_q & 3)      # the held step is in flight
+        arc.clock({"rst": i.get("rst"), "start": nets["load"], "tick": arc_tick, "cx": i["centre_u"],
+                   "cy": i["centre_v"], "x0": 0, "y0": 0, "x1": end_u, "y1": end_v, "ccw": i["ccw"],
+                   "full": int(end_u == 0 and end_v == 0)})
+        if i.get("rst"):
+            self.reset()
+            return
+        more = self.left_q != 0
+        tail_step = int(self.phase == P_TAIL and bool(i["tick"]) and more)
+        if self.phase == P_IDLE:
+            if nets["load"]:
+                travel = _signed(i["travel"], w)
+                self.phase, self.plane_q = P_ARC, i["plane"] & 3
+                self.helix_q, self.w_neg_q, self.left_q = int(travel != 0), int(travel < 0), abs(travel)
+        elif self.phase == P_ARC:
+            if helix_step:
+                self.left_q -= 1
+            if arc_error or (arc_done and not self.helix_q):
+                self.phase = P_IDLE
+            elif arc_done:
+                self.phase = P_TAIL
+        else:
+            if not more:
+                self.phase = P_IDLE
+            elif i["tick"]:
+                self.left_q -= 1
+        self.arc_q, self.tail_step_q = arc_out, tail_step
 
 
 class MotionTop(CycleModel):
@@ -387,18 +514,18 @@ class MotionTop(CycleModel):
 
     watch = {**{f"step_{a}": False for a in AXES}, **{f"dir_{a}": False for a in AXES},
              **{f"pos_{a}": True for a in AXES}, "busy": False, "done": False, "error": False,
-             "error_code": False, "cmd_full": False, "queue_level": False}
+             "error_code": False, "cmd_full": False, "queue_level": False, "event_valid": False,
+             "event_code": False, "event_value": True}
 
     def __init__(self, w: int = 16, feed_w: int = 16, frac: int = 16, qdepth: int = 4, qlw: int = 3,
                  sdepth: int = 2, tw: int = 8, pos_w: int = 32):
-        from .arc import CircArc
         from .curve import CurveTangent
         from .su1571551 import Su1571551
 
         self.w, self.feed_w, self.pos_w = w, feed_w, pos_w
-        self.queue = SyncFifo(3 + feed_w + 7 * w, qdepth, qlw)
+        self.queue = SyncFifo(5 + feed_w + 7 * w, qdepth, qlw)
         self.line_a, self.line_b = Su1571551(w, True), Su1571551(w, True)
-        self.arc, self.curve = CircArc(w), CurveTangent(w, w + 8, w)
+        self.arc, self.curve = ArcPlane(w), CurveTangent(w, w + 8, w)
         self.sync = StepSync(3, sdepth, 2, feed_w, 4)
         self.feed, self.out = FeedRate(frac), StepDir(3, tw)
         self.reset()
@@ -411,6 +538,7 @@ class MotionTop(CycleModel):
         self.lead_q = self.lead_neg_q = self.feed_q = self.dwell_q = 0
         self.pos = [0, 0, 0]
         self.step_q = self.busy_q = self.done = self.error = self.error_code = self.sync_overflow_q = 0
+        self.event_valid = self.event_code = self.event_value = 0
 
     # ---- outputs ----
     def _bit(self, vector: int, axis: int) -> int:
@@ -434,7 +562,7 @@ class MotionTop(CycleModel):
                    or not self.out.ready)
 
     def pack(self, inputs) -> int:
-        value = inputs.get("cmd_kind", 0) & 7
+        value = (inputs.get("cmd_kind", 0) & 7) << 2 | inputs.get("cmd_plane", 0) & 3
         value = value << self.feed_w | inputs.get("cmd_feed", 0) & ((1 << self.feed_w) - 1)
         for f in FIELDS:
             value = value << self.w | inputs.get(f"cmd_{f}", 0) & ((1 << self.w) - 1)
@@ -446,7 +574,8 @@ class MotionTop(CycleModel):
             fields[f] = _signed(value, self.w)
             value >>= self.w
         fields["feed"] = value & ((1 << self.feed_w) - 1)
-        fields["kind"] = value >> self.feed_w & 7
+        fields["plane"] = value >> self.feed_w & 3
+        fields["kind"] = value >> self.feed_w + 2 & 7
         return fields
 
     def clock(self, i) -> None:
@@ -458,13 +587,15 @@ class MotionTop(CycleModel):
         kind = h["kind"]
         idle = self.state == S_IDLE
         is_move = kind in (LINE, ARC_CW, ARC_CCW, CURVE)
-        bad_kind = kind > DWELL
+        is_arc = kind in (ARC_CW, ARC_CCW)
+        bad_kind = kind > EVENT
         bad_feed = is_move and h["feed"] == 0
         bad_range = kind == LINE and lo in (h["x"], h["y"], h["z"])
+        bad_plane = is_arc and h["plane"] == 3
         dispatch = idle and bool(self.queue.valid)
-        accept = dispatch and not (bad_kind or bad_feed or bad_range)
+        accept = dispatch and not (bad_kind or bad_feed or bad_range or bad_plane)
         start_line = int(accept and kind == LINE)
-        start_arc = int(accept and kind in (ARC_CW, ARC_CCW))
+        start_arc = int(accept and is_arc)
         start_curve = int(accept and kind == CURVE)
         mags = [abs(h[a]) & ((1 << w) - 1) for a in AXES]     # -2^(W-1) wraps, as in the RTL
         lead = 0 if mags[0] >= mags[1] and mags[0] >= mags[2] else 1 if mags[1] >= mags[2] else 2
@@ -482,8 +613,14 @@ class MotionTop(CycleModel):
         else:
             line_step = a.step_y | b.step_y << 1 | a.step_x << 2
             line_dir = a.dir_y | b.dir_y << 1 | self.lead_neg_q << 2
+        arc_in = {"start": start_arc, "tick": core_tick, "plane": h["plane"], "ccw": int(kind == ARC_CCW),
+                  "end_u": h["x"], "end_v": h["y"], "centre_u": h["i"], "centre_v": h["j"],
+                  "travel": h["z"], "count": h["k"]}
+        arc_nets = self.arc.nets(arc_in)
+        helix_step = a.step_y
+        arc_step, arc_dir = self.arc.outputs(a.step_y, a.dir_y)
         core_step, core_dir = {
-            S_ARC: (self.arc.step_x | self.arc.step_y << 1, self.arc.dir_x | self.arc.dir_y << 1),
+            S_ARC: (arc_step, arc_dir),
             S_CURVE: (self.curve.step_x | self.curve.step_y << 1, self.curve.dir_x | self.curve.dir_y << 1),
             S_LINE: (line_step, line_dir)}.get(self.state, (0, 0))
 
@@ -493,23 +630,25 @@ class MotionTop(CycleModel):
         fire = int(release_ok and out_valid)
         out_axes = bin(out_step).count("1")
         core_done = ((self.state == S_LINE and a.done) or
-                     (self.state == S_ARC and (self.arc.done or self.arc.error)) or
+                     (self.state == S_ARC and (arc_nets["done"] or arc_nets["error"])) or
                      (self.state == S_CURVE and (self.curve.done or self.curve.error)))
-        core_error = (self.state == S_ARC and self.arc.error) or (self.state == S_CURVE and self.curve.error)
+        core_error = (self.state == S_ARC and arc_nets["error"]) or (self.state == S_CURVE and self.curve.error)
         drained = not out_valid and out.ready
         q_overflow = i.get("cmd_valid", 0) and self.queue.full and not dispatch
         sync_overflow = sync.overflow
         busy = self.busy
         drv_step, drv_dir = out.step, out.dir
 
+        event_strobe = int(self.state == S_EVENT and drained)
+
         # ---- the edge ----
         self.queue.clock({"push": i.get("cmd_valid", 0), "pop": int(dispatch), "din": self.pack(i)})
         lead_len = mags[lead]
-        self.line_a.clock({"start": start_line, "tick": core_tick, "x": lead_len, "y": minor1})
+        self.line_a.clock({"rst": arc_nets["helix_abort"], "start": start_line | arc_nets["helix_start"],
+                           "tick": arc_nets["helix_tick"] if self.state == S_ARC else core_tick,
+                           "x": arc_nets["helix_lead"] if is_arc else lead_len, "y": h["z"] if is_arc else minor1})
         self.line_b.clock({"start": start_line, "tick": core_tick, "x": lead_len, "y": minor2})
-        self.arc.clock({"start": start_arc, "tick": core_tick, "cx": h["i"], "cy": h["j"], "x0": 0, "y0": 0,
-                        "x1": h["x"], "y1": h["y"], "ccw": int(kind == ARC_CCW),
-                        "full": int(h["x"] == 0 and h["y"] == 0)})
+        self.arc.clock(arc_in, arc_nets, helix_step)
         self.curve.clock({"start": start_curve, "tick": core_tick, "x0": 0, "y0": 0, "p0": h["x"], "q0": h["y"],
                           "dp_dx": h["i"], "dp_dy": h["j"], "dq_dx": h["k"], "dq_dy": h["l"], "reverse": 0,
                           "count": h["z"] & ((1 << w) - 1), "end_sel": 0, "end_coord": 0, "improved": 0,
@@ -529,6 +668,8 @@ class MotionTop(CycleModel):
                     self.state = S_CURVE
                 elif kind == DWELL:
                     self.state, self.dwell_q = S_DRAIN, h["x"] & ((1 << w) - 1)
+                elif kind == EVENT:
+                    self.state, self.event_code, self.event_value = S_EVENT, h["x"] & 0xFF, h["y"]
                 else:
                     self.state = S_ARC
         elif self.state in (S_LINE, S_ARC, S_CURVE):
@@ -537,6 +678,9 @@ class MotionTop(CycleModel):
         elif self.state == S_DRAIN:
             if drained:
                 self.state = S_DWELL
+        elif self.state == S_EVENT:
+            if drained:
+                self.state = S_IDLE
         elif self.state == S_DWELL:
             if self.dwell_q == 0:
                 self.state = S_IDLE
@@ -546,9 +690,11 @@ class MotionTop(CycleModel):
             if drv_step >> k & 1 and not self.step_q >> k & 1:
                 self.pos[k] = _signed(self.pos[k] + (-1 if drv_dir >> k & 1 else 1), self.pos_w)
         self.step_q = drv_step
+        self.event_valid = event_strobe
         self.busy_q, self.done = busy, int(self.busy_q and not busy)
         code = (E_KIND if dispatch and bad_kind else E_FEED if dispatch and bad_feed
-                else E_RANGE if dispatch and bad_range else E_CORE if core_error
+                else E_RANGE if dispatch and bad_range else E_PLANE if dispatch and bad_plane
+                else E_CORE if core_error
                 else E_QUEUE if q_overflow else E_SYNC if sync_overflow and not self.sync_overflow_q
                 else 0)
         self.sync_overflow_q = sync_overflow

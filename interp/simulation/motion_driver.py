@@ -15,7 +15,7 @@ from cocotb.triggers import FallingEdge
 
 from ..testing.tbkit import TB, read
 
-IDLE = {"rst": 0, "cmd_valid": 0, "hold": 0, "cmd_kind": 0, "cmd_feed": 0,
+IDLE = {"rst": 0, "cmd_valid": 0, "hold": 0, "cmd_kind": 0, "cmd_plane": 0, "cmd_feed": 0,
         **{f"cmd_{f}": 0 for f in "xyzijkl"}}
 
 

@@ -47,9 +47,10 @@ async def constant_path_speed(dut):
     """Axial, 2-axis and 3-axis steps: the path speed equals feed / 2^FRAC within 2^-FRAC."""
     tb = await FeedTB(dut).start()
     one = 1 << tb.frac
-    for feed in (one // 3, one // 10 + 7, 997):
+    slow = 1 << (tb.frac - 16)                 # feeds below 2^FRAC / 13: slow ones at any FRAC
+    for feed in (one // 3, one // 10 + 7, 997 * slow + 1):
         for n in (1, 2, 3):
-            steps = 200 if feed > 5000 else 20
+            steps = 200 if feed > 5000 * slow else 20
             taken = await tb.run([(feed, [n] * (steps + 1))], context=f"feed {feed} axes {n}")
             cycles = taken[-1] - taken[0]
             speed = steps * math.sqrt(n) / cycles
@@ -79,7 +80,7 @@ async def feed_change_without_glitch(dut):
     rng = seeded_rng(dut, "feed_change_without_glitch")
     tb = await FeedTB(dut).start()
     one = 1 << tb.frac
-    segments = [(rng.choice([one // 4, one // 7, one // 2, 3000]), [rng.choice([1, 2, 3]) for _ in range(6)])
+    segments = [(rng.choice([one // 4, one // 7, one // 2, 3000 << (tb.frac - 16)]), [rng.choice([1, 2, 3]) for _ in range(6)])
                 for _ in range(12)]
     taken = await tb.run(segments, context="feed change")
     flat = [(feed, n) for feed, axes in segments for n in axes]
@@ -106,7 +107,7 @@ async def back_pressure_holds_phase(dut):
 async def reset_mid_interval(dut):
     """rst in the middle of an interval: tick is high at once afterwards, the model agrees."""
     tb = await FeedTB(dut).start()
-    await tb.run([(1000, [3, 1])], context="before reset")
+    await tb.run([(1000 << (tb.frac - 16), [3, 1])], context="before reset")
     await tb.reset(IDLE)
     tb.ref.reset()
     assert int(dut.tick.value) == 1 and dut.acc.value.to_signed() == 0
@@ -115,3 +116,9 @@ async def reset_mid_interval(dut):
 def test_feed_rate(sim):
     run_cocotb(toplevel="feed_rate", test_module="test_feed_rate", sim=sim,
                parameters={"FEED_W": 16, "FRAC": 16}, name="feed_rate")
+
+
+def test_feed_rate_wide(sim):
+    """The G-code build's speed block: FRAC = 48 (costs from the exact integer square root)."""
+    run_cocotb(toplevel="feed_rate", test_module="test_feed_rate", sim=sim,
+               parameters={"FEED_W": 50, "FRAC": 48}, name="feed_rate_wide")
