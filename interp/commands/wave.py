@@ -176,11 +176,12 @@ def run_example(name: str, vcd: Path, out: Path) -> None:
     from ..cli import build_parser
 
     if name == MOTION:
-        from .gcode import DEMO
+        from .gcode import DEMO, DEMO_OPTIONS
 
         src = out / "motion_demo.nc"
         src.write_text(DEMO)
-        argv = ["gcode", str(src), "--steps", str(out / f"{name}_steps.csv"), "--vcd", str(vcd)]
+        argv = ["gcode", str(src), *DEMO_OPTIONS, "--sim", "icarus", "--steps", str(out / f"{name}_steps.csv"),
+                "--vcd", str(vcd)]
     else:
         if not REGISTRY[name].examples:
             raise UsageError(f"core {name} has no built-in example to run")

@@ -22,6 +22,7 @@ from interp.models.motion import (ARC_CCW, ARC_CW, CURVE, DWELL, E_CORE, E_FEED,
                                   queue_steps)
 from interp.cli import main
 from interp.commands import gcode
+from interp.gcode.machine import load_machine
 from interp.simulation.runner import run_cocotb
 from interp.testing.tbkit import TB, read, scoreboard, seeded_rng
 
@@ -349,11 +350,11 @@ def test_motion_top(sim, tmp_path):
     # `interp gcode` on the same build: the built-in program, steps equal to the models'
     src = tmp_path / "demo.nc"
     src.write_text(gcode.DEMO)
-    argv = ["gcode", str(src), "--sim", sim, "--steps", str(tmp_path / "steps.csv"),
-            "--pulse-width", "2", "--setup", "1", "--hold", "1"]
+    argv = ["gcode", str(src), *gcode.DEMO_OPTIONS, "--sim", sim, "--steps", str(tmp_path / "steps.csv")]
     assert main(argv) == 0
     with open(tmp_path / "steps.csv") as f:
         rows = list(csv.reader(f))
     assert rows[0] == ["cycle", "dx", "dy", "dz"]
-    want, _ = queue_steps(gcode.parse(gcode.DEMO).commands)
+    compiled = gcode.compile_text(gcode.DEMO, load_machine(clock_hz=50_000))[1]
+    want, _ = queue_steps(compiled.commands, 32)
     assert [tuple(int(v) for v in r[1:]) for r in rows[1:]] == want
