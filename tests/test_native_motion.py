@@ -27,7 +27,7 @@ FEATURES = ports(RTL)
 PARAMS = (CLI_PARAMETERS if "FRAC > 28" not in (RTL / "motion_top.v").read_text()
           else {**CLI_PARAMETERS, "FRAC": 28, "FEED_W": 30})
 ONE = 1 << PARAMS["FRAC"]                       # feed of 1 step per clock
-TIMING = (2, 1, 1)                              # pulse width, dir setup, dir hold
+TIMING = (3, 2, 4)                              # pulse width, dir setup, dir hold (cycles)
 
 
 @pytest.fixture(scope="session")
@@ -83,15 +83,15 @@ def end_point(rows) -> list[int]:
     return pos
 
 
-def both(tmp_path, rows, max_cycles=2_000_000, name="job"):
+def both(tmp_path, rows, max_cycles=2_000_000, name="job", timing=TIMING):
     """(native result, native CSV text, Icarus result, Icarus CSV text) of one job."""
     commands = tmp_path / f"{name}.txt"
     write_commands(commands, rows)
-    got = run_native(commands, steps_path=tmp_path / f"{name}_native.csv", timing=TIMING,
+    got = run_native(commands, steps_path=tmp_path / f"{name}_native.csv", timing=timing,
                      max_cycles=max_cycles, parameters=PARAMS)
-    exact = run_native(commands, steps_path=tmp_path / f"{name}_exact.csv", timing=TIMING,
+    exact = run_native(commands, steps_path=tmp_path / f"{name}_exact.csv", timing=timing,
                        max_cycles=max_cycles, parameters=PARAMS, exact=True)
-    want = run_cocotb_job(commands, "icarus", TIMING, tmp_path / f"{name}_icarus.csv", max_cycles,
+    want = run_cocotb_job(commands, "icarus", timing, tmp_path / f"{name}_icarus.csv", max_cycles,
                           parameters=PARAMS)
     texts = [(tmp_path / f"{name}_{k}.csv").read_bytes() for k in ("native", "exact", "icarus")]
     assert texts[0] == texts[1], "quiet-stretch skipping changed the steps"
@@ -129,6 +129,18 @@ def test_slow_job_skips_quiet_cycles(native, tmp_path):
     assert got["skipped"] > 0.9 * got["cycles"] and exact.pop("skipped") == 0
     got.pop("skipped")
     assert got == exact and got["position"] == [7, -3, 2]
+
+
+@pytest.mark.parametrize("timing", [(40, 30, 120), (1, 0, 0), (200, 0, 300)])
+def test_slow_reversals_with_long_timing(native, tmp_path, timing):
+    """Quiet stretches in every state of the output stage (pulse, dir hold and setup waits)
+    and in a dwell: skipping must stop exactly where a counter acts (Icarus and --exact agree)."""
+    feed = ONE // 450
+    rows = [(0, 0, feed, 3 - 6 * (k % 2), 2 - 4 * (k % 2), 1 - 2 * (k % 2), 0, 0, 0, 0) for k in range(4)]
+    rows += [(1, 0, feed, 0, 0, 0, 2, 1, 0, 0), (4, 0, 0, 3000, 0, 0, 0, 0, 0, 0),
+             (0, 0, ONE // 3, -4, 0, 0, 0, 0, 0, 0), (0, 0, ONE // 3, 4, 1, 0, 0, 0, 0, 0)]
+    got = both(tmp_path, rows, timing=timing)
+    assert got["position"] == end_point(rows) and not got["errors"]
 
 
 def test_max_cycles_stop(native, tmp_path):

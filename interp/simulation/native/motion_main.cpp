@@ -23,19 +23,28 @@
 // Compile-time settings (harness_config.h, written by interp/simulation/native/build.py): MT_W,
 // MT_FEED_W, MT_POS_W, MT_TW (parameter widths, each <= 64), HAS_PLANE,
 // HAS_EVENTS (the ports exist), TRACE (VCD support), QUIET_SKIP with MT_AW
-// (feed_rate's accumulator u_feed.acc, MT_AW <= 64 bits, is reachable).
+// (feed_rate's accumulator u_feed.acc and feed_q are in the model, <= 64
+// bits) and, when found, MT_SINCE_W, MT_COUNT_W (step_dir's since_fall and
+// count) and MT_DWELL_W (motion_top's dwell_q).
 //
-// Quiet stretches (QUIET_SKIP, off with --exact or --vcd): at a low feed the
-// drive waits thousands of cycles between steps, and in those cycles the only
-// register that changes is feed_rate's phase accumulator, which grows by the
-// latched feed until it turns non-negative (feed_rate's `tick`; the
-// accumulator is read nowhere else).  When, after a few cycles without a step,
-// push, error or event, the whole model (every member of Verilator's root
-// object) is bit-identical to the previous cycle's except that accumulator,
-// and the accumulator is negative, then every following cycle is the same up
-// to the cycle before it turns non-negative: the harness adds those cycles'
-// feed to it at once and counts them.  Same files, same results; the cycle
-// each event happens in is unchanged.
+// Quiet stretches (QUIET_SKIP; off with --exact 1 or --vcd): at a low feed the
+// drive waits thousands of cycles between steps, and in those cycles only
+// counters change.  When, some cycles after the last step, push, error or
+// event, every member of Verilator's model (root object) is bit-identical to
+// the previous cycle's except these counters, and each of them moved as its
+// rule says, the following cycles are the same up to the first cycle in which
+// a counter reaches the value the RTL acts on; the harness moves the counters
+// on to a cycle before that and counts the cycles in between.  The rules (the
+// RTL as it is; a change there needs a change here, and the tests compare
+// with --exact and with Icarus):
+//   feed_rate acc     grows by feed_q while negative (tick low), else holds;
+//                     read only through its sign (tick): stop before it turns >= 0
+//   step_dir since_fall  +1 per cycle, saturating; read through `held`
+//                     (since_fall + 1 >= hold) and saturation: stop before held
+//   step_dir count    -1 per cycle in SETUP/PULSE; acts at 1: stop before
+//   motion_top dwell_q   -1 per cycle in DWELL; acts at 0: stop before
+// Same files, same results; the cycle each thing happens in is unchanged.
+#include <algorithm>
 #include <cerrno>
 #include <cinttypes>
 #include <cstdint>
@@ -317,15 +326,45 @@ int main(int argc, char** argv) {
     auto* root = top->rootp;
     const bool skip = !exact && !vcd_path;
     std::vector<unsigned char> snapshot(sizeof *root);
-    auto& acc = root->motion_top__DOT__u_feed__DOT__acc;
-    const size_t acc_at = reinterpret_cast<unsigned char*>(&acc) - reinterpret_cast<unsigned char*>(root);
-    uint64_t calm = 0, check_at = 8, skipped = 0;
-    int64_t prev_acc = 0;
+    // a counter of the model: where it is, its width, its value at the snapshot
+    struct Counter {
+        void* at;
+        size_t size;
+        int bits;
+        uint64_t before;
+        uint64_t get() const {
+            uint64_t v = 0;
+            std::memcpy(&v, at, size);      // little-endian: the low bytes of v
+            return v & mask(bits);
+        }
+        void set(uint64_t v) { std::memcpy(at, &v, size); }
+        size_t offset(const void* base) const {
+            return static_cast<const unsigned char*>(at) - static_cast<const unsigned char*>(base);
+        }
+    };
+#define MT_COUNTER(member, width) Counter{&root->member, sizeof root->member, width, 0}
+    Counter acc = MT_COUNTER(motion_top__DOT__u_feed__DOT__acc, MT_AW);
 #ifdef MT_SINCE_W
-    auto& since_fall = root->motion_top__DOT__u_out__DOT__since_fall;
-    const size_t since_at = reinterpret_cast<unsigned char*>(&since_fall) - reinterpret_cast<unsigned char*>(root);
-    uint64_t prev_since = 0;
+    Counter since = MT_COUNTER(motion_top__DOT__u_out__DOT__since_fall, MT_SINCE_W);
 #endif
+#ifdef MT_COUNT_W
+    Counter count = MT_COUNTER(motion_top__DOT__u_out__DOT__count, MT_COUNT_W);
+#endif
+#ifdef MT_DWELL_W
+    Counter dwell = MT_COUNTER(motion_top__DOT__dwell_q, MT_DWELL_W);
+#endif
+    Counter* counters[] = {&acc,
+#ifdef MT_SINCE_W
+                           &since,
+#endif
+#ifdef MT_COUNT_W
+                           &count,
+#endif
+#ifdef MT_DWELL_W
+                           &dwell,
+#endif
+    };
+    uint64_t calm = 0, check_at = 8, skipped = 0;
 #else
     (void)exact;
     const uint64_t skipped = 0;
@@ -390,44 +429,59 @@ int main(int argc, char** argv) {
                 calm = 0;
             } else if (++calm == check_at) {
                 std::memcpy(snapshot.data(), root, sizeof *root);
-                prev_acc = sign_extend(acc, MT_AW);
-#ifdef MT_SINCE_W
-                prev_since = since_fall;
-#endif
+                for (Counter* c : counters) c->before = c->get();
             } else if (calm == check_at + 1) {
-                const int64_t a = sign_extend(acc, MT_AW);
-                const uint64_t feed = root->motion_top__DOT__u_feed__DOT__feed_q;
-                bool linear = a < 0 && (uint64_t(a - prev_acc) & mask(MT_AW)) == feed;
-                std::memcpy(snapshot.data() + acc_at, &acc, sizeof acc);
-#ifdef MT_SINCE_W
-                const uint64_t since = since_fall, top_since = mask(MT_SINCE_W);
-                linear = linear && (since == top_since ? prev_since == top_since : since == prev_since + 1);
-                std::memcpy(snapshot.data() + since_at, &since_fall, sizeof since_fall);
-#endif
                 calm = 0;
-                if (std::getenv("MT_DEBUG_QUIET") && linear) {
-                    const unsigned char* r = reinterpret_cast<const unsigned char*>(root);
-                    for (size_t b = 0; b < sizeof *root; ++b)
-                        if (snapshot[b] != r[b]) std::fprintf(stderr, "diff %" PRIu64 " %zu\n", cycle, b);
+                // the largest number of cycles every counter allows (0: none)
+                uint64_t jump = max_cycles - cycle - 1;       // cycle < max_cycles here
+                const int64_t a = sign_extend(acc.get(), MT_AW), a0 = sign_extend(acc.before, MT_AW);
+                const uint64_t feed = root->motion_top__DOT__u_feed__DOT__feed_q;
+                if (a < 0 && a0 < 0 && (uint64_t(a - a0) & mask(MT_AW)) == feed) {
+                    if (feed) jump = std::min(jump, (uint64_t(-a) + feed - 1) / feed - 1);
+                } else if (!(a >= 0 && a == a0)) {
+                    jump = 0;
                 }
-                if (linear && std::memcmp(snapshot.data(), root, sizeof *root) == 0) {
-                    // cycles until acc >= 0 (never with feed 0: nothing changes any more)
-                    const uint64_t left = feed ? (uint64_t(-a) + feed - 1) / feed : UINT64_MAX;
-                    uint64_t jump = left - 1;
-                    if (jump > max_cycles - cycle - 1) jump = max_cycles - cycle - 1;   // cycle < max_cycles here
-                    if (jump) {
-                        const uint64_t before = cycle;
-                        acc = uint64_t(a + int64_t(jump * feed)) & mask(MT_AW);
 #ifdef MT_SINCE_W
-                        since_fall = jump >= top_since - since ? top_since : since + jump;
+                const uint64_t s_now = since.get(), s_top = mask(MT_SINCE_W);
+                if (s_now == s_top ? since.before != s_top : s_now != since.before + 1) jump = 0;
+                const uint64_t hold_time = top->hold_time;
+                if (s_now != s_top && s_now + 1 < hold_time) jump = std::min(jump, hold_time - s_now - 2);
 #endif
-                        cycle += jump;
-                        skipped += jump;
-                        if ((before >> progress_log2) != (cycle >> progress_log2)) {
-                            std::printf("progress %" PRIu64 " %" PRIu64 " %zu\n", cycle, rows,
-                                        next - size_t(top->queue_level));
-                            std::fflush(stdout);
-                        }
+#ifdef MT_COUNT_W
+                const uint64_t c_now = count.get();
+                if (c_now + 1 == count.before) jump = c_now >= 2 ? std::min(jump, c_now - 2) : 0;
+                else if (c_now != count.before) jump = 0;
+#endif
+#ifdef MT_DWELL_W
+                const uint64_t d_now = dwell.get();
+                if (d_now + 1 == dwell.before) jump = d_now >= 1 ? std::min(jump, d_now - 1) : 0;
+                else if (d_now != dwell.before) jump = 0;
+#endif
+                if (jump) {
+                    for (Counter* c : counters) {
+                        const uint64_t v = c->get();
+                        std::memcpy(snapshot.data() + c->offset(root), &v, c->size);
+                    }
+                    if (std::memcmp(snapshot.data(), root, sizeof *root) != 0) jump = 0;
+                }
+                if (jump) {
+                    const uint64_t before = cycle;
+                    if (a < 0) acc.set(uint64_t(a + int64_t(jump * feed)) & mask(MT_AW));
+#ifdef MT_SINCE_W
+                    if (s_now != s_top) since.set(jump >= s_top - s_now ? s_top : s_now + jump);
+#endif
+#ifdef MT_COUNT_W
+                    if (c_now + 1 == count.before) count.set(c_now - jump);
+#endif
+#ifdef MT_DWELL_W
+                    if (d_now + 1 == dwell.before) dwell.set(d_now - jump);
+#endif
+                    cycle += jump;
+                    skipped += jump;
+                    if ((before >> progress_log2) != (cycle >> progress_log2)) {
+                        std::printf("progress %" PRIu64 " %" PRIu64 " %zu\n", cycle, rows,
+                                    next - size_t(top->queue_level));
+                        std::fflush(stdout);
                     }
                     check_at = 8;
                 } else if (check_at < 4096) {
