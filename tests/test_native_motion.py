@@ -171,3 +171,16 @@ def test_bad_command_file(native, tmp_path, text, where):
         run_native(commands, steps_path=tmp_path / "s.csv", timing=TIMING, max_cycles=100, parameters=PARAMS)
     message = str(err.value)
     assert "\n" not in message and message.startswith(f"{commands} {where}"), message
+
+
+def test_progress_callback(native, tmp_path):
+    """A 12-step line at 1 step per 10^6 cycles: progress every 2^22 cycles while it runs."""
+    commands = tmp_path / "long.txt"
+    write_commands(commands, [(0, 0, ONE // 1_000_000, 12, 5, 0, 0, 0, 0, 0)])
+    calls = []
+    got = run_native(commands, steps_path=tmp_path / "s.csv", timing=TIMING, max_cycles=10**9,
+                     parameters=PARAMS, progress=lambda *a: calls.append(a))
+    assert got["steps"] == 12 and got["cycles"] > 11_000_000
+    assert len(calls) >= 2 and all(c[0] >= 1 << 22 and c[2] == 1 for c in calls)
+    assert [c[0] for c in calls] == sorted({c[0] for c in calls}) and calls[-1][0] < got["cycles"]
+    assert [c[1] for c in calls] == sorted(c[1] for c in calls) and 0 < calls[-1][1] <= 12
