@@ -37,7 +37,7 @@ DEFAULTS = {"W": 16, "FEED_W": 16, "FRAC": 16, "QDEPTH": 4, "QLW": 3, "SDEPTH": 
 VERILATOR_FLAGS = ["-O3", "--x-assign", "fast", "--x-initial", "fast", "--noassert"]
 CFLAGS = "-O2 -march=native"
 MAKE_VARIABLES = [PCH_FIX, "OPT_FAST=-O2", "OPT_SLOW=-O1", "OPT_GLOBAL=-O2"]
-BUILD_SECONDS = 60          # what the build message announces (this machine: see the report)
+BUILD_SECONDS = 60          # what the build message announces (40 to 65 s measured on 2 busy cores)
 
 
 def ports(rtl: Path = RTL) -> set[str]:
