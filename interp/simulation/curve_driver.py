@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """cocotb test module behind `interp curve-error`: many curve moves in one simulation.
 
-$INTERP_JOBS holds a JSON list of CLI argument dicts for the `curve` core; the
+$INTERP_JOBS_FILE names a JSON file (or $INTERP_JOBS holds the JSON) with a list of CLI argument dicts for the `curve` core; the
 visited nodes of each move go to $INTERP_OUT as JSON (one list per job).
 """
 import json
@@ -12,6 +12,7 @@ import cocotb
 
 from ..cores import load_all
 from ..testing.tbkit import TB, run_stimulus
+from .jobs import job_from_env
 
 
 @cocotb.test()
@@ -20,7 +21,7 @@ async def run_jobs(dut):
     tb = TB(dut)
     results = []
     first = True
-    for job in json.loads(os.environ["INTERP_JOBS"]):
+    for job in job_from_env("INTERP_JOBS"):
         args = Namespace(**job)
         watch = core.model(args).watch
         stimulus = core.stimulus(args)

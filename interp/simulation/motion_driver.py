@@ -1,22 +1,33 @@
 # SPDX-License-Identifier: Apache-2.0
-"""cocotb test module behind `interp gcode`: feeds commands to rtl/motion_top.v.
+"""cocotb test module that feeds a job of commands to rtl/motion_top.v.
 
-The job comes in $INTERP_JOB as JSON: the commands (ports of
-interp.models.motion.Command), the output-stage timing and the output file.
-It writes, as JSON, the drive's pulses (cycle, step bits, dir bits at each
-rising edge), the error strobes (cycle, code), the final position and the
-cycle count.
+The job is a JSON file whose path is in $INTERP_JOB_FILE (or, from callers
+not yet moved to files, JSON text in $INTERP_JOB): the commands, the
+output-stage timing (port values), max_cycles and the output files.  Commands
+are pushed whenever the previous cycle's sample showed cmd_full low; inputs
+are driven and outputs sampled at the falling edge, the first cycle after
+reset counts 1 (the native harness, interp/simulation/native/motion_main.cpp,
+counts the same way).  Two kinds of job:
+
+- "commands" as rows of 10 integers (kind plane feed x y z i j k l) and a
+  "steps" CSV path (interp.simulation.native.run_cocotb_job): writes the steps
+  CSV ("cycle,dx,dy,dz", one row per cycle with a rising step edge) and, to
+  "out", the native harness's result: cycles, position, errors [[cycle, code]],
+  events [[cycle, code, value]], steps, stopped (max_cycles reached), pushed,
+  dispatched, commands.
+- "commands" as port dicts without "steps" (interp gcode): writes to "out"
+  the pulses (cycle, step bits, dir bits at each rising edge), the errors, the
+  position and the cycle count; max_cycles reached is an error.
 """
 import json
-import os
 
 import cocotb
 from cocotb.triggers import FallingEdge
 
 from ..testing.tbkit import TB, read
+from .jobs import job_from_env
 
-IDLE = {"rst": 0, "cmd_valid": 0, "hold": 0, "cmd_kind": 0, "cmd_plane": 0, "cmd_feed": 0,
-        **{f"cmd_{f}": 0 for f in "xyzijkl"}}
+FIELDS = ("cmd_kind", "cmd_plane", "cmd_feed", "cmd_x", "cmd_y", "cmd_z", "cmd_i", "cmd_j", "cmd_k", "cmd_l")
 
 
 def bits(dut, prefix: str) -> int:
@@ -25,28 +36,70 @@ def bits(dut, prefix: str) -> int:
 
 @cocotb.test()
 async def run_commands(dut):
-    job = json.loads(os.environ["INTERP_JOB"])
-    timing = job["timing"]
+    job = job_from_env("INTERP_JOB")
+    has_plane, has_events = hasattr(dut, "cmd_plane"), hasattr(dut, "event_valid")
+    ports = [f for f in FIELDS if f != "cmd_plane" or has_plane]
+    native = "steps" in job
+    commands = []
+    for c in job["commands"]:
+        if native:
+            if c[1] and not has_plane:
+                raise ValueError(f"plane {c[1]}, but this motion_top has no cmd_plane port")
+            commands.append(dict((name, v) for name, v in zip(FIELDS, c) if name in ports))
+        else:
+            commands.append(c)
     tb = TB(dut)
-    await tb.reset({**IDLE, **timing})
-    pending = list(job["commands"])
-    pulses, errors = [], []
-    prev_step, cycle = 0, 0
-    while True:
-        push = bool(pending) and not int(dut.cmd_full.value)
-        tb.drive({**pending.pop(0), "cmd_valid": 1} if push else {"cmd_valid": 0})
-        await FallingEdge(dut.clk)
-        cycle += 1
-        step, dirs = bits(dut, "step"), bits(dut, "dir")
-        if step & ~prev_step:
-            pulses.append((cycle, step & ~prev_step, dirs))
-        prev_step = step
-        if int(dut.error.value):
-            errors.append((cycle, int(dut.error_code.value)))
-        if not pending and not push and not int(dut.busy.value):
-            break
-        if cycle > job["max_cycles"]:
-            raise RuntimeError(f"motion_top not done after {cycle} cycles")
+    await tb.reset({"rst": 0, "cmd_valid": 0, "hold": 0, **{p: 0 for p in ports}, **job["timing"]})
+    width = len(dut.cmd_x)
+    pending, next_index = commands, 0
+    pulses, rows, errors, events = [], [], [], []
+    prev_step, cycle, stopped = 0, 0, False
+    steps_file = open(job["steps"], "w") if native else None
+    if steps_file:
+        steps_file.write("cycle,dx,dy,dz\n")
+    try:
+        while True:
+            push = next_index < len(pending) and not int(dut.cmd_full.value)
+            if push:
+                tb.drive({**pending[next_index], "cmd_valid": 1})
+                next_index += 1
+            else:
+                tb.drive({"cmd_valid": 0})
+            await FallingEdge(dut.clk)
+            cycle += 1
+            step = bits(dut, "step")
+            rise = step & ~prev_step
+            prev_step = step
+            if rise:
+                dirs = bits(dut, "dir")
+                if steps_file:
+                    d = [(-1 if dirs >> k & 1 else 1) if rise >> k & 1 else 0 for k in range(3)]
+                    steps_file.write(f"{cycle},{d[0]},{d[1]},{d[2]}\n")
+                    rows.append(cycle)
+                else:
+                    pulses.append((cycle, rise, dirs))
+            if int(dut.error.value):
+                errors.append((cycle, int(dut.error_code.value)))
+            if has_events and int(dut.event_valid.value):
+                value = int(dut.event_value.value)
+                events.append((cycle, int(dut.event_code.value), value - (value >> (width - 1) << width)))
+            if next_index == len(pending) and not push and not int(dut.busy.value):
+                break
+            if native and cycle >= job["max_cycles"]:
+                stopped = True
+                break
+            if not native and cycle > job["max_cycles"]:
+                raise RuntimeError(f"motion_top not done after {cycle} cycles")
+    finally:
+        if steps_file:
+            steps_file.close()
+    position = [read(dut, f"pos_{a}", signed=True) for a in "xyz"]
+    if native:
+        dispatched = next_index - int(dut.queue_level.value)
+        result = {"cycles": cycle, "position": position, "errors": errors, "events": events,
+                  "steps": len(rows), "stopped": stopped, "pushed": next_index, "dispatched": dispatched,
+                  "commands": len(pending), "skipped": 0}
+    else:
+        result = {"pulses": pulses, "errors": errors, "cycles": cycle, "position": position}
     with open(job["out"], "w") as f:
-        json.dump({"pulses": pulses, "errors": errors, "cycles": cycle,
-                   "position": [read(dut, f"pos_{a}", signed=True) for a in "xyz"]}, f)
+        json.dump(result, f)

@@ -1,22 +1,23 @@
 # SPDX-License-Identifier: Apache-2.0
 """cocotb test module behind `interp run`: drives one core with its stimulus.
 
-The job (core name, options, output file) comes in $INTERP_JOB as JSON; the
+The job (core name, options, output file) comes as JSON in the file named by
+$INTERP_JOB_FILE (or in $INTERP_JOB itself); the
 per-cycle samples go to the output file as JSON for the CLI to turn into CSV.
 """
 import json
-import os
 from argparse import Namespace
 
 import cocotb
 
 from ..cores import load_all
 from ..testing.tbkit import TB, read, run_stimulus
+from .jobs import job_from_env
 
 
 @cocotb.test()
 async def run_job(dut):
-    job = json.loads(os.environ["INTERP_JOB"])
+    job = job_from_env("INTERP_JOB")
     core = load_all()[job["core"]]
     args = Namespace(**job["args"])
     watch = core.model(args).watch

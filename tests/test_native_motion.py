@@ -1,0 +1,186 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The native Verilator harness of motion_top (interp.simulation.native) against cocotb on Icarus.
+
+Both run the same command file at the CLI build (32-bit fields, FRAC = 48) and
+must write byte-identical steps CSVs and the same results (cycles, position,
+errors, events); the harness's quiet-stretch skipping must not change anything
+(compared with --exact).  Also: the max_cycles stop, a malformed command
+file, an empty one.  The Verilator build (about a minute) is made once per
+machine and source and shared by every test.
+"""
+import math
+import os
+import random
+import shutil
+
+import pytest
+
+from interp.cores import UsageError
+from interp.simulation.native import CLI_PARAMETERS, executable, run_cocotb_job, run_native, write_commands
+from interp.simulation.native.build import ports
+from interp.simulation.runner import RTL
+
+pytestmark = pytest.mark.skipif(shutil.which("iverilog") is None, reason="needs Icarus Verilog")
+
+FEATURES = ports(RTL)
+# Until motion_top takes FRAC = 48 (feed_rate up to FRAC 64), the same widths at FRAC 28.
+PARAMS = (CLI_PARAMETERS if "FRAC > 28" not in (RTL / "motion_top.v").read_text()
+          else {**CLI_PARAMETERS, "FRAC": 28, "FEED_W": 30})
+ONE = 1 << PARAMS["FRAC"]                       # feed of 1 step per clock
+TIMING = (3, 2, 4)                              # pulse width, dir setup, dir hold (cycles)
+
+
+@pytest.fixture(scope="session")
+def native():
+    return executable(PARAMS)
+
+
+def random_job(rng: random.Random, n: int) -> list[tuple[int, ...]]:
+    """Lines, arcs (quarter, half, three-quarter, full; planes and helices when the RTL has
+    them), dwells, events, a few bad commands; mostly fast feeds, some slow."""
+    jobs = []
+    for _ in range(n):
+        feed = rng.randrange(ONE // 8, ONE) if rng.random() < 0.95 else ONE // rng.randrange(20, 200)
+        r = rng.random()
+        if r < 0.45:
+            jobs.append((0, 0, feed, *(rng.randint(-25, 25) for _ in range(3)), 0, 0, 0, 0))
+        elif r < 0.8:
+            i, j = rng.randint(-12, 12), rng.randint(-12, 12)
+            if i == j == 0:
+                i = 5
+            turn = rng.randrange(4)
+            end = [(i + j, j - i), (2 * i, 2 * j), (i - j, j + i), (0, 0)][turn]
+            ccw = rng.random() < 0.5
+            if ccw and turn in (0, 2):              # the quarter / three-quarter ends swap for CCW
+                end = [(i - j, j + i), None, (i + j, j - i)][turn]
+            plane = rng.randrange(3) if "plane" in FEATURES else 0
+            helix = rng.randint(-10, 10) if "plane" in FEATURES and rng.random() < 0.3 else 0
+            count = max(1, round(2 * math.hypot(i, j) * (turn + 1)))
+            jobs.append((2 if ccw else 1, plane, feed, *end, helix, i, j, count if helix else 0, 0))
+        elif r < 0.88:
+            jobs.append((4, 0, 0, rng.randint(0, 40), 0, 0, 0, 0, 0, 0))
+        elif r < 0.96 and "events" in FEATURES:
+            jobs.append((5, 0, 0, rng.randrange(256), rng.randint(-(1 << 31), (1 << 31) - 1), 0, 0, 0, 0, 0))
+        else:                                        # refused: kind 6, feed 0 (and plane 3)
+            bad = rng.choice([(6, 0, feed, 1, 1, 0, 0, 0, 0, 0), (0, 0, 0, 3, 4, 0, 0, 0, 0, 0)]
+                             + ([(1, 3, feed, 0, 0, 0, 4, 0, 0, 0)] if "plane" in FEATURES else []))
+            jobs.append(bad)
+    return jobs
+
+
+AXES = {0: (0, 1, 2), 1: (2, 0, 1), 2: (1, 2, 0)}    # plane -> the axes of (u, v, w)
+
+
+def end_point(rows) -> list[int]:
+    """Where the accepted moves of a job end."""
+    pos = [0, 0, 0]
+    for kind, plane, feed, x, y, z, *_ in rows:
+        if kind == 0 and feed:
+            pos = [p + d for p, d in zip(pos, (x, y, z))]
+        elif kind in (1, 2) and feed and plane in AXES:
+            for axis, d in zip(AXES[plane], (x, y, z)):
+                pos[axis] += d
+    return pos
+
+
+def both(tmp_path, rows, max_cycles=2_000_000, name="job", timing=TIMING):
+    """(native result, native CSV text, Icarus result, Icarus CSV text) of one job."""
+    commands = tmp_path / f"{name}.txt"
+    write_commands(commands, rows)
+    got = run_native(commands, steps_path=tmp_path / f"{name}_native.csv", timing=timing,
+                     max_cycles=max_cycles, parameters=PARAMS)
+    exact = run_native(commands, steps_path=tmp_path / f"{name}_exact.csv", timing=timing,
+                       max_cycles=max_cycles, parameters=PARAMS, exact=True)
+    want = run_cocotb_job(commands, "icarus", timing, tmp_path / f"{name}_icarus.csv", max_cycles,
+                          parameters=PARAMS)
+    texts = [(tmp_path / f"{name}_{k}.csv").read_bytes() for k in ("native", "exact", "icarus")]
+    assert texts[0] == texts[1], "quiet-stretch skipping changed the steps"
+    assert texts[0] == texts[2], "native and Icarus steps differ"
+    for r in (got, exact, want):
+        r.pop("skipped")
+    assert got == exact == want
+    return got
+
+
+def test_random_jobs_native_equals_icarus(native, tmp_path):
+    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
+    print(f"seed {seed} (SEED={seed} repeats this test)")
+    rows = random_job(random.Random(seed), 300)
+    got = both(tmp_path, rows)
+    print(f"{got['cycles']} cycles, {got['steps']} steps, {len(got['errors'])} errors, {len(got['events'])} events")
+    assert not got["stopped"] and got["pushed"] == got["dispatched"] == got["commands"] == len(rows)
+    assert got["steps"] > 1000
+    assert got["errors"], "the job has refused commands"
+    assert got["position"] == end_point(rows)
+    if "events" in FEATURES:
+        assert len(got["events"]) == sum(r[0] == 5 for r in rows)
+
+
+def test_slow_job_skips_quiet_cycles(native, tmp_path):
+    """A few steps at 1 step per 3000 cycles: nearly every cycle is skipped, nothing changes."""
+    feed = ONE // 3000
+    rows = [(0, 0, feed, 7, -3, 2, 0, 0, 0, 0), (2, 0, feed, 0, 0, 0, 3, 0, 0, 0), (4, 0, 0, 100, 0, 0, 0, 0, 0, 0)]
+    commands = tmp_path / "slow.txt"
+    write_commands(commands, rows)
+    got = run_native(commands, steps_path=tmp_path / "a.csv", timing=TIMING, max_cycles=10**7, parameters=PARAMS)
+    exact = run_native(commands, steps_path=tmp_path / "b.csv", timing=TIMING, max_cycles=10**7,
+                       parameters=PARAMS, exact=True)
+    assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
+    assert got["skipped"] > 0.9 * got["cycles"] and exact.pop("skipped") == 0
+    got.pop("skipped")
+    assert got == exact and got["position"] == [7, -3, 2]
+
+
+@pytest.mark.parametrize("timing", [(40, 30, 120), (1, 0, 0), (200, 0, 300)])
+def test_slow_reversals_with_long_timing(native, tmp_path, timing):
+    """Quiet stretches in every state of the output stage (pulse, dir hold and setup waits)
+    and in a dwell: skipping must stop exactly where a counter acts (Icarus and --exact agree)."""
+    feed = ONE // 450
+    rows = [(0, 0, feed, 3 - 6 * (k % 2), 2 - 4 * (k % 2), 1 - 2 * (k % 2), 0, 0, 0, 0) for k in range(4)]
+    rows += [(1, 0, feed, 0, 0, 0, 2, 1, 0, 0), (4, 0, 0, 3000, 0, 0, 0, 0, 0, 0),
+             (0, 0, ONE // 3, -4, 0, 0, 0, 0, 0, 0), (0, 0, ONE // 3, 4, 1, 0, 0, 0, 0, 0)]
+    got = both(tmp_path, rows, timing=timing)
+    assert got["position"] == end_point(rows) and not got["errors"]
+
+
+def test_max_cycles_stop(native, tmp_path):
+    rows = [(0, 0, ONE // 4, 20, 10, 0, 0, 0, 0, 0)] * 8
+    got = both(tmp_path, rows, max_cycles=150)
+    assert got["stopped"] and got["cycles"] == 150 and got["errors"] == []
+    assert 0 < got["dispatched"] < len(rows) and got["pushed"] <= len(rows)
+
+
+def test_empty_command_file(native, tmp_path):
+    got = both(tmp_path, [])
+    assert got == {"cycles": 1, "position": [0, 0, 0], "errors": [], "events": [], "steps": 0,
+                   "stopped": False, "pushed": 0, "dispatched": 0, "commands": 0}
+    assert (tmp_path / "job_native.csv").read_text() == "cycle,dx,dy,dz\n"
+
+
+@pytest.mark.parametrize("text, where", [
+    ("0 0 100 1 2 3 0 0 0 0\n0 0 5 1 2\n", "line 2: want 10 integers"),
+    ("0 0 100 1 2 3 0 0 0 x\n", "line 1: want 10 integers"),
+    ("\n9 0 100 1 2 3 0 0 0 0\n", "line 2: kind 9 is out of range"),
+    ("0 0 -5 1 2 3 0 0 0 0\n", "line 1: feed -5 is out of range"),
+    (f"0 0 1 {1 << 40} 0 0 0 0 0 0\n", f"line 1: x {1 << 40} is out of range"),
+])
+def test_bad_command_file(native, tmp_path, text, where):
+    commands = tmp_path / "bad.txt"
+    commands.write_text(text)
+    with pytest.raises(UsageError) as err:
+        run_native(commands, steps_path=tmp_path / "s.csv", timing=TIMING, max_cycles=100, parameters=PARAMS)
+    message = str(err.value)
+    assert "\n" not in message and message.startswith(f"{commands} {where}"), message
+
+
+def test_progress_callback(native, tmp_path):
+    """A 12-step line at 1 step per 10^6 cycles: progress every 2^22 cycles while it runs."""
+    commands = tmp_path / "long.txt"
+    write_commands(commands, [(0, 0, ONE // 1_000_000, 12, 5, 0, 0, 0, 0, 0)])
+    calls = []
+    got = run_native(commands, steps_path=tmp_path / "s.csv", timing=TIMING, max_cycles=10**9,
+                     parameters=PARAMS, progress=lambda *a: calls.append(a))
+    assert got["steps"] == 12 and got["cycles"] > 11_000_000
+    assert len(calls) >= 2 and all(c[0] >= 1 << 22 and c[2] == 1 for c in calls)
+    assert [c[0] for c in calls] == sorted({c[0] for c in calls}) and calls[-1][0] < got["cycles"]
+    assert [c[1] for c in calls] == sorted(c[1] for c in calls) and 0 < calls[-1][1] <= 12
