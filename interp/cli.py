@@ -45,6 +45,7 @@ def add_run_options(parser: argparse.ArgumentParser, rtl: bool) -> None:
 
 def simulate(core, args, sim: str = "icarus", vcd: str | None = None) -> Run:
     """Run the core's stimulus through the RTL; return its samples."""
+    from .simulation.jobs import job_env
     from .simulation.runner import run_cocotb
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -52,7 +53,7 @@ def simulate(core, args, sim: str = "icarus", vcd: str | None = None) -> Run:
         job = {"core": core.name, "args": {k: v for k, v in vars(args).items() if _plain(v)},
                "out": str(out)}
         run_cocotb(toplevel=core.toplevel, test_module="interp.simulation.rtl_driver", sim=sim,
-                   parameters=core.parameters(args), env={"INTERP_JOB": json.dumps(job)},
+                   parameters=core.parameters(args), env=job_env("INTERP_JOB", job, tmp),
                    waves=vcd, name=f"cli_{core.toplevel}", test_dir=Path(tmp), quiet=True)
         samples = json.loads(out.read_text())
     return Run(steps=steps_of(samples, core.axes), trace=core.trace(samples), samples=samples)

@@ -485,6 +485,7 @@ def simulate(d: Diagram, vcd: Path) -> None:
                 raise RuntimeError(f"interp gcode failed for {d.module}")
         return
     top, parameters, cli = rest[0], rest[1], rest[2:]
+    from .simulation.jobs import job_env
     from .simulation.runner import run_cocotb
 
     registry = load_all()
@@ -499,7 +500,7 @@ def simulate(d: Diagram, vcd: Path) -> None:
         params = core.parameters(args)
         params = {k: v for k, v in {**params, **parameters}.items() if k in _declared(top)}
         run_cocotb(toplevel=top, test_module="interp.simulation.rtl_driver", sim="icarus", parameters=params,
-                   env={"INTERP_JOB": json.dumps(job)}, waves=str(vcd), name=f"docs_{top}",
+                   env=job_env("INTERP_JOB", job, tmp), waves=str(vcd), name=f"docs_{top}",
                    test_dir=Path(tmp), quiet=True)
 
 

@@ -172,7 +172,7 @@ def random_program(rng: random.Random) -> str:
             lines.append("G80")
         elif kind == 8:
             lines.append(f"#<_v> = [{num()} * 2 + #5422 / 4]")
-            lines.append(f"G90 G1 Z#<_v> X[#5420 + 1]")
+            lines.append("G90 G1 Z#<_v> X[#5420 + 1]")
         elif kind == 9:
             label = len(lines)
             lines.append(f"o{label} repeat [{rng.randrange(1, 4)}]")

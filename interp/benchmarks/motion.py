@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from ..commands.gcode import FEED_MAX, FRAC, simulate
+from ..simulation.motion_build import FEED_MAX, FRAC, simulate
 from ..models.motion import DWELL, LINE, Command, queue_steps
 
 MOVES = [("axial", (120, 0, 0)), ("diagonal", (120, 120, 0)), ("3-axis", (120, 120, 120)),

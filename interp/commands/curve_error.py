@@ -26,13 +26,14 @@ def job(curve: str, a: int, b: int, mode: str, **extra) -> dict:
 
 def rtl_points(jobs: list[dict], sim: str = "icarus") -> list[list[tuple[int, int]]]:
     """Run every job through rtl/curve_tangent.v in one simulation; the visited nodes."""
+    from ..simulation.jobs import job_env
     from ..simulation.runner import run_cocotb
 
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "points.json"
         run_cocotb(toplevel="curve_tangent", test_module="interp.simulation.curve_driver", sim=sim,
                    parameters={"WIDTH": 16, "PW": 24, "CW": 24},
-                   env={"INTERP_JOBS": json.dumps(jobs), "INTERP_OUT": str(out)},
+                   env={**job_env("INTERP_JOBS", jobs, tmp), "INTERP_OUT": str(out)},
                    name="cli_curve_error", test_dir=Path(tmp), quiet=True)
         return [[tuple(p) for p in pts] for pts in json.loads(out.read_text())]
 

@@ -112,7 +112,6 @@ def fmt(value: float) -> str:
 
 def summary(program, compiled: Compiled, machine: Machine) -> dict:
     """The --check --json object."""
-    unit = "mm" if program.units == "mm" else "in"
     return {"end": [round(v, 6) for v in program.end_work], "units": program.units,
             "end_machine_mm": [round(v, 6) for v in program.end_machine],
             "end_steps": list(compiled.end_steps), "moves": compiled.moves, "arcs": compiled.arcs,
@@ -320,22 +319,3 @@ def demo(out, sim: str) -> None:
     if args.func(args):
         raise RuntimeError("the G-code demo failed")
     print(f"gcode demo: {out / 'gcode_demo.png'} {out / 'gcode_demo_steps.csv'} {out / 'gcode_demo.vcd'}")
-
-
-# ---------------- the benches' 16-bit build (interp.benchmarks.motion, interp.simulation.harness) ----------------
-PARAMETERS = {"W": 16, "QDEPTH": 4, "QLW": 3, "SDEPTH": 2, "TW": 4}
-FRAC, FEED_MAX = 16, (1 << 16) - 1
-
-
-def simulate(commands, sim: str, timing: dict, vcd: str | None = None, max_cycles: int = 5_000_000) -> dict:
-    """Commands through the benches' motion_top build with cocotb; the driver's result."""
-    from ..simulation.runner import run_cocotb
-
-    with tempfile.TemporaryDirectory() as tmp:
-        out = Path(tmp) / "result.json"
-        job = {"commands": [c.ports() for c in commands], "timing": timing, "out": str(out),
-               "max_cycles": max_cycles}
-        run_cocotb(toplevel="motion_top", test_module="interp.simulation.motion_driver", sim=sim,
-                   parameters=PARAMETERS, env={"INTERP_JOB": json.dumps(job)}, waves=vcd,
-                   name="motion_top", test_dir=Path(tmp), quiet=True)
-        return json.loads(out.read_text())

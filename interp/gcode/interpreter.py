@@ -597,7 +597,6 @@ class _Machine:
         s = self.scale
         units = self.units
         iu, iv, iw = PLANES[self.plane]
-        lu, lv = AXES[iu], AXES[iv]
         ou, ov, ow = "IJK"[iu], "IJK"[iv], "IJK"[iw]
         mword = motion[1] if motion is not None else self._motion_word(words)
         if words.has("@") or words.has("^"):

@@ -112,7 +112,7 @@ def core_inputs(core, argv: list[str], width: int | None = None) -> dict:
 
 def motion_top_load() -> dict:
     """motion_top: a 120 x 50 line at the highest feed, kept queued; fastest output timing."""
-    from ..commands.gcode import FEED_MAX
+    from .motion_build import FEED_MAX
     from ..models.motion import LINE, Command
 
     return {**Command(LINE, FEED_MAX, 120, 50, 0).ports(), "hold": 0,

@@ -1,8 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """cocotb test module that feeds a job of commands to rtl/motion_top.v.
 
-The job is a JSON file whose path is in $INTERP_JOB_FILE (or, from callers
-not yet moved to files, JSON text in $INTERP_JOB): the commands, the
+The job is a JSON file whose path is in $INTERP_JOB_FILE: the commands, the
 output-stage timing (port values), max_cycles and the output files.  Commands
 are pushed whenever the previous cycle's sample showed cmd_full low; inputs
 are driven and outputs sampled at the falling edge, the first cycle after

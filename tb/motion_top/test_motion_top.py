@@ -23,6 +23,7 @@ from interp.models.motion import (ARC_CCW, ARC_CW, CURVE, DWELL, E_CORE, E_FEED,
 from interp.cli import main
 from interp.commands import gcode
 from interp.gcode.machine import load_machine
+from interp.simulation import motion_build
 from interp.simulation.runner import run_cocotb
 from interp.testing.tbkit import TB, read, scoreboard, seeded_rng
 
@@ -346,7 +347,7 @@ def test_motion_top_cli_build(sim):
 
 def test_motion_top(sim, tmp_path):
     run_cocotb(toplevel="motion_top", test_module="test_motion_top", sim=sim,
-               parameters=gcode.PARAMETERS, name="motion_top")
+               parameters=motion_build.PARAMETERS, name="motion_top")
     # `interp gcode` on the same build: the built-in program, steps equal to the models'
     src = tmp_path / "demo.nc"
     src.write_text(gcode.DEMO)

@@ -22,7 +22,7 @@ import json
 import subprocess
 import tempfile
 from pathlib import Path
-from typing import Callable, Iterable, Mapping, Sequence
+from typing import Callable, Iterable, Mapping
 
 from ...cores import UsageError
 from ..runner import RTL
