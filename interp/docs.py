@@ -519,7 +519,12 @@ _QUAD = [("start", "bit"), ("tick", "bit"), ("x0", "s8"), ("y0", "s8"), ("x1", "
          ("ccw", "bit"), ("busy", "bit"), ("step_x", "bit"), ("step_y", "bit"), ("dir_x", "bit"),
          ("dir_y", "bit"), ("done", "bit"), ("error", "bit")]
 _MT = "motion_top"
-_GCODE = ["gcode", "G91\nG01 X3 Y-2 F200\nG01 X-1 F200\n", "--pulse-width", "2", "--setup", "1", "--hold", "1"]
+# The G-code build (W 32, FRAC 48) on a machine slowed down for the eye: a 1 kHz clock and
+# 1 step/mm, so F12000 mm/min is 0.2 step per clock; pulse 2 cycles, set-up 1, hold 1.
+_MACHINE = [f"axis.{a}.{k}={v}" for a in "xyz" for k, v in (("steps_per_mm", 1), ("max_rate_mm_min", 60000))]
+_GCODE = ["gcode", "G21 G91\nG01 X3 Y-2 F12000\nG01 X-1\n", "--clock-hz", "1000", "--sim", "icarus",
+          *[w for kv in _MACHINE + ["output.pulse_ns=2000000", "output.dir_setup_ns=1000000",
+                                    "output.dir_hold_ns=1000000"] for w in ("--set", kv)]]
 
 
 def diagrams() -> dict[str, Diagram]:
@@ -569,8 +574,8 @@ def diagrams() -> dict[str, Diagram]:
                                         ("dir_y", "bit"), ("done", "bit"), ("error", "bit")]),
                 [("start", 2, 10)], "curve_tangent.clk",
                 ["run", "curve_tangent", {}, "curve", "--curve", "circle", "--a", "4"]),
-        Diagram("motion_top", "motion_top, W 16: G91 G01 X3 Y-2 F200, G01 X-1 (feed 0.2 step/clock; pulse 2, setup 1, hold 1)",
-                _core(_MT, [("cmd_valid", "bit"), ("cmd_kind", "u"), ("cmd_x", "s16"), ("cmd_y", "s16"),
+        Diagram("motion_top", "motion_top, W 32: G91 G01 X3 Y-2, G01 X-1 (feed 0.2 step/clock; pulse 2, setup 1, hold 1)",
+                _core(_MT, [("cmd_valid", "bit"), ("cmd_kind", "u"), ("cmd_x", "s32"), ("cmd_y", "s32"),
                             ("cmd_feed", "u"), ("queue_level", "u"), ("busy", "bit"), ("step_x", "bit"),
                             ("dir_x", "bit"), ("step_y", "bit"), ("dir_y", "bit"), ("pos_x", "s32"),
                             ("pos_y", "s32"), ("done", "bit"), ("error", "bit")]),
@@ -584,9 +589,9 @@ def diagrams() -> dict[str, Diagram]:
                                     ("out_valid", "bit"), ("out_step", "b3"), ("out_dir", "b3"), ("level", "u"),
                                     ("overflow", "bit")], f"{_MT}.u_sync"),
                 [("start", 1, 24)], f"{_MT}.clk", _GCODE, "axis bits ZYX (bit 0 = X)"),
-        Diagram("feed_rate", "feed_rate inside motion_top (FEED_W 16, FRAC 16): feed 0.2 step/clock",
+        Diagram("feed_rate", "feed_rate inside motion_top (FEED_W 50, FRAC 48): feed 0.2 step/clock",
                 _core("feed_rate", [("feed", "u"), ("axes", "u"), ("take", "bit"), ("tick", "bit")], f"{_MT}.u_feed"),
-                [("start", 1, 24)], f"{_MT}.clk", _GCODE, "feed 13107 = 0.2 · 2^16; a diagonal step (axes 2) costs √2"),
+                [("start", 1, 24)], f"{_MT}.clk", _GCODE, "feed 56294995342131 = 0.2 · 2^48; a diagonal step (axes 2) costs √2"),
         Diagram("step_dir", "step_dir inside motion_top (AXES 3): pulse width 2, setup 1, hold 1",
                 _core("step_dir", [("pulse_width", "u"), ("setup", "u"), ("hold", "u"), ("valid", "bit"),
                                    ("step_in", "b3"), ("dir_in", "b3"), ("ready", "bit"), ("step", "b3"), ("dir", "b3")],

@@ -23,9 +23,7 @@ from interp.simulation.runner import RTL
 pytestmark = pytest.mark.skipif(shutil.which("iverilog") is None, reason="needs Icarus Verilog")
 
 FEATURES = ports(RTL)
-# Until motion_top takes FRAC = 48 (feed_rate up to FRAC 64), the same widths at FRAC 28.
-PARAMS = (CLI_PARAMETERS if "FRAC > 28" not in (RTL / "motion_top.v").read_text()
-          else {**CLI_PARAMETERS, "FRAC": 28, "FEED_W": 30})
+PARAMS = CLI_PARAMETERS
 ONE = 1 << PARAMS["FRAC"]                       # feed of 1 step per clock
 TIMING = (3, 2, 4)                              # pulse width, dir setup, dir hold (cycles)
 
