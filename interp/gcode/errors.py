@@ -27,6 +27,9 @@ def printable(text: str) -> str:
     return "".join(out)
 
 
+WORD_SHOWN = 40         # a longer word is shortened in the message
+
+
 class GcodeError(UsageError):
     """Bad G-code: str() is "line L, column C: WORD: text" ("line L, column C: text" with no word).
 
@@ -42,6 +45,8 @@ class GcodeError(UsageError):
 
     def __str__(self) -> str:
         word = printable(self.word)
+        if len(word) > WORD_SHOWN:                  # e.g. a 400-digit number: its start is enough
+            word = f"{word[:WORD_SHOWN - 3]}... ({len(self.word)} characters)"
         text = printable(self.text)
         if word:
             return f"line {self.line}, column {self.column}: {word}: {text}"
