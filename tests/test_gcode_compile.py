@@ -11,11 +11,11 @@ import tomllib
 import pytest
 
 from interp.gcode.compile import (ARC_LIMIT, DWELL_MAX, EVENT, EVENT_CODES, FRAC, LINE_MAX, PWM_FULL, CompileError,
-                                  Compiler, compile_program, steps_estimate)
+                                  Compiler, arc_cost, compile_program, line_cost, steps_estimate, COSTS)
 from interp.gcode.machine import SCHEMA, MachineError, default_machine_text, load_machine
 from interp.gcode.moves import PLANES, Arc, Dwell, Event, Line, Program
 from interp.models.arc import arc_error, arc_steps
-from interp.models.motion import ARC_CCW, ARC_CW, DWELL, LINE
+from interp.models.motion import ARC_CCW, ARC_CW, DWELL, LINE, line_steps
 
 MACHINE = load_machine()
 
@@ -306,20 +306,42 @@ def test_feed_caps_rapids_and_errors():
     assert any(w.startswith("line 5: F2000 mm/min is above") for w in out.warnings)
     # a rapid: the slowest axis involved limits it (z at 600 mm/min over 10 of a 10.05 mm path)
     out = compile_program(Program([Line((0, 0, 0), (1, 0, -10), None, 6)]), m)
-    speed = out.commands[0].feed / (1 << FRAC) * 50e6 * 60 / 100
-    assert abs(speed * 10 / math.hypot(1, 10) - 600) < 0.01
+    seconds = line_cost((100, 0, -1000)) * (1 << FRAC) / out.commands[0].feed / 50e6
+    assert abs(10 / seconds * 60 - 600) < 0.01          # z's speed, mm/min
     with pytest.raises(CompileError, match="line 7: feed F1e-08 mm/min is too slow"):
         compile_program(Program([Line((0, 0, 0), (1, 0, 0), 1e-8, 7)]), m)
     out = compile_program(Program([Line((0, 0, 0), (1, 0, 0), 0.001, 8)]), load_machine(clock_hz=200e6))
-    assert any("line 8: F0.001 mm/min is off by" in w for w in out.warnings)
+    assert any(w.startswith("line 8: the feed word ") and "is off by" in w for w in out.warnings)
 
 
 def test_feed_with_unequal_steps_per_mm():
-    # the path's steps per mm along its direction: 3-4-5 in mm with x 100, y 50 steps/mm
+    # 3-4-5 in mm with x 100, y 50 steps/mm: (300, 200) steps, 100 axial and 200 diagonal, which
+    # the speed block charges 1 and sqrt(2): the word makes the 5 mm last 0.5 s at F600
     m = load_machine(sets=["axis.y.steps_per_mm=50"])
     out = compile_program(Program([Line((0, 0, 0), (3, 4, 0), 600, 1)]), m)
-    spm = math.hypot(300, 200) / 5
-    assert out.commands[0].feed == round(600 * spm / 60 / 50e6 * (1 << FRAC))
+    cost = 100 + 200 * COSTS[2]
+    assert line_cost((300, 200, 0)) == pytest.approx(cost, abs=1e-9)
+    assert out.commands[0].feed == round(cost * (1 << FRAC) / (0.5 * 50e6))
+
+
+@pytest.mark.parametrize("move", [(1000, 500, 0), (1000, 500, 300), (7, -3, 2), (5000, 4999, 1)])
+def test_line_cost_is_the_speed_blocks_charge(move):
+    """line_cost equals the speed block's charges summed over the line's steps (the models)."""
+    want = sum(COSTS[sum(map(abs, s))] for s in line_steps(*move))
+    assert line_cost(move) == pytest.approx(want, rel=1e-4)
+
+
+@pytest.mark.parametrize("r, turn", [(10, 1), (10, -1), (300, 1), (3000, -1)])
+def test_arc_cost_is_the_speed_blocks_charge(r, turn):
+    """arc_cost (exact up to EXACT_COST_MAX steps, by octants above) within 0.01 % of the charges
+    over the arc model's steps, for a three-quarter arc from (r, 0) about the origin."""
+    from interp.gcode.compile import Cmd
+
+    ccw = turn > 0
+    end = (0, -r) if ccw else (0, r)
+    cmd = Cmd(ARC_CCW if ccw else ARC_CW, 1, end[0] - r, end[1], 0, -r, 0, 0)
+    want = sum(COSTS[abs(s.dx) + abs(s.dy)] for s in arc_steps(-r, 0, 0, 0, end[0] - r, end[1], ccw))
+    assert arc_cost(cmd) == pytest.approx(want, rel=1e-4)
 
 
 # ---------------- dwells, events, time ----------------

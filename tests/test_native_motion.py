@@ -129,6 +129,21 @@ def test_slow_job_skips_quiet_cycles(native, tmp_path):
     assert got == exact and got["position"] == [7, -3, 2]
 
 
+def test_dwell_and_event_drain_skip(native, tmp_path, monkeypatch):
+    """With the step buffer empty (a dwell, the drain before an event) the state other than the
+    counters repeats every few cycles: those stretches are skipped too, exactly. No steps file
+    asked for: none written."""
+    rows = [(0, 0, ONE // 7, 5, 2, 0, 0, 0, 0, 0), (4, 0, 0, 200_000, 0, 0, 0, 0, 0, 0),
+            (5, 0, 0, 3, 9, 0, 0, 0, 0, 0), (4, 0, 0, 1000, 0, 0, 0, 0, 0, 0), (0, 0, ONE // 5, -5, 1, 0, 0, 0, 0, 0)]
+    got = both(tmp_path, rows, max_cycles=10**6, name="dwell")
+    assert got["position"] == [0, 3, 0] and got["events"] and not got["stopped"]
+    write_commands(tmp_path / "long.txt", [(4, 0, 0, 10**9, 0, 0, 0, 0, 0, 0)])
+    monkeypatch.chdir(tmp_path)
+    long = run_native(tmp_path / "long.txt", steps_path=None, timing=TIMING, max_cycles=2 * 10**9, parameters=PARAMS)
+    assert long["cycles"] > 10**9 and long["skipped"] > 0.999 * 10**9
+    assert not (tmp_path / "None").exists()
+
+
 @pytest.mark.parametrize("timing", [(40, 30, 120), (1, 0, 0), (200, 0, 300)])
 def test_slow_reversals_with_long_timing(native, tmp_path, timing):
     """Quiet stretches in every state of the output stage (pulse, dir hold and setup waits)

@@ -40,7 +40,7 @@ from dataclasses import dataclass, field
 
 from ..cores import UsageError
 from ..models.lecture import within_half_step
-from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command
+from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command, FeedRate, line_steps
 from .machine import AXES, Machine
 from .moves import EVENTS, PLANES, Arc, Dwell, Event, Line, Program
 
@@ -110,24 +110,68 @@ def _round(value: float) -> int:
     return math.floor(value + 0.5)
 
 
+# What the speed block charges for a step on 1, 2, 3 axes, in axial steps (rtl/feed_rate.v's
+# costs, rounded as the RTL rounds them): the interval after the step is cost / feed.
+COSTS = {n: FeedRate(FRAC).costs[n] / (1 << FRAC) for n in (1, 2, 3)}
+EXACT_COST_MAX = 4096           # moves up to this many steps are costed step by step (the models)
+
+
+def line_cost(d) -> float:
+    """Sum of the speed block's charges over the steps of a LINE command."""
+    big, m1, m2 = sorted(map(abs, d), reverse=True)
+    if big == 0:
+        return 0.0
+    if big <= EXACT_COST_MAX:
+        return sum(COSTS[sum(map(abs, s))] for s in line_steps(*d))
+    both = m1 * m2 / big                        # steps on all three axes, on average
+    return (big - m1 - m2 + both) + (m1 + m2 - 2 * both) * COSTS[2] + both * COSTS[3]
+
+
+def arc_cost(cmd: Cmd) -> float:
+    """Sum of the speed block's charges over the steps of an ARC command (with its helix)."""
+    ci, cj, x, y, dw = cmd.i, cmd.j, cmd.x, cmd.y, abs(cmd.z)
+    full = (x, y) == (0, 0)
+    a_start, a_end = math.atan2(-cj, -ci), math.atan2(y - cj, x - ci)
+    ccw = cmd.kind == ARC_CCW
+    part = 2 * math.pi if full else _angle(a_end - a_start) if ccw else _angle(a_start - a_end)
+    n, diagonal = arc_counts(math.hypot(ci, cj), a_start, part if ccw else -part)
+    if n <= EXACT_COST_MAX:
+        from ..models.arc import arc_steps
+        from ..models.su1571551 import steps as su_steps
+
+        path = arc_steps(ci, cj, 0, 0, x, y, ccw, full)
+        helix = [s.dy != 0 for s in su_steps(max(cmd.k, 0), dw)] if dw else []
+        axes = [abs(s.dx) + abs(s.dy) + (k < len(helix) and helix[k]) for k, s in enumerate(path)]
+        rest = dw - sum(helix[:len(path)]) if dw else 0
+        return sum(COSTS[a] for a in axes if a) + rest
+    f = min(1.0, dw / n)
+    axial = n - diagonal
+    return (axial * ((1 - f) + f * COSTS[2]) + diagonal * ((1 - f) * COSTS[2] + f * COSTS[3])
+            + max(0, dw - n))
+
+
+def arc_counts(r: float, a0: float, sweep: float) -> tuple[int, int]:
+    """(steps, diagonal steps) of an arc of radius r (steps) from angle a0 through `sweep`:
+    in each octant the major axis moves by one every step, the minor one on the diagonal ones."""
+    major = minor = 0.0
+    a, end, q = a0, a0 + sweep, math.pi / 4
+    up = sweep > 0
+    while (a < end) if up else (a > end):
+        nxt = (math.floor(a / q + 1e-12) + 1) * q if up else (math.ceil(a / q - 1e-12) - 1) * q
+        nxt = min(nxt, end) if up else max(nxt, end)
+        du, dv = abs(math.cos(nxt) - math.cos(a)) * r, abs(math.sin(nxt) - math.sin(a)) * r
+        major, minor = major + max(du, dv), minor + min(du, dv)
+        a = nxt
+    return max(1, _round(major)), _round(minor)
+
+
 def _angle(a: float) -> float:
     return a % (2 * math.pi)
 
 
 def steps_estimate(r: float, a0: float, sweep: float) -> int:
-    """Steps of an arc of radius r (steps) from angle a0 through `sweep` (signed, rad):
-    in each octant the major axis moves by one per step, so the sum of the major
-    axis's travel over the octant pieces."""
-    if sweep == 0:
-        return 1
-    total, a, end, q = 0.0, a0, a0 + sweep, math.pi / 4
-    up = sweep > 0
-    while (a < end) if up else (a > end):
-        nxt = (math.floor(a / q + 1e-12) + 1) * q if up else (math.ceil(a / q - 1e-12) - 1) * q
-        nxt = min(nxt, end) if up else max(nxt, end)
-        total += max(abs(math.cos(nxt) - math.cos(a)), abs(math.sin(nxt) - math.sin(a))) * r
-        a = nxt
-    return max(1, _round(total))
+    """Steps of an arc of radius r (steps) from angle a0 through `sweep` (signed, rad)."""
+    return arc_counts(r, a0, sweep)[0] if sweep else 1
 
 
 class Compiler:
@@ -163,6 +207,11 @@ class Compiler:
                                f"{a.min_mm:g} .. {a.max_mm:g} mm (machine file)")
 
     def emit(self, cmd: Cmd, seconds: float = 0.0) -> None:
+        if cmd.kind in (LINE, ARC_CW, ARC_CCW) and seconds > 0:
+            # the speed block charges sqrt(2) / sqrt(3) for a step on 2 / 3 axes: the word that
+            # makes this command last `seconds`, so the path speed is the programmed feed
+            cost = line_cost((cmd.x, cmd.y, cmd.z)) if cmd.kind == LINE else arc_cost(cmd)
+            cmd.feed = self.word(cost * (1 << FRAC) / (seconds * self.clock), cmd.source)
         self.out.commands.append(cmd)
         self.out.machine_time_s += seconds
         self.out.command_time.append(self.out.machine_time_s)
@@ -184,15 +233,19 @@ class Compiler:
         else:
             f = feed
         exact = f * spm / 60 / self.clock * (1 << FRAC)
-        word = min(_round(exact), FEED_MAX)
-        if word <= 0:
+        if _round(exact) <= 0:
             slowest = 0.5 / (1 << FRAC) * self.clock * 60 / spm
             raise CompileError(f"line {line}: feed F{f:g} mm/min is too slow for the controller: its feed "
                                f"word rounds to 0 (slowest {slowest:.3g} mm/min at {self.clock:g} Hz)")
+        return self.word(exact, line), f
+
+    def word(self, exact: float, line: int) -> int:
+        """The feed word nearest `exact`, with a warning where it is off by more than 0.01 %."""
+        word = max(1, min(_round(exact), FEED_MAX))
         if abs(word - exact) > FEED_TOLERANCE * exact:
-            self.warn("feed_quantum", line, f"F{f:g} mm/min is off by {abs(word - exact) / exact:.3%} in the "
-                      f"feed word ({word}); a faster feed or clock is more precise")
-        return word, f
+            self.warn("feed_quantum", line, f"the feed word {word} is off by {abs(word - exact) / exact:.3%} "
+                      f"from the programmed speed; a faster feed or clock is more precise")
+        return word
 
     # ---------------- lines ----------------
     def line_to(self, target: list[int], word: int, line: int, seconds: float) -> None:

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Native Verilator harness for rtl/motion_top.v: whole G-code jobs without cocotb.
 
-  run_native(commands_path, *, steps_path, timing, max_cycles, progress=None, vcd=None)
+  run_native(commands_path, *, steps_path (None: no file), timing, max_cycles, progress=None, vcd=None)
       -> {"cycles", "position": [x, y, z], "errors": [[cycle, code]],
           "events": [[cycle, code, value]], "steps": rows, "stopped", "pushed",
           "dispatched", "commands", "skipped"}
@@ -19,6 +19,7 @@ on Icarus or Verilator under cocotb and returns the same dict.
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import tempfile
 from pathlib import Path
@@ -100,7 +101,7 @@ def run_native(commands_path, *, steps_path, timing, max_cycles: int,
     exe = executable(parameters if parameters is not None else CLI_PARAMETERS, trace=vcd is not None, rtl=rtl)
     with tempfile.TemporaryDirectory(prefix="interp-native-") as tmp:
         result_path = Path(tmp) / "result.json"
-        cmd = [str(exe), "--commands", str(commands_path), "--steps", str(steps_path),
+        cmd = [str(exe), "--commands", str(commands_path), "--steps", str(steps_path or os.devnull),
                "--result", str(result_path), "--max-cycles", str(int(max_cycles)),
                "--timing", f"{pulse_width},{setup},{hold}", "--progress-log2", str(PROGRESS_LOG2),
                "--exact", "1" if exact else "0"]
@@ -133,5 +134,5 @@ def run_cocotb_job(commands, sim: str, timing, steps_path, max_cycles: int, vcd=
         rows = read_commands(commands)
     else:
         rows = [command_row(c) for c in commands]
-    return run(rows, sim, timing_values(timing), steps_path, max_cycles, vcd,
+    return run(rows, sim, timing_values(timing), steps_path or os.devnull, max_cycles, vcd,
                full_parameters(parameters if parameters is not None else CLI_PARAMETERS), progress)
