@@ -144,8 +144,9 @@ def test_event_codes_in_the_commands(fakes, nc, tmp_path):
     (["gcode", "{nc}", "--machine", "/nonexistent/m.toml"], "cannot read machine file /nonexistent/m.toml"),
     (["gcode", "{nc}", "--set", "axis.x.steps_per_inch=3"], "unknown key axis.x.steps_per_inch"),
     (["gcode", "{nc}", "--clock-hz", "fast"], "invalid float value"),
-    (["gcode", "{nc}", "--steps", "/nonexistent/dir/s.csv"], "--steps /nonexistent/dir/s.csv: folder"),
-    (["gcode", "{nc}", "--events", "{tmp}"], "is a folder"),
+    (["gcode", "{nc}", "--steps", "/nonexistent/dir/s.csv"], "cannot write /nonexistent/dir/s.csv: no directory"),
+    (["gcode", "{nc}", "--events", "{tmp}"], "is a directory"),
+    (["gcode", "{nc}", "--events", "/proc/x.csv"], "cannot write /proc/x.csv"),
     (["gcode", "{nc}", "--json"], "--json goes with --check"),
     (["gcode", "{nc}", "--pause-seconds", "-1"], "--pause-seconds"),
     (["gcode", "{nc}", "--sim", "questa"], "invalid choice"),
@@ -169,7 +170,7 @@ def test_bad_machine_file_one_line(fakes, nc, tmp_path, capsys):
 def test_unwritable_output(fakes, nc, tmp_path, capsys):
     locked = tmp_path / "locked"
     locked.mkdir(mode=0o500)
-    one_line_error(capsys, 2, ["gcode", str(nc), "--steps", str(locked / "s.csv")], "not writable")
+    one_line_error(capsys, 2, ["gcode", str(nc), "--steps", str(locked / "s.csv")], "Permission denied")
 
 
 def test_soft_limit_error_one_line(fakes, nc, capsys):

@@ -433,6 +433,12 @@ def events(text, **kw):
     return [(m.name, m.value, m.line) for m in moves(text, **kw) if isinstance(m, Event)]
 
 
+def test_spindle_select_zero():
+    """LinuxCNC's $ spindle select (M3 $0 S1, its plasma samples): spindle 0 is this machine's."""
+    assert events("M3 $0 S100\nM5 $0") == [("spindle_cw", 100, 1), ("spindle_off", 0, 2)]
+    assert error("M3 $1 S100") == "line 1, column 4: $1: this machine has one spindle, $0"
+
+
 def test_spindle_coolant_outputs_and_stops():
     text = ("S1000 M3\nS1200\nS1200\nM4 S500\nM5\nS10\nM7 M8\nM9\nM62 P1\nM65 P2\nT3\nM6\n"
             "M0\nM1\nM60\nM30\nG0 X100\nM3")

@@ -15,7 +15,6 @@ from __future__ import annotations
 import csv
 import json
 import math
-import os
 import sys
 import tempfile
 from pathlib import Path
@@ -23,7 +22,7 @@ from pathlib import Path
 from ..cores import UsageError
 from ..gcode.compile import EVENT_NAMES, Compiled, compile_program, write_commands
 from ..gcode.machine import AXES, Machine, load_machine
-from ..simulation.output import ensure_dir
+from ..simulation.output import check_outputs, ensure_dir
 
 SIMS = ("verilator", "icarus")
 
@@ -81,20 +80,6 @@ def run_simulation(commands_path: str, sim: str, *, steps_path, timing: dict, ma
 
 
 # ---------------- helpers ----------------
-
-def check_output(path: str | None, option: str) -> None:
-    """An output file's folder must exist and be writable, before anything runs."""
-    if not path:
-        return
-    target = Path(path)
-    folder = target.parent if str(target.parent) else Path(".")
-    if target.is_dir():
-        raise UsageError(f"{option} {path}: is a folder")
-    if not folder.is_dir():
-        raise UsageError(f"{option} {path}: folder {folder} does not exist")
-    if not os.access(folder, os.W_OK) or (target.exists() and not os.access(target, os.W_OK)):
-        raise UsageError(f"{option} {path}: not writable")
-
 
 def read_program(path: str) -> str:
     try:
@@ -156,7 +141,8 @@ def ideal_xy(program, machine: Machine) -> list[tuple[float, float]]:
             if part == 0:
                 part = 2 * math.pi if m.ccw else -2 * math.pi
             sweep = part + math.copysign(2 * math.pi * (max(m.turns, 1) - 1), part)
-            n = max(8, min(2000, math.ceil(abs(sweep) * 32)))
+            # chords within 0.001 step of the arc, so the deviations measured are the steps' own
+            n = max(8, min(20000, math.ceil(abs(sweep) / math.sqrt(0.008 / max(r * s, 1)))))
             for k in range(n + 1):
                 a, t = a0 + sweep * k / n, k / n
                 p = [m.start[j] + (m.end[j] - m.start[j]) * t for j in range(3)]
@@ -224,8 +210,7 @@ def cmd_gcode(args) -> int:
         raise UsageError("--max-seconds must be positive")
     machine = load_machine(args.machine, args.set, args.clock_hz)
     if not args.check:
-        for option in ("steps", "events", "vcd", "plot"):
-            check_output(getattr(args, option), f"--{option}")
+        check_outputs(args.steps, args.events, args.vcd, args.plot)
     program, compiled = compile_text(read_program(args.file), machine, args.pause_seconds)
     for message in program.messages:
         print(f"interp: message: {message}", file=sys.stderr)
@@ -258,8 +243,9 @@ def simulate_program(args, program, compiled: Compiled, machine: Machine) -> int
                                     vcd=args.vcd)
         finally:
             progress.close()
+        worst = None
         if args.plot:
-            plot_program(args.plot, program, read_step_rows(steps_path), machine, Path(args.file).name)
+            worst = plot_program(args.plot, program, read_step_rows(steps_path), machine, Path(args.file).name)
     if args.events:
         write_events(args.events, result["events"], compiled)
     cycles = result["cycles"]
@@ -275,8 +261,10 @@ def simulate_program(args, program, compiled: Compiled, machine: Machine) -> int
         failures.append(f"the RTL ended at {position} steps, the program at {tuple(compiled.end_steps)}{late}")
     if not failures and len(result["events"]) != len(compiled.events):
         failures.append(f"motion_top gave {len(result['events'])} events, the program has {len(compiled.events)}")
-    print(f"{result['steps']} step cycles, end {where(program, compiled)}, {cycles} clock cycles, "
-          f"{cycles / clock:.6g} s machine time at {clock:g} Hz, {len(result['events'])} events")
+    end = where(program, compiled) if position == tuple(compiled.end_steps) else f"{position} steps (stopped early)"
+    deviation = f", max deviation {worst:.3f} steps (XY)" if worst is not None else ""
+    print(f"{result['steps']} step cycles, end {end}, {cycles} clock cycles, "
+          f"{cycles / clock:.6g} s machine time at {clock:g} Hz, {len(result['events'])} events{deviation}")
     for failure in failures:
         print(f"interp: error: {failure}", file=sys.stderr)
     return 1 if failures else 0

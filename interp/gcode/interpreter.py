@@ -486,6 +486,10 @@ class _Machine:
                 m[group] = (code, word)
             elif letter == "N":
                 continue
+            elif letter == "$":         # LinuxCNC's spindle select: this machine has spindle 0 only
+                if word.value != 0:
+                    self._fail(word, "this machine has one spindle, $0")
+                continue
             else:
                 if letter not in VALID_LETTERS:
                     self._fail(word, f"{letter} is not an RS274NGC word")
