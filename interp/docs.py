@@ -589,9 +589,10 @@ def diagrams() -> dict[str, Diagram]:
                                     ("out_valid", "bit"), ("out_step", "b3"), ("out_dir", "b3"), ("level", "u"),
                                     ("overflow", "bit")], f"{_MT}.u_sync"),
                 [("start", 1, 24)], f"{_MT}.clk", _GCODE, "axis bits ZYX (bit 0 = X)"),
-        Diagram("feed_rate", "feed_rate inside motion_top (FEED_W 50, FRAC 48): feed 0.2 step/clock",
+        Diagram("feed_rate", "feed_rate inside motion_top (FEED_W 50, FRAC 48): path speed 0.2 step/clock",
                 _core("feed_rate", [("feed", "u"), ("axes", "u"), ("take", "bit"), ("tick", "bit")], f"{_MT}.u_feed"),
-                [("start", 1, 24)], f"{_MT}.clk", _GCODE, "feed 56294995342131 = 0.2 · 2^48; a diagonal step (axes 2) costs √2"),
+                [("start", 1, 24)], f"{_MT}.clk", _GCODE, "feed 0.2124 · 2^48 on the first line (charges 1 + 2√2 over √13 steps of path), 0.2 · 2^48 on the second; "
+                "a diagonal step (axes 2) costs √2"),
         Diagram("step_dir", "step_dir inside motion_top (AXES 3): pulse width 2, setup 1, hold 1",
                 _core("step_dir", [("pulse_width", "u"), ("setup", "u"), ("hold", "u"), ("valid", "bit"),
                                    ("step_in", "b3"), ("dir_in", "b3"), ("ready", "bit"), ("step", "b3"), ("dir", "b3")],
