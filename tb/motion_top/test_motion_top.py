@@ -2,7 +2,9 @@
 """motion_top: queue -> cores -> synchronization buffer -> feed -> step/dir.
 
 Every cycle the RTL is compared with the cycle model (interp.models.motion.MotionTop:
-the block models wired as the RTL wires them, arc_plane included) and a monitor checks
+the block models wired as the RTL wires them: line_pair (the two lin_exact cores of a
+line, lead selection and axis mapping) and arc_plane (circ_arc in a plane, with the
+helix axis) are verified here, through motion_top) and a monitor checks
 the drive timing (pulse width, dir setup and hold) and records each pulse; at the end
 the pulses must equal, in order, the steps of the step-level models of every accepted
 command (0 lost, 0 duplicated; arcs in all three planes, helices), the position
