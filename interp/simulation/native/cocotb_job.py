@@ -11,20 +11,21 @@ import json
 import tempfile
 from pathlib import Path
 
+from ..jobs import job_env
 from ..runner import run_cocotb
 
 
 def run(rows, sim: str, timing: tuple[int, int, int], steps_path, max_cycles: int, vcd, parameters: dict,
         progress=None) -> dict:
     with tempfile.TemporaryDirectory(prefix="interp-cocotb-") as tmp:
-        job_path, out = Path(tmp) / "job.json", Path(tmp) / "result.json"
+        out = Path(tmp) / "result.json"
         pulse_width, setup, hold = timing
-        job_path.write_text(json.dumps({
+        env = job_env("INTERP_JOB", {
             "commands": [list(r) for r in rows], "max_cycles": int(max_cycles),
             "timing": {"pulse_width": pulse_width, "setup": setup, "hold_time": hold},
-            "steps": str(Path(steps_path).resolve()), "out": str(out)}))
+            "steps": str(Path(steps_path).resolve()), "out": str(out)}, tmp)
         run_cocotb(toplevel="motion_top", test_module="interp.simulation.motion_driver", sim=sim,
-                   parameters=parameters, env={"INTERP_JOB_FILE": str(job_path)},
+                   parameters=parameters, env=env,
                    waves=str(vcd) if vcd is not None else None, name="motion_top_job", test_dir=Path(tmp),
                    quiet=True)
         result = json.loads(out.read_text())
