@@ -166,3 +166,31 @@ def test_arc_geometry_of_a_helix():
     assert length == pytest.approx(math.pi / 2)
     assert start_unit == pytest.approx((1.0, 0.0, 0.0), abs=1e-12)
     assert end_unit == pytest.approx((0.0, -1.0, 0.0), abs=1e-12)
+
+
+def test_program_segments_stops_and_tolerances():
+    from interp.gcode.interpreter import interpret
+    program = interpret("G21 G90 G1 X10 F600\nX10 Y10\nG4 P0.5\nG64 P0.002 X0 Y10\nG61 X0 Y0\n"
+                        "G64 G2 X0 Y0 I5 J0\nM2\n")
+    segments, dwell = program_segments(program, MACHINE)
+    assert dwell == 0.5
+    assert [s.stop_before for s in segments] == [True, False, True, True, False]
+    assert [s.tolerance_mm for s in segments] == [None, None, 0.002, None, None]
+    assert segments[-1].radius_mm == 5.0 and segments[-1].length_mm == pytest.approx(10 * math.pi)
+    assert segments[1].start_unit == (0.0, 1.0, 0.0) and segments[1].feed_mm_s == 10.0
+
+
+def test_benchmark_table(tmp_path, monkeypatch, capsys):
+    from interp.benchmarks import machine_time as benchmark
+    (tmp_path / "a.ngc").write_text("G21 G90 G1 X10 F6000\nY10\nG2 X10 Y10 I-1 J0\nG1 G61 X0\nY0\nM2\n")
+    (tmp_path / "b.nc").write_text("G21 G42 X1\n")          # refused by the front end
+    monkeypatch.setattr(benchmark, "corpus_files", lambda: sorted(tmp_path.iterdir()))
+    assert benchmark.main([]) == 0
+    out = capsys.readouterr().out
+    row = next(line for line in out.splitlines() if line.startswith("| a.ngc"))
+    ours, window, grbl_s, ratio, arcs = [c.strip() for c in row.split("|")[2:7]]
+    assert float(ratio) == pytest.approx(float(ours) / float(grbl_s), abs=1e-4)
+    assert float(window) >= float(ours) and arcs.startswith("1 / ")
+    assert "refused by the front end: b.nc" in out
+    assert "a.ngc" in out.split("whole-program plan slower")[1]      # the G61 stops: slower
+    assert "G61 exact stops" in out

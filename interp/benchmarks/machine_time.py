@@ -203,7 +203,7 @@ def main(argv: list[str] | None = None) -> int:
     ours = math.fsum(r.ours_s for r in rows)
     window = math.fsum(r.window_s for r in rows)
     grbl = math.fsum(r.grbl_s for r in rows)
-    print(f"| **all {len(rows)}** | {ours:.3f} | {window:.3f} | {grbl:.3f} | {ours / grbl:.4f} "
+    print(f"| **all {len(rows)}** | {ours:.3f} | {window:.3f} | {grbl:.3f} | {ours / grbl if grbl else math.nan:.4f} "
           f"| {sum(r.arcs for r in rows)} / {sum(r.chords for r in rows)} |")
     for line in refused:
         print(f"refused by the front end: {line}")
