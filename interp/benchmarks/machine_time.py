@@ -166,6 +166,60 @@ def why_slower(program: Program, machine: Machine, row: Row) -> str:
         f"{seconds:+.3f} s {what}" for seconds, what in parts if abs(seconds) > 5e-4)
 
 
+def corpus_rows(machine: Machine, *, window: int = STREAM_WINDOW, only: str | None = None,
+                arc_tolerance_mm: float = grbl_planner.DEFAULT_ARC_TOLERANCE,
+                progress=None) -> tuple[list[Row], list[str], list[str]]:
+    """(rows, refused programs, reasons we are slower) over the corpus; `progress(row)` is
+    called after each program."""
+    rows: list[Row] = []
+    refused: list[str] = []
+    reasons: list[str] = []
+    for path in corpus_files():
+        if only and only not in path.name:
+            continue
+        text = path.read_text(encoding="utf-8", errors="surrogateescape")
+        try:
+            program = interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools)
+        except GcodeError as err:
+            refused.append(f"{path.name}: {err}")
+            continue
+        row = measure(program, machine, path.name, window=window, arc_tolerance_mm=arc_tolerance_mm)
+        rows.append(row)
+        if row.ours_s > row.grbl_s * (1 + SLOWER):
+            reasons.append(f"{row.name} ({row.ratio:.4f}): {why_slower(program, machine, row)}")
+        if progress:
+            progress(row)
+    return rows, refused, reasons
+
+
+def _cells(row: Row) -> list:
+    return [row.name, f"{row.ours_s:.3f}", f"{row.window_s:.3f}", f"{row.grbl_s:.3f}",
+            f"{row.ratio:.4f}", f"{row.arcs} / {row.chords}"]
+
+
+def _total(rows: list[Row]) -> list:
+    ours = math.fsum(r.ours_s for r in rows)
+    grbl = math.fsum(r.grbl_s for r in rows)
+    return [f"**all {len(rows)}**", f"{ours:.3f}", f"{math.fsum(r.window_s for r in rows):.3f}",
+            f"{grbl:.3f}", f"{ours / grbl if grbl else math.nan:.4f}",
+            f"{sum(r.arcs for r in rows)} / {sum(r.chords for r in rows)}"]
+
+
+def _header(window: int) -> list[str]:
+    return ["program", "ours (s)", f"ours, window {window} (s)", "Grbl (s)", "ours / Grbl",
+            "arcs exact / Grbl chords"]
+
+
+def tables(quick: bool):
+    """For `interp bench`: the table with the default machine (quick: the programs whose
+    name has "ugs_"), nothing when there is no corpus."""
+    rows, _, _ = corpus_rows(load_machine(), only="ugs_" if quick else None)
+    if not rows:
+        return []
+    return [("Machine time: our planner against Grbl's (corpus, default machine)",
+             _header(STREAM_WINDOW), [_cells(r) for r in rows] + [_total(rows)])]
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m interp.benchmarks.machine_time",
                                      description=__doc__.split("\n")[0])
@@ -175,36 +229,18 @@ def main(argv: list[str] | None = None) -> int:
                         help="Grbl's arc tolerance in mm (default 0.002)")
     parser.add_argument("--only", help="only programs whose name contains this text")
     args = parser.parse_args(argv)
+    if args.window < 1:
+        parser.error("--window must be >= 1")
     machine = load_machine(args.machine)
-    files = [f for f in corpus_files() if not args.only or args.only in f.name]
-    if not files:
+    if not corpus_files():
         print(f"no G-code corpus at {CORPUS} (set INTERP_GCODE_CORPUS)", file=sys.stderr)
         return 1
-    rows: list[Row] = []
-    refused: list[str] = []
-    reasons: list[str] = []
-    print(f"| program | ours (s) | ours, window {args.window} (s) | Grbl (s) | ours / Grbl "
-          f"| arcs exact / Grbl chords |")
+    print("| " + " | ".join(_header(args.window)) + " |")
     print("|---|---:|---:|---:|---:|---:|")
-    for path in files:
-        text = path.read_text(encoding="utf-8", errors="surrogateescape")
-        try:
-            program = interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools)
-        except GcodeError as err:
-            refused.append(f"{path.name}: {err}")
-            continue
-        row = measure(program, machine, path.name, window=args.window,
-                      arc_tolerance_mm=args.arc_tolerance)
-        rows.append(row)
-        if row.ours_s > row.grbl_s * (1 + SLOWER):
-            reasons.append(f"{row.name} ({row.ratio:.4f}): {why_slower(program, machine, row)}")
-        print(f"| {row.name} | {row.ours_s:.3f} | {row.window_s:.3f} | {row.grbl_s:.3f} "
-              f"| {row.ratio:.4f} | {row.arcs} / {row.chords} |", flush=True)
-    ours = math.fsum(r.ours_s for r in rows)
-    window = math.fsum(r.window_s for r in rows)
-    grbl = math.fsum(r.grbl_s for r in rows)
-    print(f"| **all {len(rows)}** | {ours:.3f} | {window:.3f} | {grbl:.3f} | {ours / grbl if grbl else math.nan:.4f} "
-          f"| {sum(r.arcs for r in rows)} / {sum(r.chords for r in rows)} |")
+    rows, refused, reasons = corpus_rows(
+        machine, window=args.window, only=args.only, arc_tolerance_mm=args.arc_tolerance,
+        progress=lambda row: print("| " + " | ".join(_cells(row)) + " |", flush=True))
+    print("| " + " | ".join(_total(rows)) + " |")
     for line in refused:
         print(f"refused by the front end: {line}")
     slower_window = [r for r in rows if r.window_s > r.grbl_s * (1 + SLOWER)]
