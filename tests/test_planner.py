@@ -119,26 +119,47 @@ def test_time_is_monotone_in_acceleration(segments, deviation, factor):
 
 
 @settings(max_examples=300, deadline=None)
-@given(arcs)
-def test_arc_bounds_hold_at_every_angle(segment):
-    """Speed, centripetal and tangential acceleration at every angle of the circle, per axis."""
-    cruise, accel = limits(segment)
+@given(st.builds(dict, radius=st.floats(0.05, 100), angle=st.floats(0.01, 12) | st.floats(-12, -0.01),
+                 pitch=st.floats(-2, 2), plane=planes, start_angle=st.floats(-4, 4), feed=st.floats(0.5, 400)),
+       st.sampled_from([ACCEL, (500.0, 500.0, 500.0), (100.0, 900.0, 300.0)]))
+def test_arc_bounds_hold_along_the_arc(shape, accel):
+    """Speed, and tangential (speeding up or braking) plus centripetal acceleration at the
+    cruise speed, per axis, at every angle the arc passes (sampled finely)."""
+    segment = arc_segment(**shape, accel=accel)
+    cruise, tangential = limits(segment)
     p, q = segment.plane_axes
     w = 3 - p - q
     sin_a = abs(segment.start_unit[w])
     cos_a = math.sqrt(1 - sin_a ** 2)
-    assert cruise <= segment.feed_mm_s
-    assert (cruise * cos_a) ** 2 / segment.radius_mm <= CENTRIPETAL_SHARE * min(ACCEL[p], ACCEL[q]) * (1 + SLACK)
+    assert cruise <= segment.feed_mm_s and tangential > 0
     centripetal = (cruise * cos_a) ** 2 / segment.radius_mm
-    for step in range(64):
-        theta = 2 * math.pi * step / 64
-        velocity = {p: -math.sin(theta) * cruise * cos_a, q: math.cos(theta) * cruise * cos_a, w: cruise * sin_a}
-        acceleration = {p: -math.sin(theta) * accel * cos_a - math.cos(theta) * centripetal,
-                        q: math.cos(theta) * accel * cos_a - math.sin(theta) * centripetal,
-                        w: accel * sin_a}
-        for axis in range(3):
-            assert abs(velocity[axis]) <= RATE[axis] * (1 + SLACK)
-            assert abs(acceleration[axis]) <= ACCEL[axis] * (1 + SLACK)
+    samples = 2000
+    for step in range(samples + 1):
+        theta = shape["start_angle"] + shape["angle"] * step / samples      # position angle
+        velocity = {p: -math.sin(theta) * cruise * cos_a, q: math.cos(theta) * cruise * cos_a,
+                    w: cruise * sin_a}
+        for sign in (1, -1):
+            along = sign * tangential
+            acceleration = {p: -math.sin(theta) * along * cos_a - math.cos(theta) * centripetal,
+                            q: math.cos(theta) * along * cos_a - math.sin(theta) * centripetal,
+                            w: along * sin_a}
+            for axis in range(3):
+                assert abs(velocity[axis]) <= RATE[axis] * (1 + SLACK)
+                assert abs(acceleration[axis]) <= accel[axis] * (1 + SLACK)
+
+
+def test_full_circle_bound_is_the_euclidean_one():
+    """A whole turn meets every direction: the worst axis sees sqrt(a_t^2 + c^2)."""
+    cruise, accel = limits(arc_segment(1.0, 2 * math.pi, 0.0, (0, 1), 0.3, feed=100))
+    assert cruise == pytest.approx(math.sqrt(CENTRIPETAL_SHARE * 400))
+    assert accel == pytest.approx(math.sqrt(400 ** 2 - (CENTRIPETAL_SHARE * 400) ** 2))
+
+
+def test_short_arc_bound_is_wider_than_the_circle():
+    """A 10-degree arc moving along y: x sees mostly the centripetal, y the tangential."""
+    short = arc_segment(1.0, math.radians(10), 0.0, (0, 1), -math.radians(5), feed=100)
+    full = arc_segment(1.0, 2 * math.pi, 0.0, (0, 1), 0.0, feed=100)
+    assert limits(short)[0] > limits(full)[0] and limits(short)[1] > limits(full)[1]
 
 
 def test_line_limits_are_grbl_rules():
@@ -150,7 +171,8 @@ def test_line_limits_are_grbl_rules():
 
 
 def test_arc_limits_known_values():
-    # a flat arc of radius 1 mm in XY: v^2 <= share * 400 * 1; a_t = sqrt(1 - share^2) * 400
+    # a half circle of radius 1 mm in XY (meets every direction): v^2 <= share * 400 * 1,
+    # a_t = sqrt(1 - share^2) * 400
     cruise, accel = limits(arc_segment(1.0, math.pi, 0.0, (0, 1), 0.0, feed=100))
     assert cruise == pytest.approx(math.sqrt(CENTRIPETAL_SHARE * 400))
     assert accel == pytest.approx(math.sqrt(1 - CENTRIPETAL_SHARE ** 2) * 400)

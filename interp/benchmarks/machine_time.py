@@ -162,8 +162,8 @@ def why_slower(program: Program, machine: Machine, row: Row) -> str:
              (no_stops - unbounded, "the centripetal bound v^2 <= a_n R on tight arcs (Grbl's chord "
                                     "junctions allow about v^2 = a R delta / arc tolerance)"),
              (unbounded - row.grbl_s, "the rest: exact arc lengths (longer than chords) and junctions")]
-    return f"{row.ours_s - row.grbl_s:+.3f} s: " + "; ".join(
-        f"{seconds:+.3f} s {what}" for seconds, what in parts if abs(seconds) > 5e-4)
+    named = [f"{seconds:+.3f} s {what}" for seconds, what in parts if abs(seconds) > 5e-4]
+    return f"{row.ours_s - row.grbl_s:+.4f} s: " + ("; ".join(named) or "below a millisecond")
 
 
 def corpus_rows(machine: Machine, *, window: int = STREAM_WINDOW, only: str | None = None,

@@ -21,21 +21,21 @@ speed, the path acceleration, and the entry and exit speeds, so that
     reached at the end (a triangle when the segment is too short to reach cruise).
 
 Lines take Grbl's rules: cruise = min(feed, min over axes of rate_i / |u_i|) and
-accel = min over axes of a_i / |u_i|.  Arcs and helices are bounded for the whole arc, at
-every angle of the circle (a safe bound, not the arc's own angular span): with the helix's
-pitch angle alpha (sin alpha = the tangent's component along the plane's normal axis w),
-the plane axes (p, q) see the speed v cos(alpha) turning round the circle and the normal
-axis v sin(alpha) constantly, so
+accel = min over axes of a_i / |u_i|.  Arcs and helices are bounded once for the whole arc,
+at every tangent direction phi (in the plane (p, q)) the arc passes through: with the
+helix's pitch angle alpha (sin alpha = the tangent's component along the plane's normal
+axis w), the plane axes see the speed v cos(alpha), the tangential acceleration
+a_t cos(alpha) along the tangent and the centripetal c = (v cos(alpha))^2 / R across it:
 
-    cruise: v cos(alpha) <= min(rate_p, rate_q),  v sin(alpha) <= rate_w,
-            (v cos(alpha))^2 / R <= a_n = CENTRIPETAL_SHARE * min(a_p, a_q)   (centripetal)
-    accel:  (a_t cos(alpha))^2 + (v_c cos(alpha))^4 / R^2 <= min(a_p, a_q)^2,
-            a_t sin(alpha) <= a_w
+    v cos(alpha) |cos phi| <= rate_p,   a_t cos(alpha) |cos phi| + c |sin phi| <= a_p
+    v cos(alpha) |sin phi| <= rate_q,   a_t cos(alpha) |sin phi| + c |cos phi| <= a_q
+    v sin(alpha) <= rate_w,             a_t sin(alpha) <= a_w
+    c <= a_n = CENTRIPETAL_SHARE * min(a_p / max |sin phi|, a_q / max |cos phi|)
 
-(a plane axis sees the tangential and the centripetal acceleration at right angles, each
-at most once per turn, so the worst axis sees their Euclidean sum; the centripetal part is
-taken at the cruise speed v_c, the highest speed on the arc).  CENTRIPETAL_SHARE reserves
-part of the plane axes' acceleration for speeding up and slowing down on tight arcs.
+for every phi of the arc, c taken at the cruise speed v_c (the highest on the arc), a_t of
+either sign.  Over a whole turn: v_c^2 cos^2(alpha) / R <= CENTRIPETAL_SHARE * min(a_p, a_q)
+and (a_t cos(alpha))^2 + c^2 <= min(a_p, a_q)^2.  CENTRIPETAL_SHARE reserves part of the
+plane axes' acceleration for speeding up and slowing down on tight arcs.
 docs/planner.md has the formulas, the rules and the limits.
 """
 from __future__ import annotations
@@ -54,6 +54,9 @@ STRAIGHT_COS = -0.999999
 # tangential acceleration (0.9 leaves 0.436; on the corpus of the machine-time
 # benchmark 0.9 was the best of 0.5 .. 0.99).
 CENTRIPETAL_SHARE = 0.9
+# An arc's span of tangent directions is widened by this on each side (radians), so that
+# the bounds hold however its tangents were rounded.
+SPAN_MARGIN = 1e-3
 # Relative tolerance of the feasibility checks (floating point).
 EPSILON = 1e-9
 
@@ -114,6 +117,65 @@ def _check(segment: Segment) -> None:
             raise ValueError(f"an arc needs two different plane axes (got {segment.plane_axes!r})")
 
 
+def _arc_span(segment: Segment, cos_a: float) -> tuple[float, float] | None:
+    """The tangent directions an arc sweeps in its plane, as an interval of angles
+    (radians, from the plane's u axis towards v), widened by SPAN_MARGIN; None when it
+    covers the whole circle or its tangents, length and radius do not agree."""
+    p, q = segment.plane_axes
+    sweep = segment.length_mm * cos_a / segment.radius_mm
+    if cos_a <= 1e-12 or sweep >= 2 * math.pi - 2 * SPAN_MARGIN:
+        return None
+    start = math.atan2(segment.start_unit[q], segment.start_unit[p])
+    end = math.atan2(segment.end_unit[q], segment.end_unit[p])
+    counter = (end - start) % (2 * math.pi)            # the sweep if counter-clockwise
+    if _circular_distance(counter, sweep) <= SPAN_MARGIN:
+        return start - SPAN_MARGIN, start + sweep + SPAN_MARGIN
+    if _circular_distance(2 * math.pi - counter, sweep) <= SPAN_MARGIN:
+        return start - sweep - SPAN_MARGIN, start + SPAN_MARGIN
+    return None
+
+
+def _circular_distance(x: float, y: float) -> float:
+    d = (x - y) % (2 * math.pi)
+    return min(d, 2 * math.pi - d)
+
+
+def _contains(span: tuple[float, float] | None, angle: float) -> bool:
+    """Whether the span holds angle + k pi for some whole k."""
+    if span is None:
+        return True
+    low, high = span
+    return math.ceil((low - angle) / math.pi) <= math.floor((high - angle) / math.pi)
+
+
+def _largest(span, function, peak: float) -> float:
+    """Largest |function| (|cos| or |sin|) over the span; it peaks at peak + k pi."""
+    if _contains(span, peak):
+        return 1.0
+    return max(abs(function(span[0])), abs(function(span[1])))
+
+
+def _tangential_room(span, along_p: float, along_q: float, centripetal: float) -> float:
+    """The largest in-plane tangential acceleration A1 such that at every tangent angle phi
+    of the span A1 |cos phi| + c |sin phi| <= along_p and A1 |sin phi| + c |cos phi| <=
+    along_q.  Each bound (A - c |sin phi|) / |cos phi| has its least values where
+    |sin phi| = c / A (per quarter turn), so the least over the span lies there or at an end."""
+    angles = [] if span is None else [span[0], span[1]]
+    for most, critical in ((along_p, 0.0), (along_q, math.pi / 2)):
+        ratio = min(1.0, centripetal / most)
+        for angle in (critical + math.asin(ratio), critical - math.asin(ratio)):
+            if _contains(span, angle):
+                angles.append(angle)
+    room = math.inf
+    for angle in angles:
+        c, s = abs(math.cos(angle)), abs(math.sin(angle))
+        if c > 1e-12:
+            room = min(room, (along_p - centripetal * s) / c)
+        if s > 1e-12:
+            room = min(room, (along_q - centripetal * c) / s)
+    return max(0.0, room)
+
+
 def limits(segment: Segment) -> tuple[float, float]:
     """(max cruise mm/s, path acceleration mm/s^2) of one segment (module docstring rules)."""
     _check(segment)
@@ -126,17 +188,24 @@ def limits(segment: Segment) -> tuple[float, float]:
     sin_a = min(abs(_unit(segment.start_unit)[w]), 1.0)
     cos_a = math.sqrt(max(0.0, 1.0 - sin_a * sin_a))
     radius = segment.radius_mm
-    plane_accel = min(accel[p], accel[q])
+    span = _arc_span(segment, cos_a)
+    # over the span: the plane speed's largest share on p (|cos phi|) and on q (|sin phi|);
+    # the centripetal acceleration points across the tangent, so its shares are swapped
+    on_p, on_q = _largest(span, math.cos, 0.0), _largest(span, math.sin, math.pi / 2)
     cruise = segment.feed_mm_s
     if cos_a > 1e-12:
-        cruise = min(cruise, min(rate[p], rate[q]) / cos_a,
-                     math.sqrt(CENTRIPETAL_SHARE * plane_accel * radius) / cos_a)
+        centripetal_most = min(accel[p] / on_q if on_q > 1e-12 else math.inf,
+                               accel[q] / on_p if on_p > 1e-12 else math.inf)
+        for most, share in ((rate[p], on_p), (rate[q], on_q)):
+            if share > 1e-12:
+                cruise = min(cruise, most / (share * cos_a))
+        cruise = min(cruise, math.sqrt(CENTRIPETAL_SHARE * centripetal_most * radius) / cos_a)
     if sin_a > 1e-12:
         cruise = min(cruise, rate[w] / sin_a)
     tangential = math.inf
     if cos_a > 1e-12:
         centripetal = (cruise * cos_a) ** 2 / radius
-        tangential = math.sqrt(max(0.0, plane_accel ** 2 - centripetal ** 2)) / cos_a
+        tangential = _tangential_room(span, accel[p], accel[q], centripetal) / cos_a
     if sin_a > 1e-12:
         tangential = min(tangential, accel[w] / sin_a)
     return cruise, tangential
