@@ -72,12 +72,13 @@ def _assert_feasible(segments: list[Segment], plans: list[Plan], deviation: floa
             assert p.exit_mm_s == plans[index + 1].entry_mm_s
         if index == 0 or segment.stop_before:
             assert p.entry_mm_s == 0.0
-        else:
-            before = segments[index - 1]
-            used = deviation if segment.tolerance_mm is None else min(deviation, segment.tolerance_mm)
+            continue
+        before = segments[index - 1]
+        used = deviation if segment.tolerance_mm is None else min(deviation, segment.tolerance_mm)
+        if min(segment.length_mm, before.length_mm) > used:       # (short runs: their own tests)
             cap = junction_speed(before.end_unit, segment.start_unit, segment.axis_accel_mm_s2, used)
             assert p.entry_mm_s <= cap * (1 + SLACK) + 1e-12, "junction speed exceeded"
-            assert p.entry_mm_s <= plans[index - 1].cruise_mm_s * (1 + SLACK)
+        assert p.entry_mm_s <= plans[index - 1].cruise_mm_s * (1 + SLACK)
 
 
 @settings(max_examples=150, deadline=None)
@@ -233,6 +234,38 @@ def test_corner_and_tolerance():
     assert plan(corner, junction_deviation_mm=0.05)[0].exit_mm_s == pytest.approx(wide)
     corner[1].stop_before = True
     assert plan(corner, junction_deviation_mm=0.05)[0].exit_mm_s == 0.0
+
+
+def test_a_short_run_is_one_corner():
+    """An arc, a one-step correction line (0.01 mm) across it, and an arc continuing the
+    first tangentially: the run is shorter than the junction deviation, so the junctions
+    are judged across it (straight on) and the speed stays at the cruise."""
+    first = arc_segment(20.0, math.pi / 2, 0.0, (0, 1), 0.0, feed=30)
+    jog = line((0, 1, 0), length=0.01, feed=30)
+    second = arc_segment(20.0, math.pi / 2, 0.0, (0, 1), math.pi / 2, feed=30)
+    plans = plan([first, jog, second], junction_deviation_mm=0.01)
+    assert plans[0].exit_mm_s == plans[1].exit_mm_s == pytest.approx(30.0)
+    # a longer jog is a corner of its own; so is the short one under G64 P0.005
+    assert plan([first, line((0, 1, 0), length=0.02, feed=30), second],
+                junction_deviation_mm=0.01)[0].exit_mm_s < 5
+    jog.tolerance_mm = 0.005
+    assert plan([first, jog, second], junction_deviation_mm=0.01)[0].exit_mm_s < 5
+
+
+def test_a_short_run_is_never_slower_nor_a_reversal():
+    """Across the run the corner may be sharper than its own junctions: each junction keeps
+    the faster of the two rules.  A run in which a moving axis turns back is not bridged."""
+    corner = junction_speed((1, 0, 0), (0, 1, 0), ACCEL, 0.01)
+    segments = [line((1, 0, 0)), line((0, 1, 0), length=0.005), line((-1, 0, 0))]
+    assert [p.entry_mm_s for p in plan(segments, junction_deviation_mm=0.01)[1:]] == \
+        pytest.approx([corner, corner])                           # not the reversal's 0
+    segments = [line((1, 0, 0)), line((0, 1, 0), length=0.005), line((1, 0, 0))]
+    assert plan(segments, junction_deviation_mm=0.01)[0].exit_mm_s == pytest.approx(50.0)
+    for jog in ((-1, 0, 0), (-1, 1, 0)):                          # x turns back: two corners
+        segments = [line((1, 0, 0)), line(jog, length=0.005), line((1, 0, 0))]
+        entries = [p.entry_mm_s for p in plan(segments, junction_deviation_mm=0.01)[1:]]
+        assert entries == pytest.approx([junction_speed((1, 0, 0), jog, ACCEL, 0.01),
+                                         junction_speed(jog, (1, 0, 0), ACCEL, 0.01)])
 
 
 def test_tangent_arc_keeps_speed():

@@ -12,6 +12,9 @@ speed, the path acceleration, and the entry and exit speeds, so that
   * no segment is entered or left faster than the junction between it and its neighbour
     allows (Grbl's junction-deviation rule; G64 P lowers the deviation for one junction; an
     exact stop, `stop_before`, makes the junction speed 0);
+  * a run of segments shorter in all than the junction deviation between two others
+    (step-rounding corrections, micro-segments) may take the corner between the tangents
+    around it, unless an axis turns back in it;
   * every segment can always stop within what follows it (backward pass:
     v_entry^2 <= v_exit^2 + 2 a L, the last segment and the segment before every stop end
     at 0) and every speed is reachable from the one before (forward pass:
@@ -252,21 +255,63 @@ def trapezoid_time(length: float, entry: float, exit: float, cruise: float, acce
     return (2.0 * cruise - entry - exit) / accel + (length - ramps) / cruise
 
 
+def _deviation(segment: Segment, junction_deviation_mm: float) -> float:
+    """The junction deviation of the junction into `segment` (G64 P lowers it)."""
+    if segment.tolerance_mm is None:
+        return junction_deviation_mm
+    return min(junction_deviation_mm, segment.tolerance_mm)
+
+
+def _reverses(segments: list[Segment], before: int, after: int) -> bool:
+    """Whether an axis moving at the end of segments[before] or at the start of
+    segments[after] moves the other way in a segment between them."""
+    for axis in range(3):
+        ends = {math.copysign(1.0, u) for u in (segments[before].end_unit[axis],
+                                                segments[after].start_unit[axis]) if abs(u) > 1e-9}
+        for index in range(before + 1, after):
+            for u in (segments[index].start_unit[axis], segments[index].end_unit[axis]):
+                if abs(u) > 1e-9 and -math.copysign(1.0, u) in ends:
+                    return True
+    return False
+
+
 def _junction_limits(segments: list[Segment], cruise: list[float],
                      junction_deviation_mm: float) -> list[float]:
-    """The highest entry speed of every segment from its junction alone."""
+    """The highest entry speed of every segment from its junction alone.  A run of
+    segments whose lengths add up to no more than the junction deviation (step-rounding
+    corrections, CAM micro-segments) between two others, in which no moving axis turns
+    back, is a single corner: its junctions may also take the speed of the corner between
+    the tangent before the run and the tangent after it."""
+    count = len(segments)
     caps = []
     for index, segment in enumerate(segments):
         if index == 0 or segment.stop_before:
             caps.append(0.0)
             continue
-        before = segments[index - 1]
-        deviation = junction_deviation_mm
-        if segment.tolerance_mm is not None:
-            deviation = min(deviation, segment.tolerance_mm)
-        speed = junction_speed(before.end_unit, segment.start_unit,
-                               segment.axis_accel_mm_s2, deviation)
+        speed = junction_speed(segments[index - 1].end_unit, segment.start_unit,
+                               segment.axis_accel_mm_s2, _deviation(segment, junction_deviation_mm))
         caps.append(min(speed, cruise[index - 1], cruise[index]))
+    first = 1
+    while first < count:
+        after, total, deviation = first, 0.0, math.inf
+        while after < count and not segments[after].stop_before:
+            deviation = min(deviation, _deviation(segments[after], junction_deviation_mm))
+            if total + segments[after].length_mm > deviation:
+                break
+            total += segments[after].length_mm
+            after += 1
+        if after == first:
+            first += 1
+            continue
+        if after < count and not segments[after].stop_before and total <= deviation \
+                and not _reverses(segments, first - 1, after):
+            # a short run first..after-1, within every deviation of its junctions, in which
+            # no moving axis turns back
+            speed = junction_speed(segments[first - 1].end_unit, segments[after].start_unit,
+                                   segments[after].axis_accel_mm_s2, deviation)
+            for index in range(first, after + 1):      # (never below the junction's own)
+                caps[index] = max(caps[index], min(speed, cruise[index - 1], cruise[index]))
+        first = after + 1
     return caps
 
 
