@@ -192,6 +192,6 @@ def test_benchmark_table(tmp_path, monkeypatch, capsys):
     ours, window, grbl_s, ratio, arcs = [c.strip() for c in row.split("|")[2:7]]
     assert float(ratio) == pytest.approx(float(ours) / float(grbl_s), abs=1e-4)
     assert float(window) >= float(ours) and arcs.startswith("1 / ")
-    assert "refused by the front end: b.nc" in out
+    assert "refused: b.nc" in out
     assert "a.ngc" in out.split("whole-program plan slower")[1]      # the G61 stops: slower
     assert "G61 exact stops" in out
