@@ -12,7 +12,7 @@ speed, the path acceleration, and the entry and exit speeds, so that
   * no segment is entered or left faster than the junction between it and its neighbour
     allows (Grbl's junction-deviation rule; G64 P lowers the deviation for one junction; an
     exact stop, `stop_before`, makes the junction speed 0);
-  * a run of segments shorter in all than the junction deviation between two others
+  * a run of lines shorter in all than the junction deviation between two others
     (step-rounding corrections, micro-segments) may take the corner between the tangents
     around it, unless an axis turns back in it;
   * every segment can always stop within what follows it (backward pass:
@@ -277,8 +277,8 @@ def _reverses(segments: list[Segment], before: int, after: int) -> bool:
 
 def _junction_limits(segments: list[Segment], cruise: list[float],
                      junction_deviation_mm: float) -> list[float]:
-    """The highest entry speed of every segment from its junction alone.  A run of
-    segments whose lengths add up to no more than the junction deviation (step-rounding
+    """The highest entry speed of every segment from its junction alone.  A run of lines
+    whose lengths add up to no more than the junction deviation (step-rounding
     corrections, CAM micro-segments) between two others, in which no moving axis turns
     back, is a single corner: its junctions may also take the speed of the corner between
     the tangent before the run and the tangent after it."""
@@ -296,7 +296,7 @@ def _junction_limits(segments: list[Segment], cruise: list[float],
         after, total, deviation = first, 0.0, math.inf
         while after < count and not segments[after].stop_before:
             deviation = min(deviation, _deviation(segments[after], junction_deviation_mm))
-            if total + segments[after].length_mm > deviation:
+            if total + segments[after].length_mm > deviation or segments[after].radius_mm is not None:
                 break
             total += segments[after].length_mm
             after += 1
