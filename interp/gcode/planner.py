@@ -92,17 +92,21 @@ class Plan:
 def _limit_by_axes(maxima: Vector, unit: Vector) -> float:
     """min over the axes the direction moves of maxima_i / |unit_i| (Grbl's rule)."""
     limit = math.inf
-    for most, part in zip(maxima, unit):
-        if abs(part) > 1e-12:
-            limit = min(limit, most / abs(part))
+    for axis in range(3):
+        part = abs(unit[axis])
+        if part > 1e-12:
+            value = maxima[axis] / part
+            if value < limit:
+                limit = value
     return limit
 
 
 def _unit(vector: Vector) -> Vector:
-    size = math.sqrt(sum(c * c for c in vector))
+    x, y, z = vector
+    size = math.sqrt(x * x + y * y + z * z)
     if size == 0.0:
         raise ValueError("a segment's tangent must not be the zero vector")
-    return tuple(c / size for c in vector)
+    return (x / size, y / size, z / size)
 
 
 def _check(segment: Segment) -> None:
@@ -226,12 +230,12 @@ def junction_speed(before: Vector, after: Vector, axis_accel_mm_s2: Vector,
     with theta the angle between the paths (cos theta = -before . after), a_j the axes'
     limit in the direction after - before.  Straight on: no limit (inf); reversal: 0."""
     before, after = _unit(before), _unit(after)
-    cos_theta = -sum(b * a for b, a in zip(before, after))
+    cos_theta = -(before[0] * after[0] + before[1] * after[1] + before[2] * after[2])
     if cos_theta > REVERSAL_COS:
         return 0.0
     if cos_theta < STRAIGHT_COS:
         return math.inf
-    change = _unit(tuple(a - b for a, b in zip(after, before)))
+    change = _unit((after[0] - before[0], after[1] - before[1], after[2] - before[2]))
     accel = _limit_by_axes(axis_accel_mm_s2, change)
     sin_half = math.sqrt(0.5 * (1.0 - cos_theta))
     return math.sqrt(accel * junction_deviation_mm * sin_half / (1.0 - sin_half))
@@ -326,6 +330,21 @@ def _backward(caps: list[float], reach: list[float], first: int, last: int) -> l
     return out
 
 
+def _window_entry(caps: list[float], reach: list[float], whole: list[float], first: int,
+                  last: int) -> float:
+    """The entry speed of segment `first` that can still stop at the end of `last`: the
+    backward pass over first..last.  Where it meets a junction's limit it joins the
+    whole-program pass (which is at least as fast and at most that limit there), so the
+    rest is that pass's."""
+    exit_sqr = 0.0
+    for index in range(last, first - 1, -1):
+        speed = math.sqrt(exit_sqr + reach[index])
+        if speed >= caps[index]:
+            return whole[first]
+        exit_sqr = speed * speed
+    return math.sqrt(exit_sqr)
+
+
 def plan(segments: list[Segment], *, junction_deviation_mm: float,
          window: int | None = None) -> list[Plan]:
     """The plan of every segment (module docstring).  window=None plans the whole program;
@@ -351,7 +370,7 @@ def plan(segments: list[Segment], *, junction_deviation_mm: float,
         if window is not None and index + 1 < count:
             last = min(index + window, count - 1)
             if last < count - 1:
-                exit_speed = min(exit_speed, _backward(caps, reach, index + 1, last)[0])
+                exit_speed = min(exit_speed, _window_entry(caps, reach, whole, index + 1, last))
         entry[index + 1] = exit_speed
     return [Plan(cruise_mm_s=cruise[i], accel_mm_s2=accel[i], entry_mm_s=entry[i],
                  exit_mm_s=entry[i + 1],
