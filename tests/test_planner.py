@@ -8,8 +8,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from interp.gcode.planner import (CENTRIPETAL_SHARE, Plan, Segment, junction_speed, limits,
-                                  machine_time, plan, trapezoid_time)
+from interp.gcode.planner import (CENTRIPETAL_SHARE, Plan, Segment, _junction_limits, junction_speed,
+                                  limits, machine_time, plan, trapezoid_time)
 
 RATE = (100.0, 100.0, 50.0)
 ACCEL = (500.0, 400.0, 200.0)
@@ -104,6 +104,36 @@ def test_window_plan_is_feasible_and_never_faster(segments, deviation, window):
         assert streamed[index].exit_mm_s ** 2 <= speed_sqr * (1 + SLACK) + 1e-12
     if window >= len(segments):
         assert streamed == whole
+
+
+# dense programs: short collinear lines at high feeds (a few with a corner or a stop),
+# where a short look-ahead limits the speed
+dense_lines = st.builds(lambda corner, length, feed, stop: line((1, 0.3 + corner, 0), length, feed,
+                                                                rate=(1000, 1000, 1000), stop_before=stop),
+                        st.sampled_from([0.0] * 8 + [0.2]), st.floats(0.05, 2), st.floats(100, 300),
+                        st.sampled_from([False] * 15 + [True]))
+dense = st.lists(dense_lines, min_size=1, max_size=60)
+
+
+@settings(max_examples=100, deadline=None)
+@given(programs | dense, deviations, st.integers(1, 12))
+def test_window_plan_is_the_streaming_hosts(segments, deviation, window):
+    """The window plan against a host written out plainly: at each segment, the backward
+    pass over the segments it knows (the next `window`) from a stop at the last of them,
+    and the forward step from the speed it actually has."""
+    bounds = [limits(s) for s in segments]
+    reach = [2 * accel * s.length_mm for (_, accel), s in zip(bounds, segments)]
+    caps = _junction_limits(segments, [cruise for cruise, _ in bounds], deviation)
+    streamed = plan(segments, junction_deviation_mm=deviation, window=window)
+    speed = 0.0
+    for index in range(len(segments)):
+        exit_sqr = 0.0
+        for ahead in range(min(index + window, len(segments) - 1), index, -1):
+            exit_sqr = min(caps[ahead], math.sqrt(exit_sqr + reach[ahead])) ** 2
+        exit_speed = min(math.sqrt(exit_sqr), math.sqrt(speed ** 2 + reach[index]))
+        assert streamed[index].entry_mm_s == speed
+        assert streamed[index].exit_mm_s == pytest.approx(exit_speed, rel=1e-12, abs=1e-12)
+        speed = streamed[index].exit_mm_s
 
 
 @settings(max_examples=100, deadline=None)
