@@ -133,7 +133,7 @@ class SpeedRamp(CycleModel):
         self.bc = self.bs_q = self.acc = 0
         self.n = self.v = self.q = self.p = self.na = 0
         self.remaining = self.budget_x = 0
-        self.seg = self.rate = self.feed = self.limit = 0
+        self.seg = self.rate = self.feed = self.limit = self.exit = self.f_sq = 0
         self.pre = IDLE
         self.n_sh = self.p_sh = self.f_pre = 0
         self.ref_count = self.ref_r = self.ref_d = self.ref_m = 0
@@ -165,6 +165,19 @@ class SpeedRamp(CycleModel):
     def known(self) -> int:
         return int(self.pre == DONE and self.n_sh == self.n)
 
+    def consistent(self, next_rate: int) -> list[str]:
+        """The incremental registers against their products (empty if all agree)."""
+        bad = []
+        if self.q != self.n * (self.n + 1):
+            bad.append("q")
+        if self.p != self.rate * self.n:
+            bad.append("p")
+        if self.na != self.n * self.acc:
+            bad.append("na")
+        if self.pre == DONE and self.p_sh != next_rate * self.n_sh:
+            bad.append("p_sh")
+        return bad
+
     def clock(self, inputs: Mapping[str, int]) -> None:
         if inputs.get("rst"):
             self.reset()
@@ -182,9 +195,9 @@ class SpeedRamp(CycleModel):
         n_rate, n_exit = g("next_rate", 0), g("next_exit", 0)
 
         known = move_head and self.known
-        exit_t = n_exit if known else 0
-        floor = target_floor(n_exit) if known else 1
-        f_sq = self.f_pre if known else 2
+        exit_t = self.exit if known else 0             # the current segment's exit speed
+        floor = target_floor(self.exit) if known else 1
+        f_sq = self.f_sq if known else 2
 
         # block and DDA
         bend = self.bc >= (1 << bs) - 1
@@ -236,6 +249,7 @@ class SpeedRamp(CycleModel):
         pop = late = 0
         switch = load = 0
         seg_n, rate_n, feed_n, limit_n = self.seg, self.rate, self.feed, self.limit
+        exit_n, f_sq_n = self.exit, self.f_sq
         rem_n, zx_n = rem1 if self.seg else self.remaining, zx1
         ref_start = 0
         if cross:
@@ -249,6 +263,7 @@ class SpeedRamp(CycleModel):
                 if n_d:                               # the new segment's p * n', n' = n +- 1
                     p_d = self.p_sh + (n_d - n) * n_rate
                 rate_n, feed_n, limit_n = n_rate, g("next_feed", 0), g("next_limit", 0)
+                exit_n, f_sq_n = n_exit, self.f_pre
                 rem_n = rem1 + g("next_length", 0)
                 zx_n = (g("next_budget", 0) << bs) - 2 * self.p_sh
                 ref_start = 1
@@ -259,6 +274,7 @@ class SpeedRamp(CycleModel):
             load = pop = 1
             seg_n = 1
             rate_n, feed_n, limit_n = n_rate, g("next_feed", 0), g("next_limit", 0)
+            exit_n, f_sq_n = n_exit, self.f_pre
             rem_n = self.remaining + g("next_length", 0)
             zx_n = (g("next_budget", 0) << bs) - 2 * n_rate
             p_d = 0
@@ -284,8 +300,8 @@ class SpeedRamp(CycleModel):
         elif self.pre == BUSY and p_done:
             self.pre = DONE
             self.p_sh, self.f_pre = self.mul_p.product, self.mul_f.product
-        elif self.pre == DONE:
-            gap = max(-2, min(2, n - self.n_sh))
+        elif self.pre == DONE:                        # follow n after this edge
+            gap = max(-2, min(2, n_d - self.n_sh))
             self.n_sh += gap
             self.p_sh += gap * n_rate
         # feed * override for the cap, recomputed all the time
@@ -320,53 +336,111 @@ class SpeedRamp(CycleModel):
         self.bs_q = g("block_shift", 0)
         self.hold_q = int(bool(hold))
         self.seg, self.rate, self.feed, self.limit = seg_n, rate_n, feed_n, limit_n
+        self.exit, self.f_sq = exit_n, f_sq_n
         self.remaining, self.budget_x = rem_n, zx_n
 
 
-def run_profile(segments: list[Segment], *, quantum: int, block_shift: int = 0,
-                override: int = 100, controls: list[tuple[int, str, int]] = (),
-                arrivals: Mapping[int, int] | None = None, max_cycles: int = 1_000_000,
-                widths: Mapping[str, int] | None = None, barrier_delay: int = 3,
-                model: SpeedRamp | None = None) -> list[dict[str, int]]:
-    """Clock the model on a queue of segments until it is idle with the queue empty.
+def profile_stimulus(segments: list[Segment], *, quantum: int, block_shift: int = 0,
+                     override: int = 100, controls: list[tuple[int, str, int]] = (),
+                     arrivals: Mapping[int, int] | None = None, max_cycles: int = 1_000_000,
+                     barrier_delay: int = 3, resets: tuple[int, ...] = (),
+                     tail: int = 2):
+    """Inputs, clock by clock, of a profile queue holding `segments` (a stimulus
+    generator: it is sent each clock's sample and follows `next_pop`).
 
     `controls`: (cycle, "hold" | "resume" | "override", value), sorted; `arrivals`:
-    segment index -> the cycle it enters the queue (default: all at cycle 0);
-    a barrier is done `barrier_delay` cycles after the generator has stopped at it.
-    Returns one sample per clock (the state during that clock).
+    segment index -> the cycle it enters the queue (default: all at cycle 0); a
+    barrier is done `barrier_delay` clocks after the generator stopped before it;
+    `resets`: cycles with rst high (the queue starts over).  Ends `tail` clocks
+    after the generator is idle with the queue empty.
     """
-    model = model or SpeedRamp(**(widths or {}))
     arrivals = arrivals or {}
-    queue = list(segments)
-    head = 0
-    hold, ovr = 0, override
+    head, hold, ovr, after = 0, 0, override, 0
     controls = list(controls)
-    samples = []
     barrier_wait = None
+    moving = pop = 0
     for cycle in range(max_cycles):
-        while controls and controls[0][0] <= cycle:
-            _, what, value = controls.pop(0)
-            if what == "hold":
-                hold = 1
-            elif what == "resume":
-                hold = 0
-            else:
-                ovr = value
-        valid = head < len(queue) and arrivals.get(head, 0) <= cycle
-        seg = queue[head] if valid else Segment()
-        done = 0
-        if valid and seg.barrier and not model.moving:
-            barrier_wait = cycle if barrier_wait is None else barrier_wait
-            done = int(cycle - barrier_wait == barrier_delay)
-        inputs = {**seg.ports(valid), "barrier_done": done, "speed_quantum": quantum,
-                  "block_shift": block_shift, "override": ovr, "hold": hold}
-        model.clock(inputs)
-        sample = model.sample()
-        sample["cycle"] = cycle
-        samples.append(sample)
-        if model.next_pop:
+        if pop:
             head += 1
             barrier_wait = None
-        if head >= len(queue) and not model.moving and not model.next_pop:
-            break
-    return samples
+        while controls and controls[0][0] <= cycle:
+            _, what, value = controls.pop(0)
+            hold = {"hold": 1, "resume": 0}.get(what, hold)
+            ovr = value if what == "override" else ovr
+        rst = int(cycle in resets)
+        if rst:
+            head, barrier_wait = 0, None
+        valid = head < len(segments) and arrivals.get(head, 0) <= cycle
+        seg = segments[head] if valid else Segment()
+        done = 0
+        if valid and seg.barrier and not moving:
+            barrier_wait = cycle if barrier_wait is None else barrier_wait
+            done = int(cycle - barrier_wait == barrier_delay)
+        if head >= len(segments) and not moving and not pop:
+            after += 1
+            if after > tail:
+                return
+        sample = yield {**seg.ports(valid), "barrier_done": done, "speed_quantum": quantum,
+                        "block_shift": block_shift, "override": ovr, "hold": hold, "rst": rst}
+        moving, pop = sample["moving"], sample["next_pop"] and not rst
+    raise RuntimeError(f"profile not finished after {max_cycles} clocks")
+
+
+def run_profile(segments: list[Segment], *, widths: Mapping[str, int] | None = None,
+                model: SpeedRamp | None = None, **options) -> list[dict[str, int]]:
+    """The model alone on `profile_stimulus(segments, **options)`: one sample per
+    clock (sample i: the state after i edges)."""
+    from .base import drive
+
+    model = model or SpeedRamp(**(widths or {}))
+    return drive(model, profile_stimulus(segments, **options))
+
+
+def plan_exits(segments: list[Segment], quantum: int, pf: int) -> list[Segment]:
+    """A reference backward pass (the host's job, here for tests): each segment's
+    exit speed in quanta is the highest n <= both cruise speeds from which the rest
+    of the queue can still be stopped, n^2 + 3 n <= Z0' / 2^PF + f' (f' + 1)
+    (R(n, u) <= n^2 + n - f^2 - f + 2 n), the last exit 0.  Barriers stop."""
+    out = list(segments)
+    nxt_floor_sq = 0
+    for i in range(len(out) - 1, -1, -1):
+        seg = out[i]
+        if seg.barrier:
+            nxt_floor_sq = None
+            continue
+        if i == len(out) - 1 or nxt_floor_sq is None or out[i + 1].barrier:
+            exit_n = 0
+        else:
+            nxt = out[i + 1]
+            room = (nxt.budget >> pf) + nxt_floor_sq
+            n = max(0, int((room) ** 0.5))
+            while n > 0 and n * n + 3 * n > room:
+                n -= 1
+            exit_n = min(n, seg.feed // quantum, nxt.feed // quantum)
+        out[i] = Segment(seg.feed, seg.limit, exit_n, seg.rate, seg.length, seg.budget)
+        f = max(exit_n, 1)
+        # what this segment's entry may be: stoppable within it to its floor
+        nxt_floor_sq = f * f + f
+    return out
+
+
+def random_segments(rng, *, count: int, quantum: int, pf: int, block_shift: int,
+                    feed_w: int, len_w: int, barriers: float = 0.0,
+                    max_length: int | None = None, min_clocks: int = 0,
+                    max_quanta: int = 200) -> list[Segment]:
+    """Random moves (cruise 1 .. max_quanta quanta, rates 1/8 .. 1, lengths up to
+    `max_length`, at least `min_clocks` clocks at the limit speed) with planned
+    exits, and barriers with probability `barriers`."""
+    segs = []
+    max_length = max_length or min(1 << (len_w - 1), 400 * quantum * max_quanta)
+    for _ in range(count):
+        if segs and rng.random() < barriers:
+            segs.append(Segment(barrier=True))
+            continue
+        feed = min(rng.randint(1, max_quanta) * quantum + rng.randrange(quantum), (1 << feed_w) - 1)
+        limit = min(feed + rng.randrange(feed + 1), (1 << feed_w) - 1)
+        rate = rng.randint(max(1, (1 << pf) // 8), 1 << pf)
+        length = rng.randint(min_clocks * limit + 1, max(max_length, min_clocks * limit + 1))
+        segs.append(Segment(feed, limit, 0, rate, length,
+                            segment_budget(rate, length, quantum, block_shift)))
+    return plan_exits(segs, quantum, pf)
