@@ -54,6 +54,7 @@ module speed_ramp #(
     output reg               down,           // n fell at the last edge
     output wire              block,          // this clock ends a block
     output wire              moving,         // n != 0 or a segment in progress
+    output wire              segment,        // a segment in progress
     output wire              stopped,        // hold and n = 0
     output reg               late            // strobe: a stop or exit reached above its speed
 );
@@ -117,6 +118,7 @@ module speed_ramp #(
     wire [QW-1:0] f_sq    = succ ? f_sq_cur : {{(QW-2){1'b0}}, 2'd2};
     wire        exit_zero = ~succ | (exit_cur == {NW{1'b0}});
     assign moving  = (n != {NW{1'b0}}) | seg;
+    assign segment = seg;
     assign stopped = hold_q & (n == {NW{1'b0}});
 
     wire [7:0]  ovr = override == 8'd0 ? 8'd1 : override > 8'd200 ? 8'd200 : override;
@@ -183,6 +185,14 @@ module speed_ramp #(
     wire [NW-1:0] n_d = st_up ? n + ONE_N : st_dn ? n - ONE_N : n;
     wire late_n   = crossing & (exit_zero ? n > ONE_N : n_d > floor_n);
     wire [MW+SW-1:0] rem_ext = {{MW{1'b0}}, remaining};    // S > 0 at a switch
+    // a load carries S = c <= 0: charged as K quanta-clocks, K = 1 if c > -A, else
+    // 2^NW - 1, and 2 p' floor((K A + c) / A) given back by the refinement
+    wire signed [SW+NW:0] rem_wide = {{(NW+1){remaining[SW-1]}}, remaining};
+    wire signed [SW+NW:0] a_wide   = {{(SW+NW+1-FEED_W){1'b0}}, speed_quantum};
+    wire signed [SW+NW:0] a_k      = $signed({{(SW+1-FEED_W){1'b0}}, speed_quantum, {NW{1'b0}}}) - a_wide;
+    wire        carry_small = rem_wide + a_wide > 0;
+    wire signed [SW+NW:0] load_r = rem_wide + (carry_small ? a_wide : a_k);
+    wire [MW+SW+NW:0] load_r_ext = {{MW{1'b0}}, load_r};
     wire signed [ZXW-1:0] budget_next = $signed({{(ZXW-ZW){1'b0}}, next_budget}) <<< bs_q;
 
     // the successor's set-up: p' n and f (f + 1)
@@ -246,8 +256,10 @@ module speed_ramp #(
                 rate <= next_rate; feed <= next_feed; limit <= next_limit;
                 exit_cur <= next_exit; f_sq_cur <= f_pre;
                 remaining <= (switch_s ? rem1 : remaining) + $signed({2'b00, next_length});
-                budget_x  <= budget_next - (switch_s ? $signed({{(ZXW-PW-1){1'b0}}, p_sh, 1'b0})
-                                                    : $signed({{(ZXW-PF-2){1'b0}}, next_rate, 1'b0}));
+                budget_x  <= budget_next - (switch_s ? $signed({{(ZXW-PW-1){1'b0}}, p_sh, 1'b0}) :
+                                            carry_small ? $signed({{(ZXW-PF-2){1'b0}}, next_rate, 1'b0}) :
+                                            $signed({{(ZXW-PW-2){1'b0}}, next_rate, {NW{1'b0}}, 1'b0}) -
+                                            $signed({{(ZXW-PF-2){1'b0}}, next_rate, 1'b0}));
                 seg <= 1'b1;
             end else if (end_s) begin
                 remaining <= rem1; budget_x <= {ZXW{1'b0}}; seg <= 1'b0;
@@ -280,7 +292,11 @@ module speed_ramp #(
             if (switch_s && n != {NW{1'b0}}) begin
                 ref_r <= rem_ext[MW-1:0]; ref_d <= {speed_quantum, {(NW-1){1'b0}}};
                 ref_m <= {next_rate, {NW{1'b0}}}; ref_count <= NW8;
-            end else if (crossing | load) begin
+            end else if (load) begin
+                ref_r <= load_r[SW+NW] ? {MW{1'b0}} : load_r_ext[MW-1:0];
+                ref_d <= {speed_quantum, {(NW-1){1'b0}}};
+                ref_m <= {next_rate, {NW{1'b0}}}; ref_count <= NW8;
+            end else if (crossing) begin
                 ref_count <= 8'd0;
             end else if (ref_count != 8'd0) begin
                 if (ref_hit) ref_r <= ref_r - {1'b0, ref_d};
@@ -289,6 +305,28 @@ module speed_ramp #(
         end
     end
 
-    wire unused = &{1'b0, mf_busy, mf_done, mp_product[PW], mf_product[2*NW:QW], gap_full[NW:3], na_sum[NAW], rem_ext[MW+SW-1:MW]};
+`ifdef FORMAL
+    // (formal/speed_ramp.sby) n moves only at a DDA tick and by one quantum, except
+    // the last quantum at the clock a segment ends at rest (from n = 1, else `late`);
+    // the registers kept by adders equal their products; the successor's set-up too
+    // (the harness holds the head until it is popped).
+    reg f_past_valid = 1'b0;
+    always @(posedge clk) f_past_valid <= 1'b1;
+    wire [QW-1:0]  f_q  = {{NW{1'b0}}, n} * ({{NW{1'b0}}, n} + {{(QW-1){1'b0}}, 1'b1});
+    wire [PW-1:0]  f_p  = {{(PW-PF-1){1'b0}}, rate} * {{PF{1'b0}}, n};
+    wire [PW-1:0]  f_ps = {{(PW-PF-1){1'b0}}, next_rate} * {{PF{1'b0}}, n_sh};
+    wire [NAW-1:0] f_na = {{PF{1'b0}}, n} * {{NW{1'b0}}, acc};
+    always @(*) if (f_past_valid && !rst) begin
+        if (n_next != n) assert (dtick || final_q);
+        if (!late_n) assert (n_next == n || n_next == n + ONE_N || n_next + ONE_N == n);
+        if (final_q && !late_n) assert (n <= ONE_N);
+        assert (q == f_q);
+        assert (p == f_p);
+        assert (na == f_na);
+        if (pre == DONE && move_head) assert (p_sh == f_ps);
+    end
+`endif
+
+    wire unused = &{1'b0, mf_busy, mf_done, mp_product[PW], mf_product[2*NW:QW], gap_full[NW:3], na_sum[NAW], rem_ext[MW+SW-1:MW], load_r_ext[MW+SW+NW:MW]};
 endmodule
 `default_nettype wire
