@@ -59,7 +59,7 @@ module speed_ramp_check #(
     end
     always @(*) begin
         assume (speed_quantum != 6'd0 && block_shift <= 4'd1);
-        if (REST != 0 && next_valid && !next_barrier) assume (!moving);
+        if (REST != 0 && next_valid && !next_barrier && !next_pop) assume (!moving);
     end
     always @(posedge clk) if (f_past_valid && !$past(rst))
         assume ($stable(speed_quantum) && $stable(block_shift));

@@ -103,6 +103,8 @@ module speed_ramp #(
     reg  [PW:0]     ref_m;
     reg  [FEED_W+7:0] fo;        // feed * override
     reg             fo_valid, fo_ok;
+    reg  [FEED_W+7:0] fo_next;   // next_feed * override
+    reg             fn_valid, fn_ok;
     reg  [7:0]      bar_count;   // finished barriers not yet passed
     reg             hold_q;
 
@@ -196,10 +198,10 @@ module speed_ramp #(
     wire signed [ZXW-1:0] budget_next = $signed({{(ZXW-ZW){1'b0}}, next_budget}) <<< bs_q;
 
     // the successor's set-up: p' n and f (f + 1)
-    wire          mp_busy, mp_done, mf_busy, mf_done, mo_busy, mo_done;
+    wire          mp_busy, mp_done, mf_busy, mf_done, mo_busy, mo_done, mn_busy, mn_done;
     wire [PW:0]   mp_product;
     wire [2*NW:0] mf_product;
-    wire [FEED_W+7:0] mo_product;
+    wire [FEED_W+7:0] mo_product, mn_product;
     wire pre_start = (pre == IDLE) & move_head & ~pop & ~mp_busy;
     speed_ramp_mul #(.AW(PF + 1), .BW(NW)) u_mul_p (
         .clk(clk), .rst(rst), .start(pre_start), .a(next_rate), .b(n),
@@ -210,6 +212,9 @@ module speed_ramp #(
     speed_ramp_mul #(.AW(FEED_W), .BW(8)) u_mul_fo (
         .clk(clk), .rst(rst), .start(~mo_busy), .a(feed), .b(ovr),
         .busy(mo_busy), .done(mo_done), .product(mo_product));
+    speed_ramp_mul #(.AW(FEED_W), .BW(8)) u_mul_fn (
+        .clk(clk), .rst(rst), .start(~mn_busy), .a(next_feed), .b(ovr),
+        .busy(mn_busy), .done(mn_done), .product(mn_product));
     wire [NW-1:0] n_next = final_q ? {NW{1'b0}} : n_d;
     wire [NW:0] gap_full = {1'b0, n_next} - {1'b0, n_sh};   // n after this edge - n_sh, signed
     wire signed [2:0] gap = $signed(gap_full) > 2 ? 3'sd2 : $signed(gap_full) < -2 ? -3'sd2 : gap_full[2:0];
@@ -224,6 +229,7 @@ module speed_ramp #(
             pre <= IDLE; n_sh <= {NW{1'b0}}; p_sh <= {PW{1'b0}}; f_pre <= {QW{1'b0}};
             ref_count <= 8'd0; ref_r <= {MW{1'b0}}; ref_d <= {(MW-1){1'b0}}; ref_m <= {(PW+1){1'b0}};
             fo <= {(FEED_W+8){1'b0}}; fo_valid <= 1'b0; fo_ok <= 1'b0; bar_count <= 8'd0;
+            fo_next <= {(FEED_W+8){1'b0}}; fn_valid <= 1'b0; fn_ok <= 1'b0;
             up <= 1'b0; down <= 1'b0; next_pop <= 1'b0; late <= 1'b0; hold_q <= 1'b0;
         end else begin
             // speed and its companions
@@ -281,12 +287,20 @@ module speed_ramp #(
             end
             // feed * override
             if (switch_s | load) begin
-                fo_valid <= 1'b0; fo_ok <= 1'b0;
+                fo <= fo_next; fo_valid <= fn_valid; fo_ok <= 1'b0;
             end else begin
                 if (mo_done & fo_ok) begin
                     fo <= mo_product; fo_valid <= 1'b1;
                 end
                 if (~mo_busy) fo_ok <= 1'b1;
+            end
+            if (pop) begin
+                fn_valid <= 1'b0; fn_ok <= 1'b0;
+            end else begin
+                if (mn_done & fn_ok) begin
+                    fo_next <= mn_product; fn_valid <= 1'b1;
+                end
+                if (~mn_busy) fn_ok <= move_head;
             end
             // refinement: + 2 p' floor(S / A), one quotient bit a clock, MSB first
             if (switch_s && n != {NW{1'b0}}) begin

@@ -128,6 +128,7 @@ class SpeedRamp(CycleModel):
         self.mul_p = ShiftMult(nw)
         self.mul_f = ShiftMult(nw)
         self.mul_fo = ShiftMult(8)
+        self.mul_fn = ShiftMult(8)
         self.reset()
 
     def reset(self) -> None:
@@ -139,11 +140,13 @@ class SpeedRamp(CycleModel):
         self.n_sh = self.p_sh = self.f_pre = 0
         self.ref_count = self.ref_r = self.ref_d = self.ref_m = 0
         self.fo = self.fo_valid = self.fo_ok = 0
+        self.fo_next = self.fn_valid = self.fn_ok = 0
         self.bar_count = 0
         self.up = self.down = self.next_pop = self.late = self.hold_q = 0
         self.mul_p.reset()
         self.mul_f.reset()
         self.mul_fo.reset()
+        self.mul_fn.reset()
 
     # registered outputs
     @property
@@ -300,10 +303,13 @@ class SpeedRamp(CycleModel):
             self.n_sh = n
         start_fo = not self.mul_fo.busy
         fo_done, fo_prod = self.mul_fo.done, self.mul_fo.product
+        start_fn = not self.mul_fn.busy
+        fn_done, fn_prod = self.mul_fn.done, self.mul_fn.product
         p_done = self.mul_p.done
         self.mul_p.clock(pre_start, n_rate, n)
         self.mul_f.clock(pre_start, fx + 1, fx)
         self.mul_fo.clock(start_fo, self.feed, ovr)
+        self.mul_fn.clock(start_fn, g("next_feed", 0), ovr)
         if pop:
             self.pre = IDLE
         elif pre_start:
@@ -315,14 +321,22 @@ class SpeedRamp(CycleModel):
             gap = max(-2, min(2, n_d - self.n_sh))
             self.n_sh += gap
             self.p_sh += gap * n_rate
-        # feed * override for the cap, recomputed all the time
+        # feed * override for the cap, recomputed all the time, for the segment and
+        # for the head (taken over at the switch)
         if switch or load:
-            self.fo_valid = self.fo_ok = 0
+            self.fo, self.fo_valid, self.fo_ok = self.fo_next, self.fn_valid, 0
         else:
             if fo_done and self.fo_ok:
                 self.fo, self.fo_valid = fo_prod, 1
             if start_fo:
                 self.fo_ok = 1
+        if pop:
+            self.fn_valid = self.fn_ok = 0
+        else:
+            if fn_done and self.fn_ok:
+                self.fo_next, self.fn_valid = fn_prod, 1
+            if start_fn:
+                self.fn_ok = int(bool(move_head))
 
         # refinement of the carried budget: + 2 p' floor(S / A), MSB first
         if ref_start and n:
