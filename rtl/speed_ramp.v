@@ -73,7 +73,6 @@ module speed_ramp #(
     localparam integer ZXW = (ZW > RW ? ZW : RW) + 17;    // Zx, signed (<< block_shift <= 15)
     localparam integer SW  = LEN_W + 2;                   // S, signed
     localparam integer MW  = NW + FEED_W;                 // the refinement's remainder
-    localparam [1:0] IDLE = 2'd0, BUSY = 2'd1, DONE = 2'd2;
     localparam [NW-1:0] ONE_N = {{(NW-1){1'b0}}, 1'b1};
     localparam [NW-1:0] NMAX  = {NW{1'b1}};
     localparam [31:0]   NW32  = NW;
@@ -93,18 +92,12 @@ module speed_ramp #(
     reg  [FEED_W-1:0] feed, limit;
     reg  [NW-1:0]   exit_cur;    // the segment's exit speed (quanta) and f (f + 1)
     reg  [QW-1:0]   f_sq_cur;
-    reg  [1:0]      pre;         // the successor's set-up
-    reg  [NW-1:0]   n_sh;        // the n that p_sh belongs to
-    reg  [PW-1:0]   p_sh;        // next_rate * n_sh
-    reg  [QW-1:0]   f_pre;       // f (f + 1) of the successor
     reg  [7:0]      ref_count;
     reg  [MW-1:0]   ref_r;
     reg  [MW-2:0]   ref_d;
     reg  [PW:0]     ref_m;
     reg  [FEED_W+7:0] fo;        // feed * override
     reg             fo_valid, fo_ok;
-    reg  [FEED_W+7:0] fo_next;   // next_feed * override
-    reg             fn_valid, fn_ok;
     reg  [7:0]      bar_count;   // finished barriers not yet passed
     reg             hold_q;
 
@@ -112,9 +105,12 @@ module speed_ramp #(
     wire        head      = next_valid & ~next_pop;
     wire        move_head = head & ~next_barrier;
     wire        bar_head  = head & next_barrier;
-    wire        known     = (pre == DONE) & (n_sh == n);
+    wire        known;       // the successor's set-up (speed_ramp_setup)
+    wire [PW-1:0] p_sh;
+    wire [QW-1:0] f_pre;
+    wire [FEED_W+7:0] fo_next;
+    wire        fn_valid;
     wire        succ      = move_head & known;
-    wire [NW-1:0] fx      = next_exit == {NW{1'b0}} ? ONE_N : next_exit;
     wire [NW-1:0] fx_cur  = exit_cur == {NW{1'b0}} ? ONE_N : exit_cur;
     wire [NW-1:0] floor_n = succ ? fx_cur : ONE_N;
     wire [QW-1:0] f_sq    = succ ? f_sq_cur : {{(QW-2){1'b0}}, 2'd2};
@@ -197,27 +193,17 @@ module speed_ramp #(
     wire [MW+SW+NW:0] load_r_ext = {{MW{1'b0}}, load_r};
     wire signed [ZXW-1:0] budget_next = $signed({{(ZXW-ZW){1'b0}}, next_budget}) <<< bs_q;
 
-    // the successor's set-up: p' n and f (f + 1)
-    wire          mp_busy, mp_done, mf_busy, mf_done, mo_busy, mo_done, mn_busy, mn_done;
-    wire [PW:0]   mp_product;
-    wire [2*NW:0] mf_product;
-    wire [FEED_W+7:0] mo_product, mn_product;
-    wire pre_start = (pre == IDLE) & move_head & ~pop & ~mp_busy;
-    speed_ramp_mul #(.AW(PF + 1), .BW(NW)) u_mul_p (
-        .clk(clk), .rst(rst), .start(pre_start), .a(next_rate), .b(n),
-        .busy(mp_busy), .done(mp_done), .product(mp_product));
-    speed_ramp_mul #(.AW(NW + 1), .BW(NW)) u_mul_f (
-        .clk(clk), .rst(rst), .start(pre_start), .a({1'b0, fx} + 1'b1), .b(fx),
-        .busy(mf_busy), .done(mf_done), .product(mf_product));
+    // the cap's feed * override, recomputed all the time
+    wire          mo_busy, mo_done;
+    wire [FEED_W+7:0] mo_product;
     speed_ramp_mul #(.AW(FEED_W), .BW(8)) u_mul_fo (
         .clk(clk), .rst(rst), .start(~mo_busy), .a(feed), .b(ovr),
         .busy(mo_busy), .done(mo_done), .product(mo_product));
-    speed_ramp_mul #(.AW(FEED_W), .BW(8)) u_mul_fn (
-        .clk(clk), .rst(rst), .start(~mn_busy), .a(next_feed), .b(ovr),
-        .busy(mn_busy), .done(mn_done), .product(mn_product));
     wire [NW-1:0] n_next = final_q ? {NW{1'b0}} : n_d;
-    wire [NW:0] gap_full = {1'b0, n_next} - {1'b0, n_sh};   // n after this edge - n_sh, signed
-    wire signed [2:0] gap = $signed(gap_full) > 2 ? 3'sd2 : $signed(gap_full) < -2 ? -3'sd2 : gap_full[2:0];
+    speed_ramp_setup #(.FEED_W(FEED_W), .NW(NW), .PF(PF)) u_setup (
+        .clk(clk), .rst(rst), .pop(pop), .move_head(move_head), .n(n), .n_next(n_next),
+        .next_rate(next_rate), .next_exit(next_exit), .next_feed(next_feed), .ovr(ovr),
+        .known(known), .p_sh(p_sh), .f_pre(f_pre), .fo_next(fo_next), .fn_valid(fn_valid));
 
     always @(posedge clk) begin
         if (rst) begin
@@ -226,10 +212,8 @@ module speed_ramp #(
             remaining <= {SW{1'b0}}; budget_x <= {ZXW{1'b0}};
             seg <= 1'b0; rate <= {(PF+1){1'b0}}; feed <= {FEED_W{1'b0}}; limit <= {FEED_W{1'b0}};
             exit_cur <= {NW{1'b0}}; f_sq_cur <= {QW{1'b0}};
-            pre <= IDLE; n_sh <= {NW{1'b0}}; p_sh <= {PW{1'b0}}; f_pre <= {QW{1'b0}};
             ref_count <= 8'd0; ref_r <= {MW{1'b0}}; ref_d <= {(MW-1){1'b0}}; ref_m <= {(PW+1){1'b0}};
             fo <= {(FEED_W+8){1'b0}}; fo_valid <= 1'b0; fo_ok <= 1'b0; bar_count <= 8'd0;
-            fo_next <= {(FEED_W+8){1'b0}}; fn_valid <= 1'b0; fn_ok <= 1'b0;
             up <= 1'b0; down <= 1'b0; next_pop <= 1'b0; late <= 1'b0; hold_q <= 1'b0;
         end else begin
             // speed and its companions
@@ -272,19 +256,6 @@ module speed_ramp #(
             end else begin
                 remaining <= seg ? rem1 : remaining; budget_x <= zx1;
             end
-            // the successor's set-up
-            if (pop) pre <= IDLE;
-            else if (pre_start) begin
-                pre <= BUSY; n_sh <= n;
-            end else if (pre == BUSY && mp_done) begin
-                pre <= DONE; p_sh <= mp_product[PW-1:0]; f_pre <= mf_product[QW-1:0];
-            end else if (pre == DONE) begin
-                n_sh <= n_sh + {{(NW-2){gap[2]}}, gap[1:0]};
-                p_sh <= gap == 3'sd2 ? p_sh + {{(PW-PF-2){1'b0}}, next_rate, 1'b0} :
-                        gap == 3'sd1 ? p_sh + {{(PW-PF-1){1'b0}}, next_rate} :
-                        gap == -3'sd1 ? p_sh - {{(PW-PF-1){1'b0}}, next_rate} :
-                        gap == -3'sd2 ? p_sh - {{(PW-PF-2){1'b0}}, next_rate, 1'b0} : p_sh;
-            end
             // feed * override
             if (switch_s | load) begin
                 fo <= fo_next; fo_valid <= fn_valid; fo_ok <= 1'b0;
@@ -293,14 +264,6 @@ module speed_ramp #(
                     fo <= mo_product; fo_valid <= 1'b1;
                 end
                 if (~mo_busy) fo_ok <= 1'b1;
-            end
-            if (pop) begin
-                fn_valid <= 1'b0; fn_ok <= 1'b0;
-            end else begin
-                if (mn_done & fn_ok) begin
-                    fo_next <= mn_product; fn_valid <= 1'b1;
-                end
-                if (~mn_busy) fn_ok <= move_head;
             end
             // refinement: + 2 p' floor(S / A), one quotient bit a clock, MSB first
             if (switch_s && n != {NW{1'b0}}) begin
@@ -328,7 +291,6 @@ module speed_ramp #(
     always @(posedge clk) f_past_valid <= 1'b1;
     wire [QW-1:0]  f_q  = {{NW{1'b0}}, n} * ({{NW{1'b0}}, n} + {{(QW-1){1'b0}}, 1'b1});
     wire [PW-1:0]  f_p  = {{(PW-PF-1){1'b0}}, rate} * {{PF{1'b0}}, n};
-    wire [PW-1:0]  f_ps = {{(PW-PF-1){1'b0}}, next_rate} * {{PF{1'b0}}, n_sh};
     wire [NAW-1:0] f_na = {{PF{1'b0}}, n} * {{NW{1'b0}}, acc};
     always @(*) if (f_past_valid && !rst) begin
         if (n_next != n) assert (dtick || final_q);
@@ -337,10 +299,9 @@ module speed_ramp #(
         assert (q == f_q);
         assert (p == f_p);
         assert (na == f_na);
-        if (pre == DONE && move_head) assert (p_sh == f_ps);
     end
 `endif
 
-    wire unused = &{1'b0, mf_busy, mf_done, mp_product[PW], mf_product[2*NW:QW], gap_full[NW:3], na_sum[NAW], rem_ext[MW+SW-1:MW], load_r_ext[MW+SW+NW:MW]};
+    wire unused = &{1'b0, na_sum[NAW], rem_ext[MW+SW-1:MW], load_r_ext[MW+SW+NW:MW]};
 endmodule
 `default_nettype wire
