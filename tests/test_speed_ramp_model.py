@@ -143,7 +143,7 @@ def test_hold_stop_distance():
         samples, _ = run([seg], quantum=quantum, block_shift=shift,
                          controls=[(at, "hold", 1), (at + 12000, "resume", 0)])
         rules(samples, [seg], quantum)
-        h = at + 1                                     # sample index of the clock at the hold
+        h = at                                         # the first clock with hold high
         if samples[h]["remaining"] <= 0:
             continue
         v0 = samples[h]["speed"]

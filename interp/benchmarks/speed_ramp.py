@@ -58,13 +58,13 @@ def hold_rows():
         at = 8000
         samples = run_profile([seg], widths=BENCH, quantum=quantum, block_shift=shift,
                               controls=[(at, "hold", 1), (at + 6000, "resume", 0)])
-        v0 = samples[at + 1]["speed"]
-        stop = next(i for i in range(at + 1, len(samples)) if samples[i]["stopped"])
-        travel = sum(s["speed"] for s in samples[at + 1:stop])
+        v0 = samples[at]["speed"]                  # the first clock with hold high
+        stop = next(i for i in range(at, len(samples)) if samples[i]["stopped"])
+        travel = sum(s["speed"] for s in samples[at:stop])
         p = rate / (1 << PF)
         a = p * quantum / (1 << shift)
         rows.append([quantum, shift, f"{p:.3f}", v0, travel, f"{v0 * v0 / (2 * a):.0f}",
-                     f"{travel / (v0 * v0 / (2 * a)):.3f}", stop - at - 1])
+                     f"{travel / (v0 * v0 / (2 * a)):.3f}", stop - at])
     return rows
 
 
