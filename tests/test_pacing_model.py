@@ -116,3 +116,23 @@ def test_pacer_model_is_pace(costs, sums, shift, seed):
 
 def test_lecture_costs():
     assert [lecture_cost(a, 16) for a in (0, 1, 2, 3)] == [65536, 65536, 92682, 113512]
+
+
+@settings(max_examples=60, deadline=None)
+@given(top=st.integers(1, 12), cruise=st.integers(0, 30), quantum=st.integers(1, 50),
+       jerk_shift=st.integers(0, 4), block_shift=st.integers(0, 2), steps=st.integers(1, 40))
+def test_last_step_leaves_as_the_filtered_speed_reaches_zero(top, cruise, quantum, jerk_shift,
+                                                             block_shift, steps):
+    """Trapezoid -> S-curve filter -> pacer, the segment's length split into step costs
+    that sum to it exactly (as the host sets them), the speed at most one step per
+    clock: every step leaves, the last one in
+    the clock after the filtered speed's last non-zero clock, and the phase ends at 0."""
+    plan = [1] * top + [0] * cruise + [-1] * top
+    speeds, sums, _, _ = run_filter(plan, quantum, jerk_shift, block_shift, mw=4)
+    length = sum(speeds)
+    cost = max(max(speeds), length // steps)          # at most one step per clock
+    costs = [cost] * (length // cost - 1) + [length - cost * (length // cost - 1)]
+    assert sum(costs) == length
+    fired, phase = pace(sums + [0, 0], costs, jerk_shift)
+    last_f = max(t for t, f in enumerate(sums) if f)
+    assert len(fired) == len(costs) and fired[-1] == last_f + 1 and phase == 0
