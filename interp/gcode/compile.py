@@ -43,6 +43,7 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -366,7 +367,7 @@ class Compiler:
         iu, iv, iw = PLANES[m.plane]
         s_u, s_w = self.spm[iu], self.spm[iw]
         arc_n = arc_count(ci, cj, x, y, kind == ARC_CCW)
-        count = arc_n if travel else 0
+        count = arc_n
         rs = math.sqrt(ci * ci + cj * cj)
         r_mm, dw_mm = rs / s_u, travel / s_w
         length_mm = math.hypot(r_mm * sweep, dw_mm)
@@ -504,7 +505,8 @@ class Compiler:
                                 radius_mm=m.radius_mm, plane_axes=m.plane_axes, stop_before=m.stop_before,
                                 tolerance_mm=m.tolerance_mm) for m in (c.motion for c in moves)]
             plans = plan(segments, junction_deviation_mm=self.machine.values["motion"]["junction_deviation_mm"])
-            caps = [limits(s)[0] for s in segments]
+            # the axes' ceiling for feed override > 100 %: the segment's limits without its feed
+            caps = [limits(dataclasses.replace(s, feed_mm_s=math.inf))[0] for s in segments]
         self.out.plans = plans
         clock = self.clock
         scale = [c.motion.spm * (1 << FRAC) / clock for c in moves]     # path units / clock per mm/s
