@@ -1,0 +1,247 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The look-ahead planner (interp.gcode.planner): its rules as properties and known values."""
+from __future__ import annotations
+
+import math
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from interp.gcode.planner import (CENTRIPETAL_SHARE, Plan, Segment, junction_speed, limits,
+                                  machine_time, plan, trapezoid_time)
+
+RATE = (100.0, 100.0, 50.0)
+ACCEL = (500.0, 400.0, 200.0)
+SLACK = 1e-7
+
+
+def line(direction, length=10.0, feed=50.0, **kw) -> Segment:
+    size = math.sqrt(sum(c * c for c in direction))
+    unit = tuple(c / size for c in direction)
+    return Segment(length, unit, unit, feed, kw.pop("rate", RATE), kw.pop("accel", ACCEL), **kw)
+
+
+def arc_segment(radius, angle, pitch, plane, start_angle, feed, rate=RATE, accel=ACCEL, **kw):
+    """An arc or helix of `angle` radians (negative: clockwise) turning in `plane` (p, q)
+    from the angle `start_angle`, rising `pitch` mm along the normal axis per radian."""
+    p, q = plane
+    w = 3 - p - q
+    arc = radius * abs(angle)
+    rise = pitch * abs(angle)
+    length = math.hypot(arc, rise)
+    turn = 1.0 if angle > 0 else -1.0
+
+    def tangent(theta):
+        vector = [0.0, 0.0, 0.0]
+        vector[p] = -math.sin(theta) * turn * arc / length
+        vector[q] = math.cos(theta) * turn * arc / length
+        vector[w] = math.copysign(rise / length, pitch) if rise else 0.0
+        return tuple(vector)
+
+    return Segment(length, tangent(start_angle), tangent(start_angle + angle), feed, rate, accel,
+                   radius_mm=radius, plane_axes=plane, **kw)
+
+
+directions = st.tuples(*[st.floats(-1, 1) for _ in range(3)]).filter(
+    lambda d: sum(c * c for c in d) > 0.01)
+planes = st.sampled_from([(0, 1), (2, 0), (1, 2)])
+lines = st.builds(line, directions, length=st.floats(0.001, 50), feed=st.floats(0.5, 200),
+                  stop_before=st.booleans() | st.just(False),
+                  tolerance_mm=st.none() | st.floats(0, 0.1))
+arcs = st.builds(arc_segment, radius=st.floats(0.05, 100), angle=st.floats(0.01, 12) | st.floats(-12, -0.01),
+                 pitch=st.floats(-2, 2), plane=planes, start_angle=st.floats(-4, 4),
+                 feed=st.floats(0.5, 200), stop_before=st.booleans() | st.just(False),
+                 tolerance_mm=st.none() | st.floats(0, 0.1))
+programs = st.lists(lines | arcs, min_size=1, max_size=40)
+deviations = st.floats(0.0, 0.2)
+
+
+def _assert_feasible(segments: list[Segment], plans: list[Plan], deviation: float) -> None:
+    assert len(plans) == len(segments)
+    assert plans[0].entry_mm_s == 0.0 and plans[-1].exit_mm_s == 0.0
+    for index, (segment, p) in enumerate(zip(segments, plans)):
+        cruise, accel = limits(segment)
+        assert (p.cruise_mm_s, p.accel_mm_s2) == (cruise, accel)
+        room = 2 * accel * segment.length_mm * (1 + SLACK) + 1e-12
+        assert p.exit_mm_s ** 2 <= p.entry_mm_s ** 2 + room, "exit not reachable from the entry"
+        assert p.entry_mm_s ** 2 <= p.exit_mm_s ** 2 + room, "cannot brake to the exit"
+        assert max(p.entry_mm_s, p.exit_mm_s) <= cruise * (1 + SLACK)
+        assert p.time_s == trapezoid_time(segment.length_mm, p.entry_mm_s, p.exit_mm_s, cruise, accel)
+        if index + 1 < len(segments):
+            assert p.exit_mm_s == plans[index + 1].entry_mm_s
+        if index == 0 or segment.stop_before:
+            assert p.entry_mm_s == 0.0
+        else:
+            before = segments[index - 1]
+            used = deviation if segment.tolerance_mm is None else min(deviation, segment.tolerance_mm)
+            cap = junction_speed(before.end_unit, segment.start_unit, segment.axis_accel_mm_s2, used)
+            assert p.entry_mm_s <= cap * (1 + SLACK) + 1e-12, "junction speed exceeded"
+            assert p.entry_mm_s <= plans[index - 1].cruise_mm_s * (1 + SLACK)
+
+
+@settings(max_examples=150, deadline=None)
+@given(programs, deviations)
+def test_whole_plan_is_feasible_both_ways(segments, deviation):
+    _assert_feasible(segments, plan(segments, junction_deviation_mm=deviation), deviation)
+
+
+@settings(max_examples=150, deadline=None)
+@given(programs, deviations, st.integers(1, 45))
+def test_window_plan_is_feasible_and_never_faster(segments, deviation, window):
+    whole = plan(segments, junction_deviation_mm=deviation)
+    streamed = plan(segments, junction_deviation_mm=deviation, window=window)
+    _assert_feasible(segments, streamed, deviation)
+    for w, s in zip(whole, streamed):
+        assert s.entry_mm_s <= w.entry_mm_s and s.exit_mm_s <= w.exit_mm_s
+    assert machine_time(streamed) >= machine_time(whole) * (1 - 1e-12)
+    # a segment's exit is one the next `window` segments can brake from to a stop
+    for index in range(len(segments) - 1):
+        speed_sqr = 0.0
+        for ahead in range(min(index + window, len(segments) - 1), index, -1):
+            speed_sqr += 2 * streamed[ahead].accel_mm_s2 * segments[ahead].length_mm
+        assert streamed[index].exit_mm_s ** 2 <= speed_sqr * (1 + SLACK) + 1e-12
+    if window >= len(segments):
+        assert streamed == whole
+
+
+@settings(max_examples=100, deadline=None)
+@given(programs, deviations, st.floats(1.0, 10.0))
+def test_time_is_monotone_in_acceleration(segments, deviation, factor):
+    faster = [Segment(s.length_mm, s.start_unit, s.end_unit, s.feed_mm_s, s.axis_rate_mm_s,
+                      tuple(a * factor for a in s.axis_accel_mm_s2), s.radius_mm, s.plane_axes,
+                      s.stop_before, s.tolerance_mm) for s in segments]
+    slow = plan(segments, junction_deviation_mm=deviation)
+    quick = plan(faster, junction_deviation_mm=deviation)
+    for s, q in zip(slow, quick):
+        assert q.entry_mm_s >= s.entry_mm_s * (1 - SLACK)
+    assert machine_time(quick) <= machine_time(slow) * (1 + 1e-9)
+
+
+@settings(max_examples=300, deadline=None)
+@given(arcs)
+def test_arc_bounds_hold_at_every_angle(segment):
+    """Speed, centripetal and tangential acceleration at every angle of the circle, per axis."""
+    cruise, accel = limits(segment)
+    p, q = segment.plane_axes
+    w = 3 - p - q
+    sin_a = abs(segment.start_unit[w])
+    cos_a = math.sqrt(1 - sin_a ** 2)
+    assert cruise <= segment.feed_mm_s
+    assert (cruise * cos_a) ** 2 / segment.radius_mm <= CENTRIPETAL_SHARE * min(ACCEL[p], ACCEL[q]) * (1 + SLACK)
+    centripetal = (cruise * cos_a) ** 2 / segment.radius_mm
+    for step in range(64):
+        theta = 2 * math.pi * step / 64
+        velocity = {p: -math.sin(theta) * cruise * cos_a, q: math.cos(theta) * cruise * cos_a, w: cruise * sin_a}
+        acceleration = {p: -math.sin(theta) * accel * cos_a - math.cos(theta) * centripetal,
+                        q: math.cos(theta) * accel * cos_a - math.sin(theta) * centripetal,
+                        w: accel * sin_a}
+        for axis in range(3):
+            assert abs(velocity[axis]) <= RATE[axis] * (1 + SLACK)
+            assert abs(acceleration[axis]) <= ACCEL[axis] * (1 + SLACK)
+
+
+def test_line_limits_are_grbl_rules():
+    assert limits(line((1, 0, 0), feed=500)) == (100.0, 500.0)
+    cruise, accel = limits(line((1, 1, 0), feed=500))
+    assert cruise == pytest.approx(100 * math.sqrt(2))
+    assert accel == pytest.approx(400 * math.sqrt(2))          # y's 400 over |u_y| = 1/sqrt(2)
+    assert limits(line((0, 0, 1), feed=20)) == (20.0, 200.0)
+
+
+def test_arc_limits_known_values():
+    # a flat arc of radius 1 mm in XY: v^2 <= 0.8 * 400 * 1 -> v = sqrt(320); a_t = 0.6 * 400
+    cruise, accel = limits(arc_segment(1.0, math.pi, 0.0, (0, 1), 0.0, feed=100))
+    assert cruise == pytest.approx(math.sqrt(320))
+    assert accel == pytest.approx(240)
+    # a large arc: the feed binds, the centripetal share is tiny
+    cruise, accel = limits(arc_segment(1000.0, 0.1, 0.0, (0, 1), 0.0, feed=50))
+    assert cruise == 50
+    assert accel == pytest.approx(math.sqrt(400 ** 2 - (2500 / 1000) ** 2))
+
+
+def test_grbl_junction_formula_known_values():
+    a = (500.0, 500.0, 500.0)
+    # 90 degrees: a_j = 500 sqrt(2), sin(theta/2) = 1/sqrt(2)
+    expected = math.sqrt(500 * math.sqrt(2) * 0.01 * math.sqrt(0.5) / (1 - math.sqrt(0.5)))
+    assert junction_speed((1, 0, 0), (0, 1, 0), a, 0.01) == pytest.approx(expected)
+    assert junction_speed((1, 0, 0), (0, 1, 0), a, 0.01) == pytest.approx(4.1317148754)
+    assert junction_speed((1, 0, 0), (1, 0, 0), a, 0.01) == math.inf          # straight on
+    assert junction_speed((1, 0, 0), (-1, 0, 0), a, 0.01) == 0.0              # reversal
+    # 45-degree turn: theta = 135 degrees between the paths
+    turn = (math.cos(math.pi / 4), math.sin(math.pi / 4), 0.0)
+    sin_half = math.sin(3 * math.pi / 8)
+    change = (turn[0] - 1, turn[1], 0.0)
+    size = math.hypot(*change)
+    a_j = min(500 / abs(c / size) for c in change[:2])
+    assert junction_speed((1, 0, 0), turn, a, 0.05) == pytest.approx(
+        math.sqrt(a_j * 0.05 * sin_half / (1 - sin_half)))
+
+
+def test_trapezoid_and_triangle_times():
+    assert trapezoid_time(10, 0, 0, 50, 500) == pytest.approx(0.3)    # 2.5 mm ramps, 5 mm cruise
+    assert trapezoid_time(1, 0, 0, 50, 500) == pytest.approx(2 * math.sqrt(1 / 500))   # triangle
+    assert trapezoid_time(10, 50, 50, 50, 500) == pytest.approx(0.2)
+    assert trapezoid_time(2.5, 0, 50, 50, 500) == pytest.approx(0.1)  # all acceleration
+    with pytest.raises(ValueError):
+        trapezoid_time(1, 0, 50, 50, 500)                              # 50 mm/s needs 2.5 mm
+
+
+def test_plan_time_is_the_analytic_sum():
+    segments = [line((1, 0, 0), 10), line((1, 0, 0), 10), line((0, 1, 0), 10, stop_before=True)]
+    plans = plan(segments, junction_deviation_mm=0.01)
+    assert [p.entry_mm_s for p in plans] == [0.0, 50.0, 0.0]
+    assert [p.exit_mm_s for p in plans] == [50.0, 0.0, 0.0]
+    # x: 2.5 mm up in 0.1 s, 7.5 mm at 50 in 0.15 s; then 7.5 mm at 50 and down in 0.1 s;
+    # y at 400 mm/s^2: 3.125 mm ramps of 0.125 s and 3.75 mm at 50
+    assert plans[0].time_s == pytest.approx(0.25)
+    assert plans[1].time_s == pytest.approx(0.25)
+    assert plans[2].time_s == pytest.approx(0.25 + 3.75 / 50)
+    assert machine_time(plans) == pytest.approx(0.75 + 0.075)
+
+
+def test_corner_and_tolerance():
+    corner = [line((1, 0, 0)), line((0, 1, 0))]
+    wide = plan(corner, junction_deviation_mm=0.05)[0].exit_mm_s
+    narrow = plan(corner, junction_deviation_mm=0.01)[0].exit_mm_s
+    assert 0 < narrow < wide
+    corner[1].tolerance_mm = 0.01          # G64 P0.01 lowers the junction deviation there
+    assert plan(corner, junction_deviation_mm=0.05)[0].exit_mm_s == pytest.approx(narrow)
+    corner[1].tolerance_mm = 1.0           # ... but never raises it
+    assert plan(corner, junction_deviation_mm=0.05)[0].exit_mm_s == pytest.approx(wide)
+    corner[1].stop_before = True
+    assert plan(corner, junction_deviation_mm=0.05)[0].exit_mm_s == 0.0
+
+
+def test_tangent_arc_keeps_speed():
+    # a line into a tangent quarter circle of radius 100: no junction limit, only the cruises
+    segments = [line((0, 1, 0), 20), arc_segment(100.0, math.pi / 2, 0.0, (0, 1), 0.0, feed=50)]
+    plans = plan(segments, junction_deviation_mm=0.0)
+    assert plans[0].exit_mm_s == pytest.approx(50.0)
+
+
+def test_short_window_limits_speed():
+    chain = [line((1, 0, 0), 1.0, feed=200, rate=(1000, 1000, 1000)) for _ in range(100)]
+    whole = plan(chain, junction_deviation_mm=0.01)
+    one = plan(chain, junction_deviation_mm=0.01, window=1)
+    # with one segment known ahead, the exit speed is what 1 mm of braking allows
+    assert max(p.exit_mm_s for p in one) == pytest.approx(math.sqrt(2 * 500 * 1.0))
+    assert max(p.exit_mm_s for p in whole) == pytest.approx(200.0)
+    assert machine_time(one) > machine_time(plan(chain, junction_deviation_mm=0.01, window=32)) \
+        >= machine_time(whole)
+
+
+@pytest.mark.parametrize("bad", [
+    dict(window=0), dict(window=-3), dict(window=2.5), dict(junction_deviation_mm=-1)])
+def test_bad_arguments(bad):
+    arguments = dict(junction_deviation_mm=0.01) | bad
+    with pytest.raises(ValueError):
+        plan([line((1, 0, 0))], **arguments)
+
+
+def test_bad_segments():
+    with pytest.raises(ValueError):
+        limits(line((1, 0, 0), length=0.0))
+    with pytest.raises(ValueError):
+        limits(Segment(1.0, (1, 0, 0), (0, 1, 0), 10, RATE, ACCEL, radius_mm=1.0, plane_axes=(0, 0)))
+    assert plan([], junction_deviation_mm=0.01) == []
