@@ -1,0 +1,291 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The motion monitor: speeds, accelerations, jerk and holds measured from a run's steps CSV.
+
+    report = monitor(rows, compiled, machine, controls=[(cycle, "hold" | "resume" | "override", value)])
+    print(verdict(report)); print_table(report)
+
+`rows` are the steps CSV's (cycle, dx, dy, dz), one row per step event; `compiled` the
+interp.gcode.compile.Compiled the run came from (its commands' exact event counts N tell
+which events belong to which command, their profile fields the limits the hardware was
+given: cruise cmd_feed, ceiling cmd_limit, acceleration cmd_rate, and the settings).
+
+Method.  Each event carries its command's path distance per event (cmd_cost, or the
+lecture's cost of a 1/2/3-axis step when cmd_cost = 0), in steps.  The cumulative distance
+X(t) is known at every event's cycle; it is interpolated linearly onto a grid of T clocks
+and differenced: v = dX / T over each grid interval, a = dv / T, j = da / T.  Per axis the
+same with the axis's step count.  A moving average never raises a speed or acceleration
+bound, so the grid measures what the pacer did, up to the quantisation:
+
+  * an event leaves at most q = 1 + pulse + setup + hold clocks after its distance is
+    covered (the pacer's clock, the output stage), so X at a grid point is known within
+    dX = c + v_max q steps (c the largest distance of one event);
+  * speed within dv = 2 dX / T; acceleration within da = 2 dv / T + A / T (A the speed
+    quantum: the virtual speed moves in steps of A); jerk within 2 da / T.
+
+T is chosen so that da is a quarter of the smallest acceleration (T >= 64 clocks).
+
+Checks (each a row of the table):
+  * events: the CSV holds exactly the sum of N step events;
+  * speed: v <= min(cmd_feed x override / 100, cmd_limit) + dv, with the override largest
+    over the last ramp time (an override lowers the speed at the segment's acceleration),
+    and the commands of the neighbouring intervals;
+  * axis speed: each axis within its max_rate_mm_min + dv;
+  * acceleration: |a| <= the segment's cmd_rate acceleration + da;
+  * jerk (S-curve): |j| <= jerk_mm_s3 + dj (dj is reported: with short grids it is loose);
+  * hold: the distance after a hold <= v^2 / 2a + v W / 2 + one event + dX (v the speed at
+    the hold, a the acceleration, W the S-curve's window);
+  * resume: the speed before the hold (or the cap) is reached again within v / a + W + 3 T,
+    where the command has room for it (else the row says "not checked").
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..gcode.compile import FRAC, PF
+
+TOLERANCE = 0.25        # the acceleration quantisation as a share of the smallest acceleration
+MIN_GRID = 64           # clocks
+HOLD_LATENCY = 16       # clocks from the hold input to the speed generator (pipeline, generous)
+MAX_VIOLATIONS = 20
+
+
+@dataclass
+class Report:
+    ok: bool = True
+    events: int = 0
+    expected_events: int = 0
+    grid: int = 0                                        # T, clocks
+    quantisation: dict = field(default_factory=dict)     # dX steps, dv, da, dj (steps / clock^n)
+    checks: list = field(default_factory=list)           # (name, measured, limit, unit, verdict)
+    violations: list = field(default_factory=list)       # one line each
+    series: dict = field(default_factory=dict)           # for plots: t (s), path mm/s, axes mm/s
+
+    def as_dict(self) -> dict:
+        return {"ok": self.ok, "events": self.events, "expected_events": self.expected_events,
+                "grid_clocks": self.grid, "quantisation": self.quantisation,
+                "checks": [list(c) for c in self.checks], "violations": list(self.violations)}
+
+
+def _costs(frac: int) -> dict[int, float]:
+    from ..models.motion import interval_costs
+
+    table = interval_costs(frac)
+    return {n: table[n] / (1 << frac) for n in (1, 2, 3)}
+
+
+def read_rows(path) -> np.ndarray:
+    """The steps CSV as an (n, 4) integer array."""
+    data = np.loadtxt(path, delimiter=",", skiprows=1, dtype=np.int64, ndmin=2)
+    return data.reshape(-1, 4)
+
+
+def _override_schedule(controls, end: int):
+    """[(cycle, percent)] of the override, from 100 at cycle 0."""
+    out = [(0, 100)]
+    for cycle, kind, value in controls:
+        if kind == "override":
+            out.append((int(cycle), max(1, min(200, int(value)))))
+    return out
+
+
+def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None) -> Report:
+    """Measure a run (module docstring) and check it against the commands' limits."""
+    rows = np.asarray(rows, dtype=np.int64).reshape(-1, 4)
+    report = Report()
+    moves = [c for c in compiled.commands if c.motion is not None]
+    counts = np.array([c.motion.events for c in moves], dtype=np.int64)
+    report.events, report.expected_events = len(rows), int(counts.sum())
+    if report.events != report.expected_events:
+        report.violations.append(f"the run has {report.events} step events, the program {report.expected_events}")
+    settings = compiled.settings or {"speed_quantum": 1, "block_shift": 0, "jerk_shift": 0}
+    clock = machine.clock_hz
+    timing = timing or machine.timing()
+    q = 1 + timing["pulse_width"] + timing["setup"] + timing["hold"]
+    n = min(len(rows), report.expected_events)
+    if n < 2:
+        report.checks.append(("events", report.events, report.expected_events, "", _ok(not report.violations)))
+        report.ok = not report.violations
+        return report
+    rows = rows[:n]
+    owner = np.repeat(np.arange(len(moves)), counts)[:n]
+    t = rows[:, 0].astype(float)
+    axes = np.abs(rows[:, 1:4]).sum(axis=1)
+    lecture = _costs(FRAC)
+    cost_cmd = np.array([c.cost / (1 << FRAC) for c in moves])
+    cost = cost_cmd[owner]
+    lect = cost == 0
+    if lect.any():
+        cost = cost.copy()
+        cost[lect] = np.vectorize(lambda k: lecture.get(int(k), 0.0))(axes[lect])
+    x = np.cumsum(cost)
+
+    quantum = settings["speed_quantum"] / (1 << FRAC)
+    bs, js = settings["block_shift"], settings["jerk_shift"]
+    window = 1 << (bs + js) if (bs or js) else 0
+    feed = np.array([c.feed for c in moves]) / (1 << FRAC)                     # steps / clock
+    limit = np.array([c.limit for c in moves]) / (1 << FRAC)
+    accel = np.array([c.rate / (1 << PF) * settings["speed_quantum"] / (1 << bs) for c in moves]) / (1 << FRAC)
+    spm = np.array([c.motion.spm for c in moves])
+
+    c_max = float(cost.max())
+    v_max = float(limit.max())
+    a_min = float(accel.min())
+    dx = c_max + v_max * q
+    grid = max(MIN_GRID, math.ceil(math.sqrt(4 * dx / (TOLERANCE * a_min))), math.ceil(4 * quantum / (TOLERANCE * a_min)))
+    dv = 2 * dx / grid
+    da = 2 * dv / grid + quantum / grid
+    dj = 2 * da / grid
+    report.grid = grid
+    report.quantisation = {"distance_steps": dx, "speed_steps_per_clock": dv, "accel_steps_per_clock2": da,
+                           "jerk_steps_per_clock3": dj, "event_delay_clocks": q}
+
+    start, end = t[0] - 1, t[-1]
+    g = np.arange(start, end + grid, grid)
+    xg = np.interp(g, np.concatenate(([start], t)), np.concatenate(([0.0], x)))
+    v = np.diff(xg) / grid
+    acc = np.diff(v) / grid
+    # the commands over each interval and its neighbours
+    lo = np.clip(np.searchsorted(t, g[:-1] - grid, side="left"), 0, n - 1)
+    hi = np.clip(np.searchsorted(t, g[1:] + grid, side="right") - 1, 0, n - 1)
+    c_lo, c_hi = owner[lo], owner[hi]
+    overrides = _override_schedule(controls, int(end))
+    ramp = float(np.max(limit / accel)) + window + grid
+    ov_times = np.array([c for c, _ in overrides], dtype=float)
+    ov_values = np.array([p for _, p in overrides], dtype=float)
+
+    def override_max(a: float, b: float) -> float:
+        k0 = max(0, np.searchsorted(ov_times, a, side="right") - 1)
+        k1 = max(0, np.searchsorted(ov_times, b, side="right") - 1)
+        return float(ov_values[k0:k1 + 1].max())
+
+    feed_max = _range_max(feed, c_lo, c_hi)
+    limit_max = _range_max(limit, c_lo, c_hi)
+    accel_max = _range_max(accel, c_lo, c_hi)
+    caps = np.array([min(f * override_max(a - ramp, b) / 100, lm)
+                     for f, lm, a, b in zip(feed_max, limit_max, g[:-1], g[1:])])
+    over = v - (caps + dv)
+    _record(report, "path speed", v, caps, over, g, clock, "steps/clock")
+    a_cap = np.maximum(accel_max[:-1], accel_max[1:])
+    _record(report, "acceleration", np.abs(acc), a_cap, np.abs(acc) - (a_cap + da), g[1:], clock, "steps/clock^2")
+    if js or bs:
+        jerk = np.diff(acc) / grid
+        j_cap = machine.values["motion"]["jerk_mm_s3"] * spm[c_hi[1:-1]] / clock ** 3
+        _record(report, "jerk", np.abs(jerk), j_cap, np.abs(jerk) - (j_cap + dj), g[2:], clock, "steps/clock^3")
+    # per axis
+    axis_speed = []
+    for k, a in enumerate(machine.axes):
+        xa = np.cumsum(np.abs(rows[:, 1 + k]).astype(float))
+        xag = np.interp(g, np.concatenate(([start], t)), np.concatenate(([0.0], xa)))
+        va = np.diff(xag) / grid
+        cap_a = a.max_rate_mm_min / 60 * a.steps_per_mm / clock
+        dva = 2 * (1 + cap_a * q) / grid
+        _record(report, f"{'xyz'[k]} speed", va, np.full_like(va, cap_a), va - (cap_a + dva), g, clock,
+                "steps/clock")
+        axis_speed.append(va * clock / a.steps_per_mm)
+    _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, grid, window, c_max)
+    report.checks.insert(0, ("events", report.events, report.expected_events, "", _ok(report.events ==
+                                                                                      report.expected_events)))
+    mid = (g[:-1] + g[1:]) / 2
+    report.series = {"t": mid / clock, "path": v * clock / spm[c_lo], "axes": axis_speed,
+                     "cruise": feed_max * clock / spm[c_lo], "limit": limit_max * clock / spm[c_lo],
+                     "cap": caps * clock / spm[c_lo],
+                     "axis_max": [a.max_rate_mm_min / 60 for a in machine.axes],
+                     "accel": accel_max * clock * clock / spm[c_lo]}
+    report.ok = not report.violations
+    return report
+
+
+def _range_max(values: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """max(values[lo[k] .. hi[k]]) for every k (ranges short: the common case is lo == hi)."""
+    out = np.maximum(values[lo], values[hi])
+    for k in np.nonzero(hi - lo > 1)[0]:
+        out[k] = values[lo[k]:hi[k] + 1].max()
+    return out
+
+
+def _ok(good: bool) -> str:
+    return "ok" if good else "VIOLATED"
+
+
+def _record(report: Report, name: str, measured, cap, excess, times, clock, unit) -> None:
+    bad = np.nonzero(excess > 0)[0]
+    worst = int(np.argmax(measured / np.maximum(cap, 1e-300))) if len(measured) else 0
+    report.checks.append((name, float(measured[worst]) if len(measured) else 0.0,
+                          float(cap[worst]) if len(measured) else 0.0, unit, _ok(len(bad) == 0)))
+    for k in bad[:3]:
+        report.violations.append(f"{name} {measured[k]:.6g} {unit} above {cap[k]:.6g} at cycle {int(times[k])} "
+                                 f"({times[k] / clock:.6g} s)")
+
+
+def _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, grid, window, c_max) -> None:
+    holds, pending = [], None
+    for cycle, kind, _ in controls:
+        if kind == "hold" and pending is None:
+            pending = cycle
+        elif kind == "resume" and pending is not None:
+            holds.append((pending, cycle))
+            pending = None
+    if pending is not None:
+        holds.append((pending, None))
+    ends = np.cumsum(counts)
+    for number, (h, r) in enumerate(holds, 1):
+        k_h = int(np.searchsorted(t, h, side="left"))
+        k_r = len(t) if r is None else int(np.searchsorted(t, r, side="left"))
+        if k_h >= len(t):
+            report.checks.append((f"hold {number}", 0.0, 0.0, "steps", "not checked (after the last step)"))
+            continue
+        before = (g[1:] <= h) & (g[1:] >= h - window - 2 * grid)
+        speed = float(v[before].max()) if before.any() else float(v[: max(1, int((h - g[0]) // grid))].max())
+        speed += dv
+        owners = owner[k_h:max(k_h + 1, k_r)]
+        a = float(accel[owners].min())
+        distance = float(x[k_r - 1] - (x[k_h - 1] if k_h else 0.0)) if k_r > k_h else 0.0
+        bound = speed * speed / (2 * a) + speed * (window / 2 + HOLD_LATENCY) + c_max + dx
+        good = distance <= bound
+        report.checks.append((f"hold {number} distance", distance, bound, "steps", _ok(good)))
+        if not good:
+            report.violations.append(f"hold at cycle {h}: {distance:.6g} steps after it, above "
+                                     f"v^2/2a + ... = {bound:.6g}")
+        if r is None or k_r >= len(t):
+            continue
+        target = 0.9 * min(speed - dv, float(caps[min(len(caps) - 1, max(0, int((r - g[0]) // grid)))]))
+        a_r = float(accel[owner[k_r]])
+        room = x[ends[owner[k_r]] - 1] - x[k_r]
+        allowed = target / a_r + window + 3 * grid + HOLD_LATENCY
+        after = np.nonzero((g[1:] > r) & (v >= target))[0]
+        reached = float(g[1:][after[0]] - r) if len(after) else math.inf
+        if room < target * target / a_r + target * window:
+            report.checks.append((f"resume {number} time", reached, allowed, "clocks",
+                                  "not checked (the command ends first)"))
+            continue
+        good = reached <= allowed
+        report.checks.append((f"resume {number} time", reached, allowed, "clocks", _ok(good)))
+        if not good:
+            report.violations.append(f"resume at cycle {r}: speed {target:.6g} reached after {reached:.6g} "
+                                     f"clocks, above v/a + ... = {allowed:.6g}")
+
+
+def verdict(report: Report) -> str:
+    """One line: the monitor's verdict."""
+    if report.ok:
+        checked = sum(1 for c in report.checks if c[4] == "ok")
+        return (f"monitor: ok, {report.events} step events, {checked} checks passed "
+                f"(speed / acceleration over {report.grid}-clock windows)")
+    more = f" (+{len(report.violations) - 1} more)" if len(report.violations) > 1 else ""
+    return f"monitor: {len(report.violations)} violations: {report.violations[0]}{more}"
+
+
+def table(report: Report) -> str:
+    """The checks as a text table."""
+    lines = [f"{'check':<20} {'measured':>14} {'limit':>14}  {'unit':<14} verdict"]
+    for name, measured, limit, unit, good in report.checks:
+        lines.append(f"{name:<20} {measured:>14.6g} {limit:>14.6g}  {unit:<14} {good}")
+    qd = report.quantisation
+    if qd:
+        lines.append(f"grid {report.grid} clocks; quantisation: distance {qd['distance_steps']:.3g} steps, speed "
+                     f"{qd['speed_steps_per_clock']:.3g}, accel {qd['accel_steps_per_clock2']:.3g}, jerk "
+                     f"{qd['jerk_steps_per_clock3']:.3g} (steps, clocks)")
+    return "\n".join(lines)
