@@ -28,32 +28,12 @@ PROGRAM = Program(moves=[Line((0, 0, 0), (10, 0, 5), None, 2), Event("spindle_cw
                   units="mm", end_machine=(0.0, 10.0, -1.0))
 
 
-def trapezoid_times(count: int, cost: float, entry: float, cruise: float, exit: float, accel: float):
-    """Times (clocks from the command's start) at which each of `count` events of `cost` steps is
-    covered by a trapezoid (speeds steps/clock, accel steps/clock^2): the ideal hardware."""
-    length = count * cost
-    peak = min(cruise, math.sqrt((2 * accel * length + entry ** 2 + exit ** 2) / 2))
-    up, down = (peak ** 2 - entry ** 2) / (2 * accel), (peak ** 2 - exit ** 2) / (2 * accel)
-    t_up, t_flat = (peak - entry) / accel, (length - up - down) / peak
-    out = []
-    for n in range(1, count + 1):
-        x = min(n * cost, length)
-        if x <= up:
-            t = (math.sqrt(entry ** 2 + 2 * accel * x) - entry) / accel
-        elif x <= length - down:
-            t = t_up + (x - up) / peak
-        else:
-            left = max(length - x, 0.0)
-            t = t_up + t_flat + (peak - math.sqrt(exit ** 2 + 2 * accel * left)) / accel
-        out.append(t)
-    return out, t_up + t_flat + (peak - exit) / accel
-
-
 def fake_harness(commands_path, sim, *, steps_path, timing, max_cycles, progress, vcd, settings, controls,
                  shift=(0, 0, 0), errors=()):
     """An ideal motion_top: the command file's moves by the step models, each event at the time
     the command's trapezoid (its profile fields) covers it; one event per EVENT."""
     from interp.models.motion import Command, command_steps
+    from interp.simulation.monitor import trapezoid_times
 
     pos, events, rows = [0, 0, 0], [], []
     a_q, bs = settings["speed_quantum"], settings["block_shift"]

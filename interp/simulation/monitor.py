@@ -289,3 +289,50 @@ def table(report: Report) -> str:
                      f"{qd['speed_steps_per_clock']:.3g}, accel {qd['accel_steps_per_clock2']:.3g}, jerk "
                      f"{qd['jerk_steps_per_clock3']:.3g} (steps, clocks)")
     return "\n".join(lines)
+
+
+# ---------------- the ideal hardware, for tests and comparisons ----------------
+
+def trapezoid_times(count: int, cost: float, entry: float, cruise: float, exit: float, accel: float):
+    """(times, duration): the clock (from the command's start) at which each of `count` events
+    of `cost` steps is covered by the trapezoid entry -> cruise -> exit at `accel` (speeds in
+    steps/clock, accel in steps/clock^2), and the trapezoid's duration."""
+    length = count * cost
+    peak = min(cruise, math.sqrt((2 * accel * length + entry ** 2 + exit ** 2) / 2))
+    up, down = (peak ** 2 - entry ** 2) / (2 * accel), (peak ** 2 - exit ** 2) / (2 * accel)
+    t_up, t_flat = (peak - entry) / accel, (length - up - down) / peak
+    out = []
+    for n in range(1, count + 1):
+        x = min(n * cost, length)
+        if x <= up:
+            t = (math.sqrt(entry ** 2 + 2 * accel * x) - entry) / accel
+        elif x <= length - down:
+            t = t_up + (x - up) / peak
+        else:
+            left = max(length - x, 0.0)
+            t = t_up + t_flat + (peak - math.sqrt(exit ** 2 + 2 * accel * left)) / accel
+        out.append(t)
+    return out, t_up + t_flat + (peak - exit) / accel
+
+
+def ideal_rows(commands, settings: dict, width: int = 32) -> list[tuple[int, int, int, int]]:
+    """The steps CSV rows (cycle, dx, dy, dz) of an ideal trapezoid machine running the
+    commands (their profile fields, true-length costs): each event at the first clock at
+    which the trapezoid has covered it; dwells wait their cycles."""
+    from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, command_steps
+
+    a_q, bs = settings["speed_quantum"], settings["block_shift"]
+    rows, speed, now = [], 0.0, 0.0
+    for c in commands:
+        if c.kind in (LINE, ARC_CW, ARC_CCW):
+            steps, _ = command_steps(c, width)
+            accel = c.rate / (1 << PF) * a_q / (1 << bs) / (1 << FRAC)
+            exit_speed = c.exit * a_q / (1 << FRAC)
+            times, duration = trapezoid_times(len(steps), c.cost / (1 << FRAC), speed, c.feed / (1 << FRAC),
+                                              exit_speed, accel)
+            rows += [(math.ceil(now + t), *s) for t, s in zip(times, steps)]
+            now += duration
+            speed = exit_speed
+        elif c.kind == DWELL:
+            now += c.x & 0xFFFFFFFF
+    return rows
