@@ -150,10 +150,10 @@ def test_line_limits_are_grbl_rules():
 
 
 def test_arc_limits_known_values():
-    # a flat arc of radius 1 mm in XY: v^2 <= 0.8 * 400 * 1 -> v = sqrt(320); a_t = 0.6 * 400
+    # a flat arc of radius 1 mm in XY: v^2 <= share * 400 * 1; a_t = sqrt(1 - share^2) * 400
     cruise, accel = limits(arc_segment(1.0, math.pi, 0.0, (0, 1), 0.0, feed=100))
-    assert cruise == pytest.approx(math.sqrt(320))
-    assert accel == pytest.approx(240)
+    assert cruise == pytest.approx(math.sqrt(CENTRIPETAL_SHARE * 400))
+    assert accel == pytest.approx(math.sqrt(1 - CENTRIPETAL_SHARE ** 2) * 400)
     # a large arc: the feed binds, the centripetal share is tiny
     cruise, accel = limits(arc_segment(1000.0, 0.1, 0.0, (0, 1), 0.0, feed=50))
     assert cruise == 50
