@@ -43,7 +43,6 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
 """
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -501,12 +500,21 @@ class Compiler:
 
             rates = tuple(a.max_rate_mm_min / 60 for a in self.axes)
             accels = tuple(a.accel_mm_s2 for a in self.axes)
+            motions = [c.motion for c in moves]
             segments = [Segment(m.length_mm, m.start_unit, m.end_unit, m.feed_mm_s, rates, accels,
                                 radius_mm=m.radius_mm, plane_axes=m.plane_axes, stop_before=m.stop_before,
-                                tolerance_mm=m.tolerance_mm) for m in (c.motion for c in moves)]
+                                tolerance_mm=m.tolerance_mm) for m in motions]
             plans = plan(segments, junction_deviation_mm=self.machine.values["motion"]["junction_deviation_mm"])
             # the axes' ceiling for feed override > 100 %: the segment's limits without its feed
-            caps = [limits(dataclasses.replace(s, feed_mm_s=math.inf))[0] for s in segments]
+            # (one per distinct direction and radius: programs repeat them)
+            ceiling: dict = {}
+            caps = []
+            for m in motions:
+                key = (m.start_unit, m.end_unit, m.radius_mm, m.plane_axes)
+                if key not in ceiling:
+                    ceiling[key] = limits(Segment(m.length_mm, m.start_unit, m.end_unit, math.inf, rates, accels,
+                                                  radius_mm=m.radius_mm, plane_axes=m.plane_axes))[0]
+                caps.append(ceiling[key])
         self.out.plans = plans
         clock = self.clock
         scale = [c.motion.spm * (1 << FRAC) / clock for c in moves]     # path units / clock per mm/s
