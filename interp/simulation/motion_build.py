@@ -11,7 +11,8 @@ import json
 import tempfile
 from pathlib import Path
 
-PARAMETERS = {"W": 16, "QDEPTH": 4, "QLW": 3, "SDEPTH": 2, "TW": 4}
+PARAMETERS = {"W": 16, "FRAC": 16, "FEED_W": 16, "NW": 16, "PF": 12, "LEN_W": 34, "ZW": 48, "MW": 6,
+              "QDEPTH": 4, "QLW": 3, "SDEPTH": 2, "TW": 4}
 FRAC, FEED_MAX = 16, (1 << 16) - 1
 
 

@@ -28,9 +28,11 @@ CACHE = ROOT / "build" / "native"
 EXE = "motion_sim"
 
 # motion_top as the CLI builds it (32-bit command fields, feed 2^48 = 1 step per clock).
-CLI_PARAMETERS = {"W": 32, "FRAC": 48, "FEED_W": 50, "TW": 16, "POS_W": 32, "QDEPTH": 4, "QLW": 3, "SDEPTH": 2}
+CLI_PARAMETERS = {"W": 32, "FRAC": 48, "FEED_W": 50, "NW": 40, "PF": 24, "LEN_W": 82, "ZW": 108, "MW": 12,
+                  "TW": 16, "POS_W": 32, "QDEPTH": 8, "QLW": 4, "SDEPTH": 2}
 # motion_top's own defaults, for the parameters a set leaves out
-DEFAULTS = {"W": 16, "FEED_W": 16, "FRAC": 16, "QDEPTH": 4, "QLW": 3, "SDEPTH": 2, "TW": 8, "POS_W": 32}
+DEFAULTS = {"W": 16, "FEED_W": 16, "FRAC": 16, "NW": 16, "PF": 12, "LEN_W": 34, "ZW": 48, "MW": 6,
+            "QDEPTH": 4, "QLW": 3, "SDEPTH": 2, "TW": 8, "POS_W": 32}
 
 # Verilator: its -O3 on the netlist, X values resolved the fast way (every register
 # is reset before it matters), no assertions; the C++ at -O2 for this machine.
