@@ -58,9 +58,12 @@ def full_parameters(parameters: dict | None) -> dict:
     if unknown:
         raise ValueError(f"unknown motion_top parameters: {', '.join(sorted(unknown))}")
     p = {**DEFAULTS, **(parameters or {})}
-    for name in ("W", "FEED_W", "POS_W", "TW"):
-        if not 1 <= int(p[name]) <= 64:
-            raise ValueError(f"the native harness supports {name} up to 64 (got {p[name]})")
+    for name in ("W", "FEED_W", "POS_W", "TW", "NW", "PF"):
+        if not 1 <= int(p[name]) <= (63 if name == "PF" else 64):
+            raise ValueError(f"the native harness supports {name} up to {63 if name == 'PF' else 64} (got {p[name]})")
+    for name in ("LEN_W", "ZW"):
+        if not 1 <= int(p[name]) <= 256:
+            raise ValueError(f"the native harness supports {name} up to 256 (got {p[name]})")
     return {k: int(v) for k, v in p.items()}
 
 
@@ -99,7 +102,12 @@ def config_header(parameters: dict, trace: bool, rtl: Path, folder: Path) -> str
     """harness_config.h: the widths, which optional ports exist, and whether quiet stretches
     can be skipped (feed_rate's accumulator found in the generated model, <= 64 bits)."""
     defines = {"MT_W": parameters["W"], "MT_FEED_W": parameters["FEED_W"], "MT_POS_W": parameters["POS_W"],
-               "MT_TW": parameters["TW"]}
+               "MT_TW": parameters["TW"], "MT_NW": parameters["NW"], "MT_PF": parameters["PF"],
+               "MT_LEN_W": parameters["LEN_W"], "MT_ZW": parameters["ZW"]}
+    # the port `override` is a C++ keyword: Verilator may rename its member
+    top_header = (folder / "Vmotion_top.h").read_text()
+    m = re.search(r"VL_IN\d*\(&(\w*override),", top_header)
+    defines["MT_OVERRIDE"] = m.group(1) if m else "override"
     for port in sorted(ports(rtl)):
         defines[f"HAS_{port.upper()}"] = 1
     if trace:
