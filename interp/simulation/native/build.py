@@ -28,9 +28,11 @@ CACHE = ROOT / "build" / "native"
 EXE = "motion_sim"
 
 # motion_top as the CLI builds it (32-bit command fields, feed 2^48 = 1 step per clock).
-CLI_PARAMETERS = {"W": 32, "FRAC": 48, "FEED_W": 50, "TW": 16, "POS_W": 32, "QDEPTH": 4, "QLW": 3, "SDEPTH": 2}
+CLI_PARAMETERS = {"W": 32, "FRAC": 48, "FEED_W": 50, "NW": 40, "PF": 24, "LEN_W": 82, "ZW": 108, "MW": 12,
+                  "TW": 16, "POS_W": 32, "QDEPTH": 8, "QLW": 4, "SDEPTH": 2}
 # motion_top's own defaults, for the parameters a set leaves out
-DEFAULTS = {"W": 16, "FEED_W": 16, "FRAC": 16, "QDEPTH": 4, "QLW": 3, "SDEPTH": 2, "TW": 8, "POS_W": 32}
+DEFAULTS = {"W": 16, "FEED_W": 16, "FRAC": 16, "NW": 16, "PF": 12, "LEN_W": 34, "ZW": 48, "MW": 6,
+            "QDEPTH": 4, "QLW": 3, "SDEPTH": 2, "TW": 8, "POS_W": 32}
 
 # Verilator: its -O3 on the netlist, X values resolved the fast way (every register
 # is reset before it matters), no assertions; the C++ at -O2 for this machine.
@@ -56,9 +58,12 @@ def full_parameters(parameters: dict | None) -> dict:
     if unknown:
         raise ValueError(f"unknown motion_top parameters: {', '.join(sorted(unknown))}")
     p = {**DEFAULTS, **(parameters or {})}
-    for name in ("W", "FEED_W", "POS_W", "TW"):
-        if not 1 <= int(p[name]) <= 64:
-            raise ValueError(f"the native harness supports {name} up to 64 (got {p[name]})")
+    for name in ("W", "FEED_W", "POS_W", "TW", "NW", "PF"):
+        if not 1 <= int(p[name]) <= (63 if name == "PF" else 64):
+            raise ValueError(f"the native harness supports {name} up to {63 if name == 'PF' else 64} (got {p[name]})")
+    for name in ("LEN_W", "ZW"):
+        if not 1 <= int(p[name]) <= 256:
+            raise ValueError(f"the native harness supports {name} up to 256 (got {p[name]})")
     return {k: int(v) for k, v in p.items()}
 
 
@@ -97,7 +102,12 @@ def config_header(parameters: dict, trace: bool, rtl: Path, folder: Path) -> str
     """harness_config.h: the widths, which optional ports exist, and whether quiet stretches
     can be skipped (feed_rate's accumulator found in the generated model, <= 64 bits)."""
     defines = {"MT_W": parameters["W"], "MT_FEED_W": parameters["FEED_W"], "MT_POS_W": parameters["POS_W"],
-               "MT_TW": parameters["TW"]}
+               "MT_TW": parameters["TW"], "MT_NW": parameters["NW"], "MT_PF": parameters["PF"],
+               "MT_LEN_W": parameters["LEN_W"], "MT_ZW": parameters["ZW"]}
+    # the port `override` is a C++ keyword: Verilator may rename its member
+    top_header = (folder / "Vmotion_top.h").read_text()
+    m = re.search(r"VL_IN\d*\(&(\w*override),", top_header)
+    defines["MT_OVERRIDE"] = m.group(1) if m else "override"
     for port in sorted(ports(rtl)):
         defines[f"HAS_{port.upper()}"] = 1
     if trace:

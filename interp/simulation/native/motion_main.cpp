@@ -2,16 +2,23 @@
 // Native Verilator harness for rtl/motion_top.v (no cocotb, no Python per cycle).
 //
 //   motion_sim --commands FILE --steps FILE --result FILE --max-cycles N
-//              --timing PULSE_WIDTH,SETUP,HOLD [--vcd FILE] [--progress-log2 K]
+//              --timing PULSE_WIDTH,SETUP,HOLD [--settings QUANTUM,BLOCK_SHIFT,JERK_SHIFT,OVERRIDE]
+//              [--controls FILE] [--vcd FILE] [--progress-log2 K]
 //
-// Command file: one command per line, 10 decimal integers
-// "kind plane feed x y z i j k l" (blank lines skipped).  The harness drives
+// Command file: one command per line, 16 decimal integers
+// "kind plane feed x y z i j k l limit exit rate cost length budget" (blank
+// lines skipped; length and budget may be wider than 64 bits).  The harness drives
 // motion_top as interp/simulation/motion_driver.py does under cocotb: inputs
 // change while clk is low, outputs are sampled after each rising edge; rst for
 // two rising edges, then the first cycle counts 1.  A command is pushed
-// (cmd_valid) in every cycle whose previous sample showed cmd_full low, hold
-// (feed hold) stays 0.  It stops when every command is pushed and busy is low,
-// or after --max-cycles cycles ("stopped": true in the result).
+// (cmd_valid) in every cycle whose previous sample showed cmd_full low.
+// Settings: speed_quantum, block_shift, jerk_shift, override (default 1,0,0,100).
+// Controls file: lines "CYCLE hold|resume|override VALUE", cycles not decreasing;
+// each is applied after the sample of that cycle (cycle 0: before the first edge),
+// so the rising edge that ends cycle CYCLE + 1 sees it.  hold_stops in the result:
+// [cycle of the hold, first cycle with `stopped` high (null if resumed before),
+// step rows between the two].  It stops when every command is pushed, busy is low
+// and no control is left, or after --max-cycles cycles ("stopped": true).
 //
 // Steps CSV: "cycle,dx,dy,dz", one row per cycle with a rising edge on any
 // step output (d = -1 if dir is set, 1 if not, 0 without a rising edge).
@@ -21,7 +28,8 @@
 // Bad input: one line on stderr, exit status 2.
 //
 // Compile-time settings (harness_config.h, written by interp/simulation/native/build.py): MT_W,
-// MT_FEED_W, MT_POS_W, MT_TW (parameter widths, each <= 64), HAS_PLANE,
+// MT_FEED_W, MT_POS_W, MT_TW (parameter widths, each <= 64), MT_NW, MT_PF, MT_LEN_W,
+// MT_ZW (the profile fields' widths; length and budget any width), HAS_PLANE,
 // HAS_EVENTS (the ports exist), TRACE (VCD support), QUIET_SKIP with MT_AW
 // (feed_rate's accumulator u_feed.acc and feed_q are in the model, <= 64
 // bits) and, when found, MT_SINCE_W, MT_COUNT_W (step_dir's since_fall and
@@ -72,14 +80,65 @@
 
 namespace {
 
-constexpr int NFIELDS = 10;
-const char* const FIELD_NAMES[NFIELDS] = {"kind", "plane", "feed", "x", "y", "z", "i", "j", "k", "l"};
-
-struct Command {
-    uint64_t field[NFIELDS];    // each already truncated to its port width
-};
+constexpr int NFIELDS = 16;
+const char* const FIELD_NAMES[NFIELDS] = {"kind", "plane", "feed", "x", "y", "z", "i", "j", "k", "l",
+                                          "limit", "exit", "rate", "cost", "length", "budget"};
+constexpr int BIG_WORDS = 8;    // fields up to 256 bits
+const char* const USAGE = "want 16 integers \"kind plane feed x y z i j k l limit exit rate cost length budget\"";
 
 uint64_t mask(int bits) { return bits >= 64 ? ~0ULL : (1ULL << bits) - 1; }
+
+// A field's value: little-endian 32-bit words, already truncated to its port width.
+struct Big {
+    uint32_t w[BIG_WORDS] = {};
+    uint64_t low() const { return w[0] | uint64_t(w[1]) << 32; }
+    bool zero() const {
+        for (uint32_t x : w) if (x) return false;
+        return true;
+    }
+    // *10 + digit; false on overflow of 256 bits
+    bool push_digit(unsigned digit) {
+        uint64_t carry = digit;
+        for (uint32_t& x : w) {
+            const uint64_t v = uint64_t(x) * 10 + carry;
+            x = uint32_t(v);
+            carry = v >> 32;
+        }
+        return carry == 0;
+    }
+    bool fits(int bits) const {
+        for (int k = 0; k < BIG_WORDS; ++k) {
+            const int base = 32 * k;
+            if (base >= bits ? w[k] != 0 : (bits - base < 32 && (w[k] >> (bits - base)) != 0)) return false;
+        }
+        return true;
+    }
+};
+
+int field_bits(int k) {
+    switch (k) {
+        case 0: return 3;
+        case 1: return 2;
+        case 2: case 10: case 13: return MT_FEED_W;
+        case 11: return MT_NW;
+        case 12: return MT_PF + 1;
+        case 14: return MT_LEN_W;
+        case 15: return MT_ZW;
+        default: return MT_W;
+    }
+}
+
+struct Command {
+    Big field[NFIELDS];
+};
+
+// Port setters: up to 64 bits a plain integer, wider a VlWide of 32-bit words.
+template <typename T>
+void put(T& port, const Big& value) { port = static_cast<T>(value.low()); }
+template <std::size_t N>
+void put(VlWide<N>& port, const Big& value) {
+    for (std::size_t k = 0; k < N; ++k) port[k] = k < BIG_WORDS ? value.w[k] : 0;
+}
 
 int64_t sign_extend(uint64_t value, int bits) {
     if (bits >= 64) return static_cast<int64_t>(value);
@@ -99,20 +158,23 @@ std::string shown(const char* begin, const char* end) {
     return text;
 }
 
-// Reads the whole command file; any bad line ends the run with one message.
-std::vector<Command> read_commands(const char* path) {
+std::string read_file(const char* path, const char* what) {
     FILE* f = std::fopen(path, "rb");
-    if (!f) fail(std::string("cannot read the command file ") + path + ": " + std::strerror(errno));
+    if (!f) fail(std::string("cannot read the ") + what + " " + path + ": " + std::strerror(errno));
     std::string text;
     char chunk[1 << 16];
     size_t n;
     while ((n = std::fread(chunk, 1, sizeof chunk, f)) > 0) text.append(chunk, n);
     std::fclose(f);
+    return text;
+}
 
-    // allowed ranges: kind 3 bits, plane 2 bits, feed unsigned FEED_W bits,
-    // x .. l: signed W bits, or unsigned W bits (a dwell's cycle count)
+// Reads the whole command file; any bad line ends the run with one message.
+std::vector<Command> read_commands(const char* path) {
+    const std::string text = read_file(path, "command file");
+    // allowed ranges: kind 3 bits, plane 2 bits, x .. l signed W bits or unsigned W bits
+    // (a dwell's cycle count), the others unsigned of their port width
     const int64_t lo_w = MT_W >= 64 ? INT64_MIN : -(int64_t(1) << (MT_W - 1));
-    const uint64_t hi_w = mask(MT_W);
     std::vector<Command> commands;
     const char* p = text.c_str();
     const char* const end = p + text.size();
@@ -130,43 +192,79 @@ std::vector<Command> read_commands(const char* path) {
         for (int k = 0; k < NFIELDS; ++k) {
             while (q < eol && (*q == ' ' || *q == '\t')) ++q;
             const char* start = q;
+            const bool negative = q < eol && *q == '-';
             if (q < eol && (*q == '-' || *q == '+')) ++q;
             const char* digits = q;
-            while (q < eol && *q >= '0' && *q <= '9') ++q;
+            Big value;
+            bool ok = true;
+            while (q < eol && *q >= '0' && *q <= '9') ok = value.push_digit(unsigned(*q++ - '0')) && ok;
             if (q == digits || (q < eol && *q != ' ' && *q != '\t' && *q != '\r'))
-                fail(where + "want 10 integers \"kind plane feed x y z i j k l\", got \"" +
-                     shown(p, eol) + "\"");
-            const std::string word(start, q);
-            errno = 0;
-            bool ok;
-            uint64_t value;
-            if (word[0] == '-') {
-                const long long v = std::strtoll(word.c_str(), nullptr, 10);
-                ok = errno == 0 && k >= 3 && v >= lo_w;
-                value = static_cast<uint64_t>(v);
+                fail(where + USAGE + ", got \"" + shown(p, eol) + "\"");
+            const int bits = field_bits(k);
+            const bool signed_field = k >= 3 && k <= 9;
+            if (negative) {
+                // -v in W bits: only the signed fields, v <= 2^(W-1)
+                ok = ok && signed_field && value.fits(64) && (value.zero() || value.low() - 1 <= uint64_t(-(lo_w + 1)));
+                if (ok) {
+                    const uint64_t v = (0 - value.low()) & mask(bits);
+                    value = Big{};
+                    value.w[0] = uint32_t(v);
+                    value.w[1] = uint32_t(v >> 32);
+                }
             } else {
-                const unsigned long long v = std::strtoull(word.c_str(), nullptr, 10);
-                const uint64_t hi = k == 0 ? 7 : k == 1 ? 3 : k == 2 ? mask(MT_FEED_W) : hi_w;
-                ok = errno == 0 && v <= hi;
-                value = v;
+                ok = ok && value.fits(bits);
             }
             if (!ok)
-                fail(where + FIELD_NAMES[k] + " " + word + " is out of range (kind 0 .. 7, plane 0 .. 3, feed 0 .. 2^" +
-                     std::to_string(MT_FEED_W) + " - 1, x .. l " + std::to_string(MT_W) + "-bit integers)");
-            const int bits = k == 0 ? 3 : k == 1 ? 2 : k == 2 ? MT_FEED_W : MT_W;
-            cmd.field[k] = value & mask(bits);
+                fail(where + FIELD_NAMES[k] + " " + std::string(start, q) + " is out of range (kind 0 .. 7, plane 0 .. 3, " +
+                     "x .. l " + std::to_string(MT_W) + "-bit integers, the others unsigned: feed, limit, cost " +
+                     std::to_string(MT_FEED_W) + " bits, exit " + std::to_string(MT_NW) + ", rate " +
+                     std::to_string(MT_PF + 1) + ", length " + std::to_string(MT_LEN_W) + ", budget " +
+                     std::to_string(MT_ZW) + ")");
+            cmd.field[k] = value;
         }
         while (q < eol && (*q == ' ' || *q == '\t' || *q == '\r')) ++q;
-        if (q != eol)
-            fail(where + "want 10 integers \"kind plane feed x y z i j k l\", got \"" + shown(p, eol) + "\"");
+        if (q != eol) fail(where + USAGE + ", got \"" + shown(p, eol) + "\"");
 #ifndef HAS_PLANE
-        if (cmd.field[1] != 0) fail(where + "plane " + std::to_string(cmd.field[1]) +
-                                    ", but this motion_top has no cmd_plane port (use 0)");
+        if (!cmd.field[1].zero()) fail(where + "plane " + std::to_string(cmd.field[1].low()) +
+                                       ", but this motion_top has no cmd_plane port (use 0)");
 #endif
         commands.push_back(cmd);
         p = eol + 1;
     }
     return commands;
+}
+
+// A control: at `cycle`, hold (1), resume (0) or override (percent).
+struct Control {
+    uint64_t cycle;
+    int kind;           // 0 hold, 1 resume, 2 override
+    uint64_t value;
+};
+
+std::vector<Control> read_controls(const char* path) {
+    std::vector<Control> controls;
+    if (!path) return controls;
+    const std::string text = read_file(path, "controls file");
+    size_t pos = 0;
+    for (long line = 1; pos < text.size(); ++line) {
+        size_t eol = text.find('\n', pos);
+        if (eol == std::string::npos) eol = text.size();
+        const std::string row = text.substr(pos, eol - pos);
+        pos = eol + 1;
+        char word[32];
+        unsigned long long cycle = 0, value = 0;
+        const int got = std::sscanf(row.c_str(), "%llu %31s %llu", &cycle, word, &value);
+        if (got <= 0) continue;                 // blank
+        const std::string kind = got >= 2 ? word : "";
+        Control c{cycle, kind == "hold" ? 0 : kind == "resume" ? 1 : kind == "override" ? 2 : -1, value};
+        if (got < 2 || c.kind < 0 || (c.kind == 2 && (got < 3 || value > 255)) ||
+            (!controls.empty() && cycle < controls.back().cycle))
+            fail(std::string(path) + " line " + std::to_string(line) +
+                 ": want \"CYCLE hold|resume|override PERCENT\" (cycles not decreasing, percent 0 .. 255), got \"" +
+                 row.substr(0, 60) + "\"");
+        controls.push_back(c);
+    }
+    return controls;
 }
 
 // Buffered writer for the steps CSV (millions of rows).
@@ -230,9 +328,32 @@ uint64_t number(const char* name, const char* text) {
 
 }  // namespace
 
+// The command inputs (cmd_valid apart) from a command.
+void push_fields(Vmotion_top& top, const Command& c) {
+    top.cmd_kind = c.field[0].low();
+#ifdef HAS_PLANE
+    top.cmd_plane = c.field[1].low();
+#endif
+    put(top.cmd_feed, c.field[2]);
+    put(top.cmd_x, c.field[3]);
+    put(top.cmd_y, c.field[4]);
+    put(top.cmd_z, c.field[5]);
+    put(top.cmd_i, c.field[6]);
+    put(top.cmd_j, c.field[7]);
+    put(top.cmd_k, c.field[8]);
+    put(top.cmd_l, c.field[9]);
+    put(top.cmd_limit, c.field[10]);
+    put(top.cmd_exit, c.field[11]);
+    put(top.cmd_rate, c.field[12]);
+    put(top.cmd_cost, c.field[13]);
+    put(top.cmd_length, c.field[14]);
+    put(top.cmd_budget, c.field[15]);
+}
+
 int main(int argc, char** argv) {
-    const char *commands_path = nullptr, *steps_path = nullptr, *result_path = nullptr, *vcd_path = nullptr;
-    uint64_t max_cycles = 0, timing[3] = {1, 0, 0};
+    const char *commands_path = nullptr, *steps_path = nullptr, *result_path = nullptr, *vcd_path = nullptr,
+               *controls_path = nullptr;
+    uint64_t max_cycles = 0, timing[3] = {1, 0, 0}, settings[4] = {1, 0, 0, 100};
     int progress_log2 = 22;
     bool exact = false;
     for (int a = 1; a < argc; ++a) {
@@ -243,7 +364,21 @@ int main(int argc, char** argv) {
         else if (opt == "--steps") steps_path = value;
         else if (opt == "--result") result_path = value;
         else if (opt == "--vcd") vcd_path = value;
-    else if (opt == "--exact") exact = number("--exact", value) != 0;
+        else if (opt == "--exact") exact = number("--exact", value) != 0;
+        else if (opt == "--controls") controls_path = value;
+        else if (opt == "--settings") {
+            std::string t = value;
+            const uint64_t top[4] = {mask(MT_FEED_W), 15, 15, 255};
+            for (int k = 0; k < 4; ++k) {
+                const size_t comma = t.find(',');
+                if ((comma == std::string::npos) != (k == 3))
+                    fail("--settings wants SPEED_QUANTUM,BLOCK_SHIFT,JERK_SHIFT,OVERRIDE");
+                settings[k] = number("--settings", t.substr(0, comma).c_str());
+                if (settings[k] > top[k]) fail("--settings: a value out of range (quantum < 2^FEED_W, shifts 0 .. 15, "
+                                               "override 0 .. 255)");
+                t = comma == std::string::npos ? "" : t.substr(comma + 1);
+            }
+        }
         else if (opt == "--max-cycles") max_cycles = number("--max-cycles", value);
         else if (opt == "--progress-log2") progress_log2 = int(number("--progress-log2", value));
         else if (opt == "--timing") {
@@ -264,6 +399,7 @@ int main(int argc, char** argv) {
     if (progress_log2 < 1 || progress_log2 > 62) fail("--progress-log2 must be 1 .. 62");
 
     const std::vector<Command> commands = read_commands(commands_path);
+    const std::vector<Control> controls = read_controls(controls_path);
     Writer steps(steps_path);
     steps.text("cycle,dx,dy,dz\n");
 
@@ -296,8 +432,11 @@ int main(int argc, char** argv) {
 #ifdef HAS_PLANE
     top->cmd_plane = 0;
 #endif
-    top->cmd_feed = 0;
-    top->cmd_x = top->cmd_y = top->cmd_z = top->cmd_i = top->cmd_j = top->cmd_k = top->cmd_l = 0;
+    push_fields(*top, Command{});
+    top->speed_quantum = settings[0];
+    top->block_shift = settings[1];
+    top->jerk_shift = settings[2];
+    top->MT_OVERRIDE = settings[3];
     top->pulse_width = timing[0];
     top->setup = timing[1];
     top->hold_time = timing[2];
@@ -318,8 +457,14 @@ int main(int argc, char** argv) {
     };
     std::vector<Event> events;
     const size_t total = commands.size();
-    size_t next = 0;
+    size_t next = 0, next_control = 0;
     uint64_t cycle = 0, rows = 0;
+    struct HoldStop {
+        uint64_t hold, stopped, steps;     // steps: the row count at the hold, then the rows in between
+        bool reached;
+    };
+    std::vector<HoldStop> stops;
+    bool awaiting_stop = false;
     unsigned prev_step = 0;
     bool stopped = false;
     const uint64_t progress_mask = (1ULL << progress_log2) - 1;
@@ -378,21 +523,22 @@ int main(int argc, char** argv) {
 
     for (;;) {
         // inputs for the next rising edge, from the last sample (clk is low)
+        while (next_control < controls.size() && controls[next_control].cycle <= cycle) {
+            const Control& c = controls[next_control++];
+            if (c.kind == 2) {
+                top->MT_OVERRIDE = c.value;
+            } else {
+                if (c.kind == 0 && !top->hold) {
+                    stops.push_back({c.cycle, 0, rows, false});
+                    awaiting_stop = true;
+                }
+                if (c.kind == 1) awaiting_stop = false;
+                top->hold = c.kind == 0;
+            }
+        }
         const bool push = next < total && !top->cmd_full;
         if (push) {
-            const uint64_t* f = commands[next++].field;
-            top->cmd_kind = f[0];
-#ifdef HAS_PLANE
-            top->cmd_plane = f[1];
-#endif
-            top->cmd_feed = f[2];
-            top->cmd_x = f[3];
-            top->cmd_y = f[4];
-            top->cmd_z = f[5];
-            top->cmd_i = f[6];
-            top->cmd_j = f[7];
-            top->cmd_k = f[8];
-            top->cmd_l = f[9];
+            push_fields(*top, commands[next++]);
             top->cmd_valid = 1;
         } else {
             top->cmd_valid = 0;
@@ -412,6 +558,12 @@ int main(int argc, char** argv) {
             ++rows;
         }
         if (top->error) errors.emplace_back(cycle, unsigned(top->error_code));
+        if (awaiting_stop && top->stopped) {
+            stops.back().stopped = cycle;
+            stops.back().steps = rows - stops.back().steps;
+            stops.back().reached = true;
+            awaiting_stop = false;
+        }
 #ifdef HAS_EVENTS
         if (top->event_valid)
             events.push_back({cycle, unsigned(top->event_code), sign_extend(top->event_value, MT_W)});
@@ -518,8 +670,16 @@ int main(int argc, char** argv) {
         std::fprintf(out, "%s[%" PRIu64 ", %u, %" PRId64 "]", k ? ", " : "", events[k].cycle, events[k].code,
                      events[k].value);
     std::fprintf(out, "], \"steps\": %" PRIu64 ", \"stopped\": %s, \"pushed\": %zu, \"dispatched\": %zu, "
-                 "\"commands\": %zu, \"skipped\": %" PRIu64 "}\n", rows, stopped ? "true" : "false", next,
+                 "\"commands\": %zu, \"skipped\": %" PRIu64 ", \"hold_stops\": [", rows, stopped ? "true" : "false", next,
                  next - size_t(top->queue_level), total, uint64_t(skipped));
+    for (size_t k = 0; k < stops.size(); ++k) {
+        if (stops[k].reached)
+            std::fprintf(out, "%s[%" PRIu64 ", %" PRIu64 ", %" PRIu64 "]", k ? ", " : "", stops[k].hold,
+                         stops[k].stopped, stops[k].steps);
+        else
+            std::fprintf(out, "%s[%" PRIu64 ", null, null]", k ? ", " : "", stops[k].hold);
+    }
+    std::fprintf(out, "]}\n");
     if (std::fclose(out) != 0) fail(std::string("cannot write ") + result_path);
     top->final();
     return 0;

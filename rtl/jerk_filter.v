@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: Apache-2.0
+`default_nettype none
+// S-curve filter of the speed-setting block of the lecture ("БЗС"): the path
+// speed profile's jerk limit.  The virtual trapezoid (speed_ramp) changes its
+// speed v by one quantum A at most once per block; this filter outputs
+//
+//     sum = F = v(t) + v(t - B) + ... + v(t - (M - 1) B),  M = 2^shift blocks,
+//
+// the moving sum of the block speeds (B = 2^block_shift clocks).  Each block's
+// change of v is kept as a 2-bit code (bit 0 up, bit 1 down) in a delay line of
+// 2^MW codes (code_delay, block RAM); per block tick, with adders only:
+//     D <= D + A (c_now - c_delayed)     (D = v_now - v_delayed)
+//     F <= F + D_new.
+// The sum of F over time is exactly M times the sum of v, so a pacer that
+// charges each step M times its cost travels exactly the virtual distance;
+// the acceleration of F rises over M blocks: jerk = a / (M blocks).
+// shift = 0 is the trapezoid (infinite jerk): sum = speed.
+//
+// Contract with the ramp: up / down come only with `block` (strobes without it
+// are ignored); they mean v changes by +-A at the end of this clock (speed
+// shows the new value from the next clock on); speed_quantum is constant while
+// the filter is not empty.  jerk_shift is latched into `shift` only while the
+// filter is empty (a new value then restarts the delay line; values above MW
+// count as MW); the pacer must use `shift`.
+module jerk_filter #(
+    parameter integer FEED_W = 16,          // width of the speed and the quantum (>= 2)
+    parameter integer MW     = 6,           // log2 of the delay line depth: jerk_shift 0 .. MW (2 .. 15)
+    parameter integer SUM_W  = FEED_W + MW  // width of sum: must be FEED_W + MW
+) (
+    input  wire              clk,
+    input  wire              rst,
+    input  wire [FEED_W-1:0] speed,          // virtual speed v of this clock
+    input  wire              up,             // v rises by one quantum at the end of this clock
+    input  wire              down,           // v falls by one quantum at the end of this clock
+    input  wire              block,          // block tick (the clock where v may change)
+    input  wire [FEED_W-1:0] speed_quantum,  // A
+    input  wire [3:0]        jerk_shift,     // log2 M, taken while empty
+    output wire [SUM_W-1:0]  sum,            // F: sum of the last M block speeds
+    output wire [3:0]        shift,          // the jerk_shift in use (for step_pacer)
+    output wire              empty           // F = 0, v = 0, nothing in flight
+);
+    initial begin
+        if (FEED_W < 2) $error("%m: FEED_W must be at least 2");
+        if (MW < 2 || MW > 15) $error("%m: MW must be 2 .. 15");
+        if (SUM_W != FEED_W + MW) $error("%m: SUM_W must be FEED_W + MW");
+    end
+
+    localparam integer DW = FEED_W + 2;                // D and A (c_now - c_delayed), signed
+    localparam [3:0]  DEEPEST = MW[3:0];                  // the largest shift
+    localparam [MW:0] DEPTH = {1'b1, {MW{1'b0}}};      // 2^MW
+
+    reg  [SUM_W-1:0]  total;        // F
+    reg  [DW-1:0]     delta;        // D = v_now - v_delayed, two's complement
+    reg  [3:0]        shift_q;
+    reg  [MW:0]       count;        // codes written since the restart, saturating at 2^MW
+    reg  [MW-1:0]     write_address;
+    reg  [1:0]        code_last;
+    wire [1:0]        code_read;
+
+    wire [1:0]  code_now = {down, up};
+    wire [MW:0] span     = {{MW{1'b0}}, 1'b1} << shift_q;                // M
+    wire        single   = shift_q == 4'd0;
+    wire        aged     = count >= span;                                 // the code M ticks ago exists
+    wire [1:0]  code_old = ~aged ? 2'b00 : single ? code_last : code_read;
+    wire [MW-1:0] read_address = write_address + 1'b1 - span[MW-1:0];     // the code M - 1 ticks ago
+
+    // A * (c_now - c_old), c in {-1, 0, +1}: 0, +-A or +-2A
+    wire [DW-1:0] quantum = {2'b00, speed_quantum};
+    wire signed [2:0] step_now = $signed({1'b0, code_now[0]}) - $signed({1'b0, code_now[1]});
+    wire signed [2:0] step_old = $signed({1'b0, code_old[0]}) - $signed({1'b0, code_old[1]});
+    wire signed [2:0] change   = step_now - step_old;
+    reg  [DW-1:0] adjust;
+    always @* begin
+        case (change)
+            3'sd1:   adjust = quantum;
+            3'sd2:   adjust = quantum << 1;
+            -3'sd1:  adjust = -quantum;
+            -3'sd2:  adjust = -(quantum << 1);
+            default: adjust = {DW{1'b0}};
+        endcase
+    end
+    wire [DW-1:0]    delta_next = delta + adjust;
+    wire [SUM_W-1:0] delta_wide = {{(SUM_W-DW){delta_next[DW-1]}}, delta_next};
+
+    wire [3:0] wanted = jerk_shift > DEEPEST ? DEEPEST : jerk_shift;
+    assign empty = total == {SUM_W{1'b0}} && delta == {DW{1'b0}} && speed == {FEED_W{1'b0}};
+    assign sum   = single ? {{MW{1'b0}}, speed} : total;
+    assign shift = shift_q;
+
+    code_delay #(.AW(MW), .WIDTH(2)) u_line (
+        .clk(clk), .write(block), .write_address(write_address), .data(code_now),
+        .read(block), .read_address(read_address), .q(code_read)
+    );
+
+    always @(posedge clk) begin
+        if (rst) begin
+            total         <= {SUM_W{1'b0}};
+            delta         <= {DW{1'b0}};
+            count         <= {(MW+1){1'b0}};
+            write_address <= {MW{1'b0}};
+            code_last     <= 2'b00;
+            shift_q       <= wanted;
+        end else begin
+            if (block) begin
+                delta         <= delta_next;
+                total         <= total + delta_wide;
+                code_last     <= code_now;
+                write_address <= write_address + 1'b1;
+            end
+            if (empty && wanted != shift_q) begin
+                shift_q <= wanted;
+                count   <= {{MW{1'b0}}, block};
+            end else if (block && count != DEPTH) begin
+                count   <= count + 1'b1;
+            end
+        end
+    end
+endmodule
+`default_nettype wire
