@@ -105,24 +105,12 @@ class Motion:
         return self.steps / self.length_mm
 
 
-PROFILE_FIELDS = ("limit", "exit", "rate", "cost", "length", "budget")
-
-
 @dataclass
 class Cmd(Command):
-    """A motion_top command of the W = 32 build: arc plane and the speed profile's fields."""
+    """A motion_top command of the W = 32 build (arc plane and the speed profile's fields are
+    Command's), with what the planner needs of a move."""
 
-    plane: int = 0
-    limit: int = 0          # v max (path units / clock) for override > 100 %
-    exit: int = 0           # exit speed, quanta of the speed quantum A
-    rate: int = 0           # acceleration: p x 2^PF
-    cost: int = 0           # path units per step event; 0 = the lecture's costs
-    length: int = 0         # path length = N x cost (or the sum of the lecture's costs)
-    budget: int = 0         # braking budget Z0 = floor(2 rate length / (2^block_shift A))
     motion: Motion | None = field(default=None, compare=False, repr=False)
-
-    def ports(self) -> dict[str, int]:
-        return {**super().ports(), **{f"cmd_{f}": getattr(self, f) for f in PROFILE_FIELDS}}
 
     def fields(self) -> tuple[int, ...]:
         """The command file's 16 integers: kind plane feed x y z i j k l limit exit rate cost
