@@ -75,10 +75,11 @@ def run_program(tmp_path, capsys, text: str, sim: str, flags: list[str], tag: st
     assert main(["gcode", str(src), "--clock-hz", str(CLOCK_HZ), "--check", "--json"]) == 0
     import json
 
-    info = json.loads(capsys.readouterr().out)
+    info = json.loads(capsys.readouterr().out.strip().splitlines()[-1])     # (after the seed's line)
     steps = tmp_path / f"{tag}_steps.csv"
     status = main(["gcode", str(src), "--clock-hz", str(CLOCK_HZ), "--sim", sim, "--steps", str(steps), *flags])
     captured = capsys.readouterr()
+    print(captured.out, end="")                 # kept for the report of a failing test
     with open(steps, newline="") as f:
         rows = list(csv.reader(f))[1:]
     return status, captured, info, rows

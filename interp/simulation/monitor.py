@@ -32,10 +32,12 @@ Checks (each a row of the table):
   * axis speed: each axis within its max_rate_mm_min + dv;
   * acceleration: |a| <= the segment's cmd_rate acceleration + da;
   * jerk (S-curve): |j| <= jerk_mm_s3 + dj (dj is reported: with short grids it is loose);
-  * hold: the distance after a hold <= v^2 / 2a + v W / 2 + one event + dX (v the speed at
-    the hold, a the acceleration, W the S-curve's window);
-  * resume: the speed before the hold (or the cap) is reached again within v / a + W + 3 T,
-    where the command has room for it (else the row says "not checked").
+  * hold: the distance after a hold <= v^2 / 2a + v (W / 2 + 16) + one event + dX (v the
+    speed at the hold: the largest over 8 consecutive events near it, their time less 2q;
+    a the acceleration, W the S-curve's window);
+  * resume: 90 % of that speed (at most the cap) is reached again within v / a + W + 2 T + 16
+    clocks, where the command has room for it and the override does not change meanwhile
+    (else the row says "not checked").
 """
 from __future__ import annotations
 
@@ -185,7 +187,7 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
         _record(report, f"{'xyz'[k]} speed", va, np.full_like(va, cap_a), va - (cap_a + dva), g, clock,
                 "steps/clock")
         axis_speed.append(va * clock / a.steps_per_mm)
-    _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, grid, window, c_max)
+    _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, grid, window, c_max, q, overrides)
     report.checks.insert(0, ("events", report.events, report.expected_events, "", _ok(report.events ==
                                                                                       report.expected_events)))
     mid = (g[:-1] + g[1:]) / 2
@@ -220,7 +222,23 @@ def _record(report: Report, name: str, measured, cap, excess, times, clock, unit
                                  f"({times[k] / clock:.6g} s)")
 
 
-def _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, grid, window, c_max) -> None:
+LOCAL_EVENTS = 8        # events of the local speed at a hold and a resume
+
+
+def _local_speeds(t, x, q: int):
+    """An upper bound of the speed over each run of LOCAL_EVENTS events ending at event j
+    (distance over the time less the events' timing uncertainty 2q), for j >= LOCAL_EVENTS."""
+    m = LOCAL_EVENTS
+    if len(t) <= m:
+        return np.zeros(len(t))
+    out = np.zeros(len(t))
+    span = np.maximum(t[m:] - t[:-m] - 2 * q, 1.0)
+    out[m:] = (x[m:] - x[:-m]) / span
+    return out
+
+
+def _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, grid, window, c_max, q,
+           overrides) -> None:
     holds, pending = [], None
     for cycle, kind, _ in controls:
         if kind == "hold" and pending is None:
@@ -231,15 +249,18 @@ def _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, gri
     if pending is not None:
         holds.append((pending, None))
     ends = np.cumsum(counts)
+    local = _local_speeds(t, x, q)
     for number, (h, r) in enumerate(holds, 1):
         k_h = int(np.searchsorted(t, h, side="left"))
         k_r = len(t) if r is None else int(np.searchsorted(t, r, side="left"))
         if k_h >= len(t):
-            report.checks.append((f"hold {number}", 0.0, 0.0, "steps", "not checked (after the last step)"))
+            report.checks.append((f"hold {number} distance", 0.0, 0.0, "steps", "not checked (after the last step)"))
             continue
-        before = (g[1:] <= h) & (g[1:] >= h - window - 2 * grid)
-        speed = float(v[before].max()) if before.any() else float(v[: max(1, int((h - g[0]) // grid))].max())
-        speed += dv
+        # the speed at the hold: the largest local speed from 2 grid intervals before it to the
+        # filter's window after it (the filtered speed still rises for up to a window)
+        near = (t >= h - 2 * grid) & (t <= h + window + HOLD_LATENCY)
+        near[:LOCAL_EVENTS] = False
+        speed = float(local[near].max()) if near.any() else float(v.max())
         owners = owner[k_h:max(k_h + 1, k_r)]
         a = float(accel[owners].min())
         distance = float(x[k_r - 1] - (x[k_h - 1] if k_h else 0.0)) if k_r > k_h else 0.0
@@ -251,15 +272,19 @@ def _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, gri
                                      f"v^2/2a + ... = {bound:.6g}")
         if r is None or k_r >= len(t):
             continue
-        target = 0.9 * min(speed - dv, float(caps[min(len(caps) - 1, max(0, int((r - g[0]) // grid)))]))
+        # the resume: back to the speed before the hold (90 %, at most the cap then) in v / a
+        cap = float(caps[min(len(caps) - 1, max(0, int((r - g[0]) // grid)))])
+        target = 0.9 * min(speed, cap)
         a_r = float(accel[owner[k_r]])
+        allowed = target / a_r + window + 2 * grid + HOLD_LATENCY
         room = x[ends[owner[k_r]] - 1] - x[k_r]
-        allowed = target / a_r + window + 3 * grid + HOLD_LATENCY
-        after = np.nonzero((g[1:] > r) & (v >= target))[0]
-        reached = float(g[1:][after[0]] - r) if len(after) else math.inf
-        if room < target * target / a_r + target * window:
-            report.checks.append((f"resume {number} time", reached, allowed, "clocks",
-                                  "not checked (the command ends first)"))
+        changes = [c for c, _ in overrides if r <= c <= r + allowed]
+        after = np.nonzero((t > r) & (local >= target))[0]
+        after = after[after >= k_r + LOCAL_EVENTS]
+        reached = float(t[after[0]] - r) if len(after) else math.inf
+        if room < target * target / a_r + target * (window + grid) or changes:
+            why = "the command ends first" if not changes else "the override changes meanwhile"
+            report.checks.append((f"resume {number} time", reached, allowed, "clocks", f"not checked ({why})"))
             continue
         good = reached <= allowed
         report.checks.append((f"resume {number} time", reached, allowed, "clocks", _ok(good)))
