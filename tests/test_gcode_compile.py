@@ -13,8 +13,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from interp.gcode.compile import (ARC_LIMIT, DWELL_MAX, EVENT, EVENT_CODES, FRAC, LINE_MAX, PF, PWM_FULL,
-                                  CompileError, Compiler, compile_program)
+from interp.gcode.compile import (ARC_LIMIT, DWELL_MAX, EVENT, EVENT_CODES, EXIT_MARGIN, FRAC, LINE_MAX, PF,
+                                  PWM_FULL, CompileError, Compiler, compile_program)
 from interp.gcode.stepcount import arc_count, helix_count
 from interp.gcode.machine import SCHEMA, MachineError, default_machine_text, load_machine
 from interp.gcode.moves import PLANES, Arc, Dwell, Event, Line, Program
@@ -463,6 +463,8 @@ def check_profile(out) -> None:
         following = cmds[n + 1] if n + 1 < len(cmds) else None
         if following is None or following.motion is None or following.motion.stop_before:
             assert c.exit == 0
+        elif c.exit:        # the next command, entered at the exit, can brake to its own exit
+            assert (c.exit + EXIT_MARGIN) ** 2 <= (following.budget >> PF) + following.exit ** 2
 
 
 def test_profile_fields_and_settings():
@@ -478,6 +480,14 @@ def test_profile_fields_and_settings():
     stops = [c.motion.stop_before for c in out.commands if c.motion]
     assert stops == [True, False, False, True]               # the start, after the dwell
     assert out.commands[0].exit > 0                          # straight on: no stop between 1 and 2
+    # a short straight continuation the plan brakes in exactly: its entry comes down a few quanta
+    tight = compile_program(Program([Line((0, 0, 0), (1, 0, 0), 1200, 1), Line((1, 0, 0), (1.2, 0, 0), 1200, 2)]),
+                            load_machine(clock_hz=50e3))
+    first, second = tight.commands
+    planned = math.floor(tight.plans[0].exit_mm_s * first.motion.spm * (1 << FRAC) / 50e3
+                         / tight.settings["speed_quantum"])
+    assert 0 < planned - EXIT_MARGIN - 1 <= first.exit < planned
+    check_profile(tight)
     # the planner's accel in path units / clock^2: rate = floor(a_seg 2^bs / A 2^PF)
     p = out.plans[0]
     assert out.commands[0].rate == math.floor(word(p.accel_mm_s2, 100, 50e6) / 50e6 / a * (1 << PF))

@@ -57,6 +57,7 @@ EVENT = 5
 W, FRAC, FEED_W = 32, 48, 50                 # the CLI's build of motion_top
 NW, PF, LEN_W, ZW, MW = 40, 24, 82, 108, 12  # its profile widths (quanta, rate fraction, ...)
 BLOCK_SHIFT_MAX = 15                         # block_shift [3:0]
+EXIT_MARGIN = 3                              # quanta kept below the next command's braking reach
 LINE_MAX = (1 << (W - 1)) - 1                # longest line command per axis (-2^31 is refused)
 ARC_LIMIT = 1 << (W - 3)                     # circ_arc: |point - centre| < 2^(W-3) per axis
 DWELL_MAX = (1 << W) - 1                     # cycles of one DWELL command (unsigned)
@@ -479,6 +480,22 @@ class Compiler:
                                f"raise motion.jerk_mm_s3 or lower the clock")
         return block_shift, jerk_shift
 
+    def hardware_exits(self, moves: list[Cmd]) -> None:
+        """Make every exit reachable by the speed generator's discrete braking: the next
+        command, entered at n = cmd_exit quanta, must brake to its own exit within its budget:
+        (n + EXIT_MARGIN)^2 <= Z0 / 2^PF + n_exit^2 (quanta^2).  The plan's junction speeds
+        are exactly feasible for the continuous trapezoid; the generator steps n by whole
+        quanta and needs about 3n more, so the tightest exits come down by a few quanta."""
+        commands = self.out.commands
+        following = {id(c): commands[n + 1] for n, c in enumerate(commands[:-1])}
+        for cmd in reversed(moves):
+            nxt = following.get(id(cmd))
+            if nxt is None or nxt.motion is None or nxt.motion.stop_before:
+                cmd.exit = 0
+                continue
+            reach = math.isqrt((nxt.budget >> PF) + nxt.exit * nxt.exit) - EXIT_MARGIN
+            cmd.exit = max(0, min(cmd.exit, reach))
+
     def profile(self) -> None:
         """Plan the move commands and fill in their profile fields and the settings."""
         moves = [c for c in self.out.commands if c.motion is not None]
@@ -536,6 +553,7 @@ class Compiler:
             cmd.budget = 2 * cmd.rate * cmd.length // (quantum << block_shift)
             if cmd.length > LEN_MAX or cmd.budget > ZW_MAX:
                 raise CompileError(f"line {cmd.source}: the move is too long for cmd_length / cmd_budget")
+        self.hardware_exits(moves)
         # machine time: the plan's trapezoids, the dwells; the S-curve's filter adds its window
         # (2^(jerk_shift + block_shift) clocks) to every run between two stops
         window = (1 << (block_shift + jerk_shift)) / clock if jerk_shift or block_shift else 0.0

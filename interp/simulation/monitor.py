@@ -84,9 +84,9 @@ def read_rows(path) -> np.ndarray:
     return data.reshape(-1, 4)
 
 
-def _override_schedule(controls, end: int):
-    """[(cycle, percent)] of the override, from 100 at cycle 0."""
-    out = [(0, 100)]
+def _override_schedule(controls, initial: int):
+    """[(cycle, percent)] of the override, from `initial` (the settings') at cycle 0."""
+    out = [(0, initial)]
     for cycle, kind, value in controls:
         if kind == "override":
             out.append((int(cycle), max(1, min(200, int(value)))))
@@ -153,7 +153,7 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
     lo = np.clip(np.searchsorted(t, g[:-1] - grid, side="left"), 0, n - 1)
     hi = np.clip(np.searchsorted(t, g[1:] + grid, side="right") - 1, 0, n - 1)
     c_lo, c_hi = owner[lo], owner[hi]
-    overrides = _override_schedule(controls, int(end))
+    overrides = _override_schedule(controls, settings.get("override", 100))
     ramp = float(np.max(limit / accel)) + window + grid
     ov_times = np.array([c for c, _ in overrides], dtype=float)
     ov_values = np.array([p for _, p in overrides], dtype=float)
@@ -187,7 +187,7 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
         _record(report, f"{'xyz'[k]} speed", va, np.full_like(va, cap_a), va - (cap_a + dva), g, clock,
                 "steps/clock")
         axis_speed.append(va * clock / a.steps_per_mm)
-    _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, grid, window, c_max, q, overrides)
+    _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, grid, window, c_max, q, overrides, quantum)
     report.checks.insert(0, ("events", report.events, report.expected_events, "", _ok(report.events ==
                                                                                       report.expected_events)))
     mid = (g[:-1] + g[1:]) / 2
@@ -238,7 +238,7 @@ def _local_speeds(t, x, q: int):
 
 
 def _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, grid, window, c_max, q,
-           overrides) -> None:
+           overrides, quantum) -> None:
     holds, pending = [], None
     for cycle, kind, _ in controls:
         if kind == "hold" and pending is None:
@@ -264,7 +264,8 @@ def _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, gri
         owners = owner[k_h:max(k_h + 1, k_r)]
         a = float(accel[owners].min())
         distance = float(x[k_r - 1] - (x[k_h - 1] if k_h else 0.0)) if k_r > k_h else 0.0
-        bound = speed * speed / (2 * a) + speed * (window / 2 + HOLD_LATENCY) + c_max + dx
+        # (+ the time of one speed quantum at the speed: the generator's steps of A)
+        bound = speed * speed / (2 * a) + speed * (window / 2 + HOLD_LATENCY + quantum / a) + c_max + dx
         good = distance <= bound
         report.checks.append((f"hold {number} distance", distance, bound, "steps", _ok(good)))
         if not good:
