@@ -32,9 +32,9 @@ Checks (each a row of the table):
   * axis speed: each axis within its max_rate_mm_min + dv;
   * acceleration: |a| <= the segment's cmd_rate acceleration + da;
   * jerk (S-curve): |j| <= jerk_mm_s3 + dj (dj is reported: with short grids it is loose);
-  * hold: the distance after a hold <= v^2 / 2a + v (W / 2 + 16) + one event + dX (v the
-    speed at the hold: the largest over 8 consecutive events near it, their time less 2q;
-    a the acceleration, W the S-curve's window);
+  * hold: the distance after a hold <= u^2 / 2a + u (W / 2 + 16 + A / a) + one event + dX,
+    u = v + a W / 2 the virtual speed at most (v the speed at the hold: the largest over 8
+    consecutive events near it, their time less 2q; a the acceleration, W the S-curve's window);
   * resume: 90 % of that speed (at most the cap) is reached again within v / a + W + 2 T + 16
     clocks, where the command has room for it and the override does not change meanwhile
     (else the row says "not checked").
@@ -187,7 +187,8 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
         _record(report, f"{'xyz'[k]} speed", va, np.full_like(va, cap_a), va - (cap_a + dva), g, clock,
                 "steps/clock")
         axis_speed.append(va * clock / a.steps_per_mm)
-    _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, grid, window, c_max, q, overrides, quantum)
+    _holds(report, controls, t, x, g, v, feed, limit, accel, owner, counts, dx, dv, grid, window, c_max, q, overrides,
+           quantum)
     report.checks.insert(0, ("events", report.events, report.expected_events, "", _ok(report.events ==
                                                                                       report.expected_events)))
     mid = (g[:-1] + g[1:]) / 2
@@ -237,7 +238,7 @@ def _local_speeds(t, x, q: int):
     return out
 
 
-def _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, grid, window, c_max, q,
+def _holds(report, controls, t, x, g, v, feed, limit, accel, owner, counts, dx, dv, grid, window, c_max, q,
            overrides, quantum) -> None:
     holds, pending = [], None
     for cycle, kind, _ in controls:
@@ -264,8 +265,10 @@ def _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, gri
         owners = owner[k_h:max(k_h + 1, k_r)]
         a = float(accel[owners].min())
         distance = float(x[k_r - 1] - (x[k_h - 1] if k_h else 0.0)) if k_r > k_h else 0.0
-        # (+ the time of one speed quantum at the speed: the generator's steps of A)
-        bound = speed * speed / (2 * a) + speed * (window / 2 + HOLD_LATENCY + quantum / a) + c_max + dx
+        # the virtual speed leads the filtered one by up to a W / 2 (S-curve); + the time of one
+        # speed quantum at the speed (the generator's steps of A)
+        virtual = speed + a * window / 2
+        bound = virtual * virtual / (2 * a) + virtual * (window / 2 + HOLD_LATENCY + quantum / a) + c_max + dx
         good = distance <= bound
         report.checks.append((f"hold {number} distance", distance, bound, "steps", _ok(good)))
         if not good:
@@ -274,7 +277,9 @@ def _holds(report, controls, t, x, g, v, caps, accel, owner, counts, dx, dv, gri
         if r is None or k_r >= len(t):
             continue
         # the resume: back to the speed before the hold (90 %, at most the cap then) in v / a
-        cap = float(caps[min(len(caps) - 1, max(0, int((r - g[0]) // grid)))])
+        k_now = owner[k_r]
+        percent = next(p for c, p in reversed(overrides) if c <= r)
+        cap = min(feed[k_now] * percent / 100, limit[k_now])
         target = 0.9 * min(speed, cap)
         a_r = float(accel[owner[k_r]])
         allowed = target / a_r + window + 2 * grid + HOLD_LATENCY
