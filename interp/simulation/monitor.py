@@ -33,8 +33,9 @@ Checks (each a row of the table):
   * acceleration: |a| <= the segment's cmd_rate acceleration + da;
   * jerk (S-curve): |j| <= jerk_mm_s3 + dj (dj is reported: with short grids it is loose);
   * hold: the distance after a hold <= u^2 / 2a + u (W / 2 + 16 + A / a) + one event + dX,
-    u = v + a W / 2 the virtual speed at most (v the speed at the hold: the largest over 8
-    consecutive events near it, their time less 2q; a the acceleration, W the S-curve's window);
+    u = v + a W / 2 the virtual speed at most (v the speed at the hold: the largest mean over
+    8 consecutive events near it, their time less 2q, plus the acceleration times the run's
+    length; a the acceleration, W the S-curve's window);
   * resume: 90 % of that speed (at most the cap) is reached again within v / a + W + 2 T + 16
     clocks, where the command has room for it and the override does not change meanwhile
     (else the row says "not checked").
@@ -227,15 +228,17 @@ LOCAL_EVENTS = 8        # events of the local speed at a hold and a resume
 
 
 def _local_speeds(t, x, q: int):
-    """An upper bound of the speed over each run of LOCAL_EVENTS events ending at event j
-    (distance over the time less the events' timing uncertainty 2q), for j >= LOCAL_EVENTS."""
+    """(speed, span): an upper bound of the mean speed over each run of LOCAL_EVENTS events
+    ending at event j (distance over the time less the events' timing uncertainty 2q), and
+    the run's length in clocks, for j >= LOCAL_EVENTS."""
     m = LOCAL_EVENTS
+    out, spans = np.zeros(len(t)), np.zeros(len(t))
     if len(t) <= m:
-        return np.zeros(len(t))
-    out = np.zeros(len(t))
+        return out, spans
     span = np.maximum(t[m:] - t[:-m] - 2 * q, 1.0)
     out[m:] = (x[m:] - x[:-m]) / span
-    return out
+    spans[m:] = span
+    return out, spans
 
 
 def _holds(report, controls, t, x, g, v, feed, limit, accel, owner, counts, dx, dv, grid, window, c_max, q,
@@ -250,7 +253,7 @@ def _holds(report, controls, t, x, g, v, feed, limit, accel, owner, counts, dx, 
     if pending is not None:
         holds.append((pending, None))
     ends = np.cumsum(counts)
-    local = _local_speeds(t, x, q)
+    local, spans = _local_speeds(t, x, q)
     for number, (h, r) in enumerate(holds, 1):
         k_h = int(np.searchsorted(t, h, side="left"))
         k_r = len(t) if r is None else int(np.searchsorted(t, r, side="left"))
@@ -261,9 +264,11 @@ def _holds(report, controls, t, x, g, v, feed, limit, accel, owner, counts, dx, 
         # filter's window after it (the filtered speed still rises for up to a window)
         near = (t >= h - 2 * grid) & (t <= h + window + HOLD_LATENCY)
         near[:LOCAL_EVENTS] = False
-        speed = float(local[near].max()) if near.any() else float(v.max())
         owners = owner[k_h:max(k_h + 1, k_r)]
         a = float(accel[owners].min())
+        a_up = float(accel[owner[max(0, k_h - LOCAL_EVENTS):k_h + 1]].max())
+        # a run's mean speed lags the speed at its end by up to a_up x its length (ramping up)
+        speed = float((local[near] + a_up * spans[near]).max()) if near.any() else float(v.max())
         distance = float(x[k_r - 1] - (x[k_h - 1] if k_h else 0.0)) if k_r > k_h else 0.0
         # the virtual speed leads the filtered one by up to a W / 2 (S-curve); + the time of one
         # speed quantum at the speed (the generator's steps of A)
@@ -285,7 +290,7 @@ def _holds(report, controls, t, x, g, v, feed, limit, accel, owner, counts, dx, 
         allowed = target / a_r + window + 2 * grid + HOLD_LATENCY
         room = x[ends[owner[k_r]] - 1] - x[k_r]
         changes = [c for c, _ in overrides if r <= c <= r + allowed]
-        after = np.nonzero((t > r) & (local >= target))[0]
+        after = np.nonzero((t > r) & (local >= target))[0]       # (the run's mean: never early)
         after = after[after >= k_r + LOCAL_EVENTS]
         reached = float(t[after[0]] - r) if len(after) else math.inf
         if room < target * target / a_r + target * (window + grid) or changes:
