@@ -354,7 +354,9 @@ def simulate_program(args, program, compiled: Compiled, machine: Machine, contro
     print(f"{result['steps']} step cycles, end {end}, {cycles} clock cycles, "
           f"{cycles / clock:.6g} s machine time at {clock:g} Hz, {len(result['events'])} events{deviation}")
     for (h, _r), stop in zip(holds, result.get("hold_stops", [])):
-        print(f"hold at {h:g} s: stopped {(stop[1] - stop[0]) / clock:.6g} s later, {stop[2]} steps after it")
+        when = "did not stop before its resume" if stop[1] is None else \
+            f"stopped {(stop[1] - stop[0]) / clock:.6g} s later"
+        print(f"hold at {h:g} s: {when}, {stop[2]} steps after it")
     print(verdict(report))
     if not report.ok and not failures:
         failures.append(f"the motion monitor found {len(report.violations)} violations (see above)")
