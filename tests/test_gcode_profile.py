@@ -30,11 +30,11 @@ def _harness_ready() -> str | None:
     return None
 
 
-def random_program(rng: random.Random) -> str:
+def random_program(rng: random.Random, moves: tuple[int, int] = (2, 4)) -> str:
     """A few mm of lines, an arc and a helix in random planes, feeds and directions."""
     lines = ["G21 G90 G17", "G0 X0 Y0 Z0"]
     x = y = z = 0.0
-    for _ in range(rng.randint(2, 4)):
+    for _ in range(rng.randint(*moves)):
         kind = rng.choice(["line", "line", "arc", "helix"])
         feed = rng.choice([600, 1200, 3000])
         if kind == "line":
@@ -69,15 +69,15 @@ def random_controls(rng: random.Random, seconds: float) -> list[str]:
     return flags
 
 
-def run_program(tmp_path, capsys, text: str, sim: str, flags: list[str], tag: str):
+def run_program(tmp_path, capsys, text: str, sim: str, flags: list[str], tag: str, clock: int = CLOCK_HZ):
     src = tmp_path / f"{tag}.nc"
     src.write_text(text)
-    assert main(["gcode", str(src), "--clock-hz", str(CLOCK_HZ), "--check", "--json"]) == 0
+    assert main(["gcode", str(src), "--clock-hz", str(clock), "--check", "--json"]) == 0
     import json
 
     info = json.loads(capsys.readouterr().out.strip().splitlines()[-1])     # (after the seed's line)
     steps = tmp_path / f"{tag}_steps.csv"
-    status = main(["gcode", str(src), "--clock-hz", str(CLOCK_HZ), "--sim", sim, "--steps", str(steps), *flags])
+    status = main(["gcode", str(src), "--clock-hz", str(clock), "--sim", sim, "--steps", str(steps), *flags])
     captured = capsys.readouterr()
     print(captured.out, end="")                 # kept for the report of a failing test
     with open(steps, newline="") as f:
@@ -85,9 +85,7 @@ def run_program(tmp_path, capsys, text: str, sim: str, flags: list[str], tag: st
     return status, captured, info, rows
 
 
-@pytest.mark.parametrize("sim", ["verilator", "icarus"])
-@pytest.mark.parametrize("profile", ["trapezoid", "scurve"])
-def test_random_holds_and_overrides_lose_no_step(tmp_path, capsys, sim, profile):
+def fuzz(tmp_path, capsys, sim: str, profile: str, programs: int, moves: tuple[int, int], clock: int):
     reason = _harness_ready()
     if reason:
         pytest.skip(reason)
@@ -96,17 +94,36 @@ def test_random_holds_and_overrides_lose_no_step(tmp_path, capsys, sim, profile)
     seed = random.randrange(1 << 30)
     print("seed", seed)
     rng = random.Random(seed)
-    for n in range(2 if sim == "verilator" else 1):
-        text = random_program(rng)
-        program, compiled = gcode.compile_text(text, profile=profile,
-                                               machine=gcode.load_machine(clock_hz=CLOCK_HZ))
+    for n in range(programs):
+        text = random_program(rng, moves)
+        program, compiled = gcode.compile_text(text, profile=profile, machine=gcode.load_machine(clock_hz=clock))
         flags = random_controls(rng, compiled.machine_time_s) + ["--profile", profile]
-        status, captured, info, rows = run_program(tmp_path, capsys, text, sim, flags, f"p{n}")
+        status, captured, info, rows = run_program(tmp_path, capsys, text, sim, flags, f"p{n}", clock)
         context = (seed, n, flags, captured.out, captured.err)
         assert status == 0, context
         assert len(rows) == info["step_events"] == compiled.step_events, context
         assert [sum(int(r[k]) for r in rows) for k in (1, 2, 3)] == info["end_steps"], context
         assert "monitor: ok" in captured.out, context
+
+
+@pytest.mark.parametrize("profile", ["trapezoid", "scurve"])
+def test_random_holds_and_overrides_lose_no_step(tmp_path, capsys, profile):
+    """Verilator: two programs of 2 to 4 moves at 50 kHz."""
+    fuzz(tmp_path, capsys, "verilator", profile, 2, (2, 4), CLOCK_HZ)
+
+
+@pytest.mark.parametrize("profile", ["trapezoid", "scurve"])
+def test_random_holds_and_overrides_on_icarus(tmp_path, capsys, profile):
+    """Icarus (cocotb): one program of 1 or 2 moves at 20 kHz (fewer cycles: Icarus is slow)."""
+    fuzz(tmp_path, capsys, "icarus", profile, 1, (1, 2), 20_000)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("sim", ["verilator", "icarus"])
+@pytest.mark.parametrize("profile", ["trapezoid", "scurve"])
+def test_random_holds_and_overrides_sweep(tmp_path, capsys, sim, profile):
+    """The sweep: more and longer programs on both simulators."""
+    fuzz(tmp_path, capsys, sim, profile, 10 if sim == "verilator" else 3, (2, 5), CLOCK_HZ)
 
 
 def test_hold_stops_and_resumes_on_a_long_line(tmp_path, capsys):
