@@ -1,0 +1,294 @@
+// SPDX-License-Identifier: Apache-2.0
+`default_nettype none
+// Path-speed profile generator: the virtual domain of the lecture's speed-setting
+// block ("БЗС"), a trapezoid generator with a look-ahead of one segment.
+//
+// The speed is n quanta, v = n * A (A = speed_quantum, path units per clock).
+// Time runs in blocks of 2^block_shift clocks; at the end of every block a DDA adds
+// the segment's rate (p * 2^PF) and, when it overflows, n may rise or fall by one:
+// path acceleration p * A / 2^block_shift per clock^2.  The remaining distance S of
+// the segment falls by v every clock; the clock that crosses 0 carries its overshoot
+// into the next segment, so the distance is exact.
+// Braking: the budget Zx = 2^block_shift * 2 p S / (2^block_shift A) * 2^PF falls by
+// 2 p n * 2^PF every clock.  At a DDA tick, with u the DDA phase of the next block,
+// n is raised only if Zx >= R(n + 1, u) << block_shift, kept only if
+// Zx >= R(n, u) << block_shift, else lowered, where R(n, u) = n^2 + n - f^2 - f +
+// 2 n (p - u) (quanta^2, n > f; 0 for n <= f) bounds the budget that braking at
+// every following tick may use (f = max(exit, 1)).  n (n + 1), p n and n u are kept
+// by adders.  The target is the exit speed if the next segment is known (at the
+// head of the queue, not a barrier, its p' n and f (f + 1) set up by the sequential
+// multipliers, p' n followed as n moves), else 0: at the clock S crosses 0 with
+// target 0 the last quantum drops (n 1 -> 0; `late` if n was higher).  The crossing
+// clock's travel is charged to the next segment's budget whole (2 p' n) and the part
+// that belonged to the old one, 2 p' floor(S / A), is given back over the next NW
+// clocks (restoring division by shifts).  Cap: v <= min(feed * override / 100,
+// limit), compared as 100 v <= feed * override (the product recomputed every 9
+// clocks), lowered at the DDA ticks when exceeded.  hold lowers n at every tick to 0.
+module speed_ramp #(
+    parameter integer FEED_W = 16,  // speed word: path units per clock (>= 2)
+    parameter integer NW     = 16,  // speed in quanta n (2 .. 64)
+    parameter integer PF     = 12,  // fraction bits of the rate p (1 .. 64)
+    parameter integer LEN_W  = 34,  // segment length in path units (>= FEED_W)
+    parameter integer ZW     = 48   // budget Z0 in quanta^2 * 2^PF (>= 2)
+) (
+    input  wire              clk,
+    input  wire              rst,
+    input  wire              next_valid,     // a segment is at the head of the profile queue
+    input  wire              next_barrier,   // ... and it is a barrier (dwell / event)
+    input  wire [FEED_W-1:0] next_feed,      // its cruise speed v_c
+    input  wire [FEED_W-1:0] next_limit,     // its speed ceiling (override > 100 %)
+    input  wire [NW-1:0]     next_exit,      // its exit speed in quanta
+    input  wire [PF:0]       next_rate,      // its rate p * 2^PF, 1 .. 2^PF
+    input  wire [LEN_W-1:0]  next_length,    // its length in path units
+    input  wire [ZW-1:0]     next_budget,    // its budget Z0
+    output reg               next_pop,       // registered strobe: drop the head at the next edge
+    input  wire              barrier_done,   // strobe: a dwell / event has finished
+    input  wire [FEED_W-1:0] speed_quantum,  // A (constant while moving)
+    input  wire [3:0]        block_shift,    // block = 2^block_shift clocks (constant while moving)
+    /* verilator lint_off SYMRSVDWORD */
+    input  wire [7:0]        override,       // percent, 1 .. 200 (clamped)
+    /* verilator lint_on SYMRSVDWORD */
+    input  wire              hold,           // decelerate to 0 and stay
+    output reg  [FEED_W-1:0] speed,          // v = n * A, the travel of this clock
+    output reg               up,             // n rose at the last edge
+    output reg               down,           // n fell at the last edge
+    output wire              block,          // this clock ends a block
+    output wire              moving,         // n != 0 or a segment in progress
+    output wire              stopped,        // hold and n = 0
+    output reg               late            // strobe: a stop or exit reached above its speed
+);
+    initial begin
+        if (FEED_W < 2) $error("%m: FEED_W must be at least 2");
+        if (NW < 2 || NW > 64) $error("%m: NW must be 2 .. 64");
+        if (PF < 1 || PF > 64) $error("%m: PF must be 1 .. 64");
+        if (LEN_W < FEED_W) $error("%m: LEN_W must be at least FEED_W");
+        if (ZW < 2) $error("%m: ZW must be at least 2");
+    end
+
+    localparam integer QW  = 2 * NW;                      // n (n + 1)
+    localparam integer PW  = PF + NW;                     // p n (p <= 1)
+    localparam integer NAW = NW + PF;                     // n * acc
+    localparam integer RW  = 2 * NW + PF + 3;             // R, signed
+    localparam integer ZXW = (ZW > RW ? ZW : RW) + 17;    // Zx, signed (<< block_shift <= 15)
+    localparam integer SW  = LEN_W + 2;                   // S, signed
+    localparam integer MW  = NW + FEED_W;                 // the refinement's remainder
+    localparam [1:0] IDLE = 2'd0, BUSY = 2'd1, DONE = 2'd2;
+    localparam [NW-1:0] ONE_N = {{(NW-1){1'b0}}, 1'b1};
+    localparam [NW-1:0] NMAX  = {NW{1'b1}};
+    localparam [31:0]   NW32  = NW;
+    localparam [7:0]    NW8   = NW32[7:0];
+
+    reg  [14:0]     bc;          // clock in the block
+    reg  [3:0]      bs_q;        // block_shift
+    reg  [PF-1:0]   acc;         // DDA phase
+    reg  [NW-1:0]   n;
+    reg  [QW-1:0]   q;           // n (n + 1)
+    reg  [PW-1:0]   p;           // rate * n
+    reg  [NAW-1:0]  na;          // n * acc
+    reg  signed [SW-1:0]  remaining;   // S
+    reg  signed [ZXW-1:0] budget_x;    // Zx
+    reg             seg;         // a segment in progress
+    reg  [PF:0]     rate;
+    reg  [FEED_W-1:0] feed, limit;
+    reg  [NW-1:0]   exit_cur;    // the segment's exit speed (quanta) and f (f + 1)
+    reg  [QW-1:0]   f_sq_cur;
+    reg  [1:0]      pre;         // the successor's set-up
+    reg  [NW-1:0]   n_sh;        // the n that p_sh belongs to
+    reg  [PW-1:0]   p_sh;        // next_rate * n_sh
+    reg  [QW-1:0]   f_pre;       // f (f + 1) of the successor
+    reg  [7:0]      ref_count;
+    reg  [MW-1:0]   ref_r;
+    reg  [MW-2:0]   ref_d;
+    reg  [PW:0]     ref_m;
+    reg  [FEED_W+7:0] fo;        // feed * override
+    reg             fo_valid, fo_ok;
+    reg  [7:0]      bar_count;   // finished barriers not yet passed
+    reg             hold_q;
+
+    wire [14:0] mask = (15'd1 << bs_q) - 15'd1;
+    wire        head      = next_valid & ~next_pop;
+    wire        move_head = head & ~next_barrier;
+    wire        bar_head  = head & next_barrier;
+    wire        known     = (pre == DONE) & (n_sh == n);
+    wire        succ      = move_head & known;
+    wire [NW-1:0] fx      = next_exit == {NW{1'b0}} ? ONE_N : next_exit;
+    wire [NW-1:0] fx_cur  = exit_cur == {NW{1'b0}} ? ONE_N : exit_cur;
+    wire [NW-1:0] floor_n = succ ? fx_cur : ONE_N;
+    wire [QW-1:0] f_sq    = succ ? f_sq_cur : {{(QW-2){1'b0}}, 2'd2};
+    wire        exit_zero = ~succ | (exit_cur == {NW{1'b0}});
+    assign moving  = (n != {NW{1'b0}}) | seg;
+    assign stopped = hold_q & (n == {NW{1'b0}});
+
+    wire [7:0]  ovr = override == 8'd0 ? 8'd1 : override > 8'd200 ? 8'd200 : override;
+
+    // block, DDA, and n * acc after this block
+    wire          bend    = bc >= mask;
+    assign block = bend;
+    wire [PF:0]   acc_sum = {1'b0, acc} + rate;
+    wire          dtick   = bend & acc_sum[PF];
+    wire [PF-1:0] acc_n   = bend ? acc_sum[PF-1:0] : acc;
+    wire [NAW:0]  na_sum  = {1'b0, na} + {{(NAW+1-PW){1'b0}}, p} -
+                            (dtick ? {1'b0, n, {PF{1'b0}}} : {(NAW+1){1'b0}});
+    wire [NAW-1:0] na1    = bend ? na_sum[NAW-1:0] : na;
+
+    // the budget after this clock, with the refinement's quotient bit
+    wire ref_hit = (ref_count != 8'd0) & (ref_r >= {1'b0, ref_d});
+    wire signed [ZXW-1:0] zx1 = budget_x - $signed({{(ZXW-PW-1){1'b0}}, p, 1'b0}) +
+                                (ref_hit ? $signed({{(ZXW-PW-1){1'b0}}, ref_m}) : {ZXW{1'b0}});
+
+    // the thresholds for keeping n and for n + 1
+    wire [QW-1:0]  q_up  = q + {{(QW-NW-1){1'b0}}, n, 1'b0} + {{(QW-2){1'b0}}, 2'd2};
+    wire [PW-1:0]  p_up  = p + {{(PW-PF-1){1'b0}}, rate};
+    wire [NAW-1:0] na_up = na1 + {{NW{1'b0}}, acc_n};
+    wire signed [RW-1:0] r_hold = $signed({{(RW-QW){1'b0}}, q} - {{(RW-QW){1'b0}}, f_sq}) <<< PF;
+    wire signed [RW-1:0] r_up   = $signed({{(RW-QW){1'b0}}, q_up} - {{(RW-QW){1'b0}}, f_sq}) <<< PF;
+    wire signed [RW-1:0] r_hold_t = r_hold + $signed({{(RW-PW-1){1'b0}}, p, 1'b0}) - $signed({{(RW-NAW-1){1'b0}}, na1, 1'b0});
+    wire signed [RW-1:0] r_up_t   = r_up + $signed({{(RW-PW-1){1'b0}}, p_up, 1'b0}) - $signed({{(RW-NAW-1){1'b0}}, na_up, 1'b0});
+    wire signed [ZXW-1:0] r_hold_x = $signed({{(ZXW-RW){r_hold_t[RW-1]}}, r_hold_t}) <<< bs_q;
+    wire signed [ZXW-1:0] r_up_x   = $signed({{(ZXW-RW){r_up_t[RW-1]}}, r_up_t}) <<< bs_q;
+    wire ok_hold = (n <= floor_n) | (zx1 >= r_hold_x);
+    wire ok_up   = ({1'b0, n} + 1'b1 <= {1'b0, floor_n}) | (zx1 >= r_up_x);
+
+    // the cap: 100 v against feed * override, and the limit
+    wire [FEED_W+7:0] v100  = {2'd0, speed, 6'd0} + {3'd0, speed, 5'd0} + {6'd0, speed, 2'd0};
+    wire [FEED_W:0]   va    = {1'b0, speed} + {1'b0, speed_quantum};
+    wire [FEED_W+7:0] va100 = {1'd0, va, 6'd0} + {2'd0, va, 5'd0} + {5'd0, va, 2'd0};
+    wire over = (speed > limit) | (fo_valid & (v100 > fo));
+    wire room = fo_valid & (va <= {1'b0, limit}) & ~va[FEED_W] & (va100 <= fo) & (n != NMAX);
+
+    reg signed [1:0] step;
+    always @* begin
+        step = 2'sd0;
+        if (dtick) begin
+            if (hold) step = n != {NW{1'b0}} ? -2'sd1 : 2'sd0;
+            else if (!seg) step = 2'sd0;
+            else if (n == {NW{1'b0}}) step = 2'sd1;
+            else if (over && n > ONE_N) step = -2'sd1;
+            else if (room && ok_up) step = 2'sd1;
+            else if (ok_hold) step = 2'sd0;
+            else if (n > ONE_N) step = -2'sd1;
+        end
+    end
+    wire st_up = step == 2'sd1, st_dn = step == -2'sd1;
+
+    // crossing the end of the segment, switch, load, barrier
+    wire signed [SW-1:0] rem1 = remaining - $signed({{(SW-FEED_W){1'b0}}, speed});
+    wire crossing    = seg & (rem1 <= 0);
+    wire final_q  = crossing & exit_zero;
+    wire switch_s = crossing & succ;
+    wire end_s    = crossing & ~succ;
+    wire load     = ~seg & succ;
+    wire bar_pop  = bar_head & ~seg & (n == {NW{1'b0}}) & ((bar_count != 8'd0) | barrier_done);
+    wire pop      = switch_s | load | bar_pop;
+    wire [NW-1:0] n_d = st_up ? n + ONE_N : st_dn ? n - ONE_N : n;
+    wire late_n   = crossing & (exit_zero ? n > ONE_N : n_d > floor_n);
+    wire [MW+SW-1:0] rem_ext = {{MW{1'b0}}, remaining};    // S > 0 at a switch
+    wire signed [ZXW-1:0] budget_next = $signed({{(ZXW-ZW){1'b0}}, next_budget}) <<< bs_q;
+
+    // the successor's set-up: p' n and f (f + 1)
+    wire          mp_busy, mp_done, mf_busy, mf_done, mo_busy, mo_done;
+    wire [PW:0]   mp_product;
+    wire [2*NW:0] mf_product;
+    wire [FEED_W+7:0] mo_product;
+    wire pre_start = (pre == IDLE) & move_head & ~pop & ~mp_busy;
+    speed_ramp_mul #(.AW(PF + 1), .BW(NW)) u_mul_p (
+        .clk(clk), .rst(rst), .start(pre_start), .a(next_rate), .b(n),
+        .busy(mp_busy), .done(mp_done), .product(mp_product));
+    speed_ramp_mul #(.AW(NW + 1), .BW(NW)) u_mul_f (
+        .clk(clk), .rst(rst), .start(pre_start), .a({1'b0, fx} + 1'b1), .b(fx),
+        .busy(mf_busy), .done(mf_done), .product(mf_product));
+    speed_ramp_mul #(.AW(FEED_W), .BW(8)) u_mul_fo (
+        .clk(clk), .rst(rst), .start(~mo_busy), .a(feed), .b(ovr),
+        .busy(mo_busy), .done(mo_done), .product(mo_product));
+    wire [NW-1:0] n_next = final_q ? {NW{1'b0}} : n_d;
+    wire [NW:0] gap_full = {1'b0, n_next} - {1'b0, n_sh};   // n after this edge - n_sh, signed
+    wire signed [2:0] gap = $signed(gap_full) > 2 ? 3'sd2 : $signed(gap_full) < -2 ? -3'sd2 : gap_full[2:0];
+
+    always @(posedge clk) begin
+        if (rst) begin
+            bc <= 15'd0; bs_q <= 4'd0; acc <= {PF{1'b0}};
+            n <= {NW{1'b0}}; speed <= {FEED_W{1'b0}}; q <= {QW{1'b0}}; p <= {PW{1'b0}}; na <= {NAW{1'b0}};
+            remaining <= {SW{1'b0}}; budget_x <= {ZXW{1'b0}};
+            seg <= 1'b0; rate <= {(PF+1){1'b0}}; feed <= {FEED_W{1'b0}}; limit <= {FEED_W{1'b0}};
+            exit_cur <= {NW{1'b0}}; f_sq_cur <= {QW{1'b0}};
+            pre <= IDLE; n_sh <= {NW{1'b0}}; p_sh <= {PW{1'b0}}; f_pre <= {QW{1'b0}};
+            ref_count <= 8'd0; ref_r <= {MW{1'b0}}; ref_d <= {(MW-1){1'b0}}; ref_m <= {(PW+1){1'b0}};
+            fo <= {(FEED_W+8){1'b0}}; fo_valid <= 1'b0; fo_ok <= 1'b0; bar_count <= 8'd0;
+            up <= 1'b0; down <= 1'b0; next_pop <= 1'b0; late <= 1'b0; hold_q <= 1'b0;
+        end else begin
+            // speed and its companions
+            if (final_q) begin
+                n <= {NW{1'b0}}; speed <= {FEED_W{1'b0}}; q <= {QW{1'b0}}; p <= {PW{1'b0}}; na <= {NAW{1'b0}};
+            end else begin
+                n     <= n_d;
+                speed <= st_up ? va[FEED_W-1:0] : st_dn ? speed - speed_quantum : speed;
+                q     <= st_up ? q_up : st_dn ? q - {{(QW-NW-1){1'b0}}, n, 1'b0} : q;
+                na    <= st_up ? na_up : st_dn ? na1 - {{NW{1'b0}}, acc_n} : na1;
+                if (switch_s)
+                    p <= st_up ? p_sh + {{(PW-PF-1){1'b0}}, next_rate} :
+                         st_dn ? p_sh - {{(PW-PF-1){1'b0}}, next_rate} : p_sh;
+                else if (load)
+                    p <= {PW{1'b0}};
+                else
+                    p <= st_up ? p_up : st_dn ? p - {{(PW-PF-1){1'b0}}, rate} : p;
+            end
+            up       <= final_q ? 1'b0 : st_up;
+            down     <= final_q ? n != {NW{1'b0}} : st_dn;
+            late     <= late_n;
+            next_pop <= pop;
+            acc      <= acc_n;
+            bc       <= bend ? 15'd0 : bc + 15'd1;
+            bs_q     <= block_shift;
+            hold_q   <= hold;
+            bar_count <= bar_count + {7'd0, barrier_done} - {7'd0, bar_pop};
+            // the segment
+            if (switch_s | load) begin
+                rate <= next_rate; feed <= next_feed; limit <= next_limit;
+                exit_cur <= next_exit; f_sq_cur <= f_pre;
+                remaining <= (switch_s ? rem1 : remaining) + $signed({2'b00, next_length});
+                budget_x  <= budget_next - (switch_s ? $signed({{(ZXW-PW-1){1'b0}}, p_sh, 1'b0})
+                                                    : $signed({{(ZXW-PF-2){1'b0}}, next_rate, 1'b0}));
+                seg <= 1'b1;
+            end else if (end_s) begin
+                remaining <= rem1; budget_x <= {ZXW{1'b0}}; seg <= 1'b0;
+            end else begin
+                remaining <= seg ? rem1 : remaining; budget_x <= zx1;
+            end
+            // the successor's set-up
+            if (pop) pre <= IDLE;
+            else if (pre_start) begin
+                pre <= BUSY; n_sh <= n;
+            end else if (pre == BUSY && mp_done) begin
+                pre <= DONE; p_sh <= mp_product[PW-1:0]; f_pre <= mf_product[QW-1:0];
+            end else if (pre == DONE) begin
+                n_sh <= n_sh + {{(NW-2){gap[2]}}, gap[1:0]};
+                p_sh <= gap == 3'sd2 ? p_sh + {{(PW-PF-2){1'b0}}, next_rate, 1'b0} :
+                        gap == 3'sd1 ? p_sh + {{(PW-PF-1){1'b0}}, next_rate} :
+                        gap == -3'sd1 ? p_sh - {{(PW-PF-1){1'b0}}, next_rate} :
+                        gap == -3'sd2 ? p_sh - {{(PW-PF-2){1'b0}}, next_rate, 1'b0} : p_sh;
+            end
+            // feed * override
+            if (switch_s | load) begin
+                fo_valid <= 1'b0; fo_ok <= 1'b0;
+            end else begin
+                if (mo_done & fo_ok) begin
+                    fo <= mo_product; fo_valid <= 1'b1;
+                end
+                if (~mo_busy) fo_ok <= 1'b1;
+            end
+            // refinement: + 2 p' floor(S / A), one quotient bit a clock, MSB first
+            if (switch_s && n != {NW{1'b0}}) begin
+                ref_r <= rem_ext[MW-1:0]; ref_d <= {speed_quantum, {(NW-1){1'b0}}};
+                ref_m <= {next_rate, {NW{1'b0}}}; ref_count <= NW8;
+            end else if (crossing | load) begin
+                ref_count <= 8'd0;
+            end else if (ref_count != 8'd0) begin
+                if (ref_hit) ref_r <= ref_r - {1'b0, ref_d};
+                ref_d <= ref_d >> 1; ref_m <= ref_m >> 1; ref_count <= ref_count - 8'd1;
+            end
+        end
+    end
+
+    wire unused = &{1'b0, mf_busy, mf_done, mp_product[PW], mf_product[2*NW:QW], gap_full[NW:3], na_sum[NAW], rem_ext[MW+SW-1:MW]};
+endmodule
+`default_nettype wire
