@@ -63,7 +63,8 @@ module path_profile #(
     // status
     output wire [FEED_W-1:0] speed,         // virtual speed v, path units per clock
     output wire              moving,        // the ramp runs or the filter still sums speed
-    output wire              stopped        // hold has brought the speed to 0
+    output wire              stopped,       // hold has brought the speed to 0
+    output wire              late           // strobe: the ramp reached a stop or exit above its speed
 );
     initial begin
         if (FEED_W < 2) $error("%m: FEED_W must be at least 2");
@@ -102,7 +103,8 @@ module path_profile #(
         .next_exit(h_exit), .next_rate(h_rate), .next_length(h_length), .next_budget(h_budget),
         .next_pop(next_pop), .barrier_done(barrier_done),
         .speed_quantum(speed_quantum), .block_shift(block_shift), .override(override), .hold(hold),
-        .speed(speed), .up(up), .down(down), .block(block), .moving(ramp_moving), .stopped(stopped)
+        .speed(speed), .up(up), .down(down), .block(block), .moving(ramp_moving), .stopped(stopped),
+        .late(late)
     );
 
     reg  [FEED_W-1:0] speed_q;      // the ramp's speed and block one clock late
