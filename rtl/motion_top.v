@@ -58,7 +58,7 @@ module motion_top #(
     parameter integer PF     = 12,  // rate fraction bits: cmd_rate 2^PF = a quantum per block (>= 1)
     parameter integer LEN_W  = 34,  // segment length width, path units (>= FEED_W)
     parameter integer ZW     = 48,  // braking budget width (>= LEN_W)
-    parameter integer MW     = 6,   // S-curve filter depth 2^MW blocks (0 .. 15)
+    parameter integer MW     = 6,   // S-curve filter depth 2^MW blocks (2 .. 15)
     parameter integer QDEPTH = 4,   // commands the queues hold (>= 1)
     parameter integer QLW    = 3,   // width of queue_level (2^QLW > QDEPTH)
     parameter integer SDEPTH = 2,   // steps the synchronization buffer holds (>= 2)
@@ -125,7 +125,7 @@ module motion_top #(
         if (PF < 1) $error("%m: PF must be at least 1");
         if (LEN_W < FEED_W) $error("%m: LEN_W must be at least FEED_W");
         if (ZW < LEN_W) $error("%m: ZW must be at least LEN_W");
-        if (MW < 0 || MW > 15) $error("%m: MW must be 0 .. 15");
+        if (MW < 2 || MW > 15) $error("%m: MW must be 2 .. 15");
         if (QDEPTH < 1 || (1 << QLW) <= QDEPTH) $error("%m: need QDEPTH >= 1 and 2^QLW > QDEPTH");
         if (SDEPTH < 2) $error("%m: SDEPTH must be at least 2");
         if (TW < 1) $error("%m: TW must be at least 1");

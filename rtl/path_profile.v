@@ -15,6 +15,12 @@
 //                         its cost (the segment's cost, or the lecture's 1, sqrt 2, sqrt 3)
 // A barrier entry is popped by the ramp once the dispatcher has finished that dwell or
 // event (`barrier_done`) and the speed is 0, so a dwell or event never overlaps motion.
+// The ramp's outputs are registers: `speed` is v of this clock and up / down say that v
+// changed at the last edge, decided in the block-end clock before (`block` then).  The
+// filter takes a change with the clock it ends (speed still the old v, up / down and
+// block of that clock), so it gets the ramp's speed and block one clock late (speed_q,
+// block_q) with the ramp's up / down as they are: the step domain runs one clock behind
+// the virtual domain, with the same distance.
 module path_profile #(
     parameter integer FEED_W = 16,  // speed word width: path units per clock (>= 2)
     parameter integer FRAC   = 16,  // fraction bits: an axial step is 2^FRAC path units (1 .. 64)
@@ -22,7 +28,7 @@ module path_profile #(
     parameter integer PF     = 12,  // rate fraction bits: rate 2^PF = one quantum per block (>= 1)
     parameter integer LEN_W  = 34,  // segment length width, path units (>= FEED_W)
     parameter integer ZW     = 48,  // braking budget width (>= LEN_W)
-    parameter integer MW     = 6,   // jerk filter depth 2^MW blocks (0 .. 15)
+    parameter integer MW     = 6,   // jerk filter depth 2^MW blocks (2 .. 15)
     parameter integer QDEPTH = 4,   // entries the profile queue holds (>= 1)
     parameter integer QLW    = 3    // width of `level` (2^QLW > QDEPTH)
 ) (
@@ -57,7 +63,8 @@ module path_profile #(
     // status
     output wire [FEED_W-1:0] speed,         // virtual speed v, path units per clock
     output wire              moving,        // the ramp runs or the filter still sums speed
-    output wire              stopped        // hold has brought the speed to 0
+    output wire              stopped,       // hold has brought the speed to 0
+    output wire              late           // strobe: the ramp reached a stop or exit above its speed
 );
     initial begin
         if (FEED_W < 2) $error("%m: FEED_W must be at least 2");
@@ -66,7 +73,7 @@ module path_profile #(
         if (PF < 1) $error("%m: PF must be at least 1");
         if (LEN_W < FEED_W) $error("%m: LEN_W must be at least FEED_W");
         if (ZW < LEN_W) $error("%m: ZW must be at least LEN_W");
-        if (MW < 0 || MW > 15) $error("%m: MW must be 0 .. 15");
+        if (MW < 2 || MW > 15) $error("%m: MW must be 2 .. 15");
         if (QDEPTH < 1 || (1 << QLW) <= QDEPTH) $error("%m: need QDEPTH >= 1 and 2^QLW > QDEPTH");
     end
 
@@ -96,22 +103,38 @@ module path_profile #(
         .next_exit(h_exit), .next_rate(h_rate), .next_length(h_length), .next_budget(h_budget),
         .next_pop(next_pop), .barrier_done(barrier_done),
         .speed_quantum(speed_quantum), .block_shift(block_shift), .override(override), .hold(hold),
-        .speed(speed), .up(up), .down(down), .block(block), .moving(ramp_moving), .stopped(stopped)
+        .speed(speed), .up(up), .down(down), .block(block), .moving(ramp_moving), .stopped(stopped),
+        .late(late)
     );
+
+    reg  [FEED_W-1:0] speed_q;      // the ramp's speed and block one clock late
+    reg               block_q;
+    always @(posedge clk) begin
+        if (rst) begin
+            speed_q <= {FEED_W{1'b0}};
+            block_q <= 1'b0;
+        end else begin
+            speed_q <= speed;
+            block_q <= block;
+        end
+    end
 
     wire [SUM_W-1:0] sum;
+    wire [3:0]       shift;
     wire             empty;
     jerk_filter #(.FEED_W(FEED_W), .MW(MW), .SUM_W(SUM_W)) u_jerk (
-        .clk(clk), .rst(rst), .speed(speed), .up(up), .down(down), .block(block),
-        .speed_quantum(speed_quantum), .jerk_shift(jerk_shift), .sum(sum), .empty(empty)
+        .clk(clk), .rst(rst), .speed(speed_q), .up(up), .down(down), .block(block_q),
+        .speed_quantum(speed_quantum), .jerk_shift(jerk_shift), .sum(sum), .shift(shift), .empty(empty)
     );
 
+    wire due, overrun;
     step_pacer #(.FEED_W(FEED_W), .FRAC(FRAC), .MW(MW), .SUM_W(SUM_W)) u_pacer (
-        .clk(clk), .rst(rst), .sum(sum), .jerk_shift(jerk_shift), .step_valid(step_valid),
-        .step_axes(step_axes), .step_cost(step_cost), .drive_ready(drive_ready), .fire(fire)
+        .clk(clk), .rst(rst), .sum(sum), .jerk_shift(shift), .step_valid(step_valid),
+        .step_axes(step_axes), .step_cost(step_cost), .drive_ready(drive_ready), .fire(fire),
+        .due(due), .overrun(overrun)
     );
 
     assign moving = ramp_moving | ~empty;
-    wire unused = &{1'b0, unused_overflow};    // motion_top refuses a push when either queue is full
+    wire unused = &{1'b0, unused_overflow, due, overrun};   // motion_top refuses a push when either queue is full
 endmodule
 `default_nettype wire

@@ -564,8 +564,8 @@ class MotionTop(CycleModel):
         self.out = StepDir(3, tw)
         self.reset()
 
-    def reset(self) -> None:
-        self._flush()
+    def reset(self, jerk_shift: int = 0) -> None:
+        self._flush(jerk_shift)
         self.out.reset()
         self.state = S_IDLE
         self.lead_q = self.lead_neg_q = self.cost_q = self.dwell_q = 0
@@ -574,10 +574,11 @@ class MotionTop(CycleModel):
         self.event_valid = self.event_code = self.event_value = 0
         self._speed = self._stopped = self._busy = 0
 
-    def _flush(self) -> None:
+    def _flush(self, jerk_shift: int = 0) -> None:
         """What `flush` (rst or a fault) resets: the queues, the step buffer, the speed block, the cores."""
-        for block in (self.queue, self.line_a, self.line_b, self.arc, self.curve, self.sync, self.profile):
+        for block in (self.queue, self.line_a, self.line_b, self.arc, self.curve, self.sync):
             block.reset()
+        self.profile.reset(jerk_shift)
 
     # ---- outputs ----
     def _bit(self, vector: int, axis: int) -> int:
@@ -602,10 +603,10 @@ class MotionTop(CycleModel):
         self._speed, self._stopped = nets["speed"], nets["stopped"]
         self._busy = self.busy_with(nets["moving"])
 
-    def _profile_nets(self, i) -> dict:
+    def _profile_nets(self, i, barrier_done: int = 0) -> dict:
         sync, out = self.sync, self.out
         return self.profile.nets({
-            "barrier_done": 0, **{k: i.get(k, 0) for k in self.SETTINGS}, "hold": i.get("hold", 0),
+            "barrier_done": barrier_done, **{k: i.get(k, 0) for k in self.SETTINGS}, "hold": i.get("hold", 0),
             "step_valid": sync.out_valid, "step_axes": bin(sync.out_step).count("1"),
             "step_cost": sync.out_data, "drive_ready": out.ready})
 
@@ -665,7 +666,7 @@ class MotionTop(CycleModel):
 
     def clock(self, i) -> None:
         if i.get("rst"):
-            self.reset()
+            self.reset(i.get("jerk_shift", 0))
             self.settled(i)
             return
         w = self.w
@@ -714,8 +715,7 @@ class MotionTop(CycleModel):
         pre = self._profile_nets(i)                    # moving does not depend on barrier_done
         drained = not out_valid and out.ready and not pre["moving"]
         barrier_done = int((self.state == S_DWELL and self.dwell_q == 0) or (self.state == S_EVENT and drained))
-        pnets = self.profile.nets({**pre["ramp_in"], **pre["pacer_in"], "barrier_done": barrier_done,
-                                   "jerk_shift": i.get("jerk_shift", 0)})
+        pnets = self._profile_nets(i, barrier_done)
         fire = pnets["fire"]
         core_done = ((self.state == S_LINE and a.done) or
                      (self.state == S_ARC and (arc_nets["done"] or arc_nets["error"])) or
@@ -728,7 +728,7 @@ class MotionTop(CycleModel):
 
         # ---- the edge ----
         if fault:                                      # flush: held in reset
-            self._flush()
+            self._flush(i.get("jerk_shift", 0))
         else:
             self.queue.clock({"push": push, "pop": int(dispatch), "din": self.pack(i)})
             lead_len = mags[lead]

@@ -48,9 +48,12 @@ class PathProfile(CycleModel):
         self.pacer = StepPacer(feed_w=feed_w, frac=frac, mw=mw)
         self.reset()
 
-    def reset(self) -> None:
-        for block in (self.queue, self.ramp, self.jerk, self.pacer):
+    def reset(self, jerk_shift: int = 0) -> None:
+        """rst: every block; the filter takes jerk_shift as its shift."""
+        for block in (self.queue, self.ramp, self.pacer):
             block.reset()
+        self.jerk.reset(jerk_shift)
+        self.speed_q = self.block_q = 0
 
     # ---- the profile queue's entries ----
     _FIELDS = ("barrier", "feed", "limit", "exit", "rate", "length", "budget")
@@ -87,26 +90,28 @@ class PathProfile(CycleModel):
                 "speed_quantum": i["speed_quantum"], "block_shift": i["block_shift"],
                 "override": i["override"], "hold": i["hold"]}
 
-    def nets(self, i: Mapping[str, int]) -> dict[str, int]:
+    def nets(self, i: Mapping[str, int]) -> dict:
         """The combinational outputs for inputs `i` (barrier_done, the settings, hold,
-        step_valid, step_axes, step_cost, drive_ready) on the registers before the edge."""
+        step_valid, step_axes, step_cost, drive_ready) on the registers before the edge.
+        The ramp's outputs are registers; the filter gets its speed and block a clock late."""
+        ramp = self.ramp
         ramp_in = self._ramp_inputs(i)
-        ramp = self.ramp.outputs(ramp_in)
-        jerk_in = {"speed": ramp["speed"], "up": ramp["up"], "down": ramp["down"], "block": ramp["block"],
+        jerk_in = {"speed": self.speed_q, "up": ramp.up, "down": ramp.down, "block": self.block_q,
                    "speed_quantum": i["speed_quantum"], "jerk_shift": i["jerk_shift"]}
-        jerk = self.jerk.outputs(jerk_in)
-        pacer_in = {"sum": jerk["sum"], "jerk_shift": i["jerk_shift"], "step_valid": i["step_valid"],
+        self.jerk.set_inputs(jerk_in)
+        pacer_in = {"sum": self.jerk.sum, "jerk_shift": self.jerk.shift, "step_valid": i["step_valid"],
                     "step_axes": i["step_axes"], "step_cost": i["step_cost"], "drive_ready": i["drive_ready"]}
-        pacer = self.pacer.outputs(pacer_in)
-        return {"ramp_in": ramp_in, "jerk_in": jerk_in, "pacer_in": pacer_in, "next_pop": ramp["next_pop"],
-                "fire": pacer["fire"], "speed": ramp["speed"], "stopped": ramp["stopped"],
-                "moving": int(bool(ramp["moving"]) or not jerk["empty"])}
+        self.pacer.set_inputs(pacer_in)
+        return {"ramp_in": ramp_in, "jerk_in": jerk_in, "pacer_in": pacer_in, "next_pop": ramp.next_pop,
+                "fire": self.pacer.fire, "speed": ramp.speed, "stopped": ramp.stopped,
+                "moving": int(bool(ramp.moving) or not self.jerk.empty)}
 
-    def clock(self, i: Mapping[str, int], nets: Mapping[str, int]) -> None:
+    def clock(self, i: Mapping[str, int], nets: Mapping) -> None:
         """The edge: `nets` from nets(i) before it; i also has push and the push_* fields."""
         if i.get("rst"):
-            self.reset()
+            self.reset(i.get("jerk_shift", 0))
             return
+        speed, block = self.ramp.speed, self.ramp.block
         self.queue.clock({"push": i["push"], "pop": nets["next_pop"], "din": self.pack(
             {"barrier": i["push_barrier"], "feed": i["push_feed"], "limit": i["push_limit"],
              "exit": i["push_exit"], "rate": i["push_rate"], "length": i["push_length"],
@@ -114,6 +119,7 @@ class PathProfile(CycleModel):
         self.ramp.clock(nets["ramp_in"])
         self.jerk.clock(nets["jerk_in"])
         self.pacer.clock(nets["pacer_in"])
+        self.speed_q, self.block_q = speed, block
 
 
 # ---------------- bench profiles ----------------
