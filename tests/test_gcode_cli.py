@@ -148,7 +148,9 @@ def test_end_mismatch_and_rtl_errors_exit_1(fakes, nc, capsys):
     starts.clear()
     assert main(["gcode", str(nc)]) == 1
     err = capsys.readouterr().err
-    assert f"motion_top error 4 (the core refused the command) at cycle {cycle}, line 4" in err
+    from interp.models.motion import ERROR_TEXT
+
+    assert f"motion_top error 4 ({ERROR_TEXT[4]}) at cycle {cycle}, line 4" in err
 
 
 def test_event_codes_in_the_commands(fakes, nc, tmp_path):
