@@ -15,12 +15,17 @@
 //                         its cost (the segment's cost, or the lecture's 1, sqrt 2, sqrt 3)
 // A barrier entry is popped by the ramp once the dispatcher has finished that dwell or
 // event (`barrier_done`) and the speed is 0, so a dwell or event never overlaps motion.
-// The ramp's outputs are registers: `speed` is v of this clock and up / down say that v
-// changed at the last edge, decided in the block-end clock before (`block` then).  The
-// filter takes a change with the clock it ends (speed still the old v, up / down and
-// block of that clock), so it gets the ramp's speed and block one clock late (speed_q,
-// block_q) with the ramp's up / down as they are: the step domain runs one clock behind
-// the virtual domain, with the same distance.
+// The ramp's outputs are registers: `speed` is v of this clock, decided at the edge
+// that ended the block-end clock before (`block` then).  The filter takes a change of
+// the speed in the clock it ends, once per block, as a code of +-1 quantum: here its
+// own copy of the speed, speed_f, follows the ramp's one quantum per block tick
+// (block_q, the ramp's block a clock late) towards the ramp's speed.  A change made
+// at a block end (every one but the last drop of a stop) is thus passed on in the
+// next clock: the step domain runs one clock behind the virtual domain.  The last drop
+// of a stop comes at the clock the segment ends, inside a block when block_shift > 0:
+// speed_f follows at the next block tick, so the step domain gets at most one block of
+// one quantum more travel than the ramp, never less (the pacer's phase keeps it; no
+// step is early or lost), and the filter empties.
 module path_profile #(
     parameter integer FEED_W = 16,  // speed word width: path units per clock (>= 2)
     parameter integer FRAC   = 16,  // fraction bits: an axial step is 2^FRAC path units (1 .. 64)
@@ -107,15 +112,20 @@ module path_profile #(
         .late(late)
     );
 
-    reg  [FEED_W-1:0] speed_q;      // the ramp's speed and block one clock late
-    reg               block_q;
+    reg  [FEED_W-1:0] speed_f;      // the filter's speed: follows `speed`, a quantum per block
+    reg               block_q;      // the ramp's block a clock late
+    wire              rise = block_q && speed > speed_f;
+    wire              fall = block_q && speed < speed_f;
     always @(posedge clk) begin
         if (rst) begin
-            speed_q <= {FEED_W{1'b0}};
+            speed_f <= {FEED_W{1'b0}};
             block_q <= 1'b0;
         end else begin
-            speed_q <= speed;
             block_q <= block;
+            if (rise)
+                speed_f <= speed_f + speed_quantum;
+            else if (fall)
+                speed_f <= speed_f - speed_quantum;
         end
     end
 
@@ -123,7 +133,7 @@ module path_profile #(
     wire [3:0]       shift;
     wire             empty;
     jerk_filter #(.FEED_W(FEED_W), .MW(MW), .SUM_W(SUM_W)) u_jerk (
-        .clk(clk), .rst(rst), .speed(speed_q), .up(up), .down(down), .block(block_q),
+        .clk(clk), .rst(rst), .speed(speed_f), .up(rise), .down(fall), .block(block_q),
         .speed_quantum(speed_quantum), .jerk_shift(jerk_shift), .sum(sum), .shift(shift), .empty(empty)
     );
 
@@ -135,6 +145,6 @@ module path_profile #(
     );
 
     assign moving = ramp_moving | ~empty;
-    wire unused = &{1'b0, unused_overflow, due, overrun};   // motion_top refuses a push when either queue is full
+    wire unused = &{1'b0, unused_overflow, due, overrun, up, down};   // motion_top refuses a push when either queue is full
 endmodule
 `default_nettype wire

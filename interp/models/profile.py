@@ -53,7 +53,7 @@ class PathProfile(CycleModel):
         for block in (self.queue, self.ramp, self.pacer):
             block.reset()
         self.jerk.reset(jerk_shift)
-        self.speed_q = self.block_q = 0
+        self.speed_f = self.block_q = 0
 
     # ---- the profile queue's entries ----
     _FIELDS = ("barrier", "feed", "limit", "exit", "rate", "length", "budget")
@@ -93,10 +93,13 @@ class PathProfile(CycleModel):
     def nets(self, i: Mapping[str, int]) -> dict:
         """The combinational outputs for inputs `i` (barrier_done, the settings, hold,
         step_valid, step_axes, step_cost, drive_ready) on the registers before the edge.
-        The ramp's outputs are registers; the filter gets its speed and block a clock late."""
+        The ramp's outputs are registers; the filter gets its own copy of the speed, which
+        follows the ramp's one quantum per block tick (the ramp's block a clock late)."""
         ramp = self.ramp
         ramp_in = self._ramp_inputs(i)
-        jerk_in = {"speed": self.speed_q, "up": ramp.up, "down": ramp.down, "block": self.block_q,
+        rise = int(bool(self.block_q) and ramp.speed > self.speed_f)
+        fall = int(bool(self.block_q) and ramp.speed < self.speed_f)
+        jerk_in = {"speed": self.speed_f, "up": rise, "down": fall, "block": self.block_q,
                    "speed_quantum": i["speed_quantum"], "jerk_shift": i["jerk_shift"]}
         self.jerk.set_inputs(jerk_in)
         pacer_in = {"sum": self.jerk.sum, "jerk_shift": self.jerk.shift, "step_valid": i["step_valid"],
@@ -111,7 +114,9 @@ class PathProfile(CycleModel):
         if i.get("rst"):
             self.reset(i.get("jerk_shift", 0))
             return
-        speed, block = self.ramp.speed, self.ramp.block
+        block = self.ramp.block
+        a = nets["jerk_in"]["speed_quantum"]
+        step = nets["jerk_in"]["up"] - nets["jerk_in"]["down"]
         self.queue.clock({"push": i["push"], "pop": nets["next_pop"], "din": self.pack(
             {"barrier": i["push_barrier"], "feed": i["push_feed"], "limit": i["push_limit"],
              "exit": i["push_exit"], "rate": i["push_rate"], "length": i["push_length"],
@@ -119,7 +124,8 @@ class PathProfile(CycleModel):
         self.ramp.clock(nets["ramp_in"])
         self.jerk.clock(nets["jerk_in"])
         self.pacer.clock(nets["pacer_in"])
-        self.speed_q, self.block_q = speed, block
+        self.speed_f = (self.speed_f + step * a) & ((1 << self.feed_w) - 1)
+        self.block_q = block
 
 
 # ---------------- bench profiles ----------------

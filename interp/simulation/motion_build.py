@@ -14,6 +14,8 @@ from pathlib import Path
 PARAMETERS = {"W": 16, "FRAC": 16, "FEED_W": 16, "NW": 16, "PF": 12, "LEN_W": 34, "ZW": 48, "MW": 6,
               "QDEPTH": 4, "QLW": 3, "SDEPTH": 2, "TW": 4}
 FRAC, FEED_MAX = 16, (1 << 16) - 1
+QUANTUM = 64                # the benches' speed quantum A (path units per clock): 1/1024 step per clock
+PF = PARAMETERS["PF"]
 
 
 def simulate(commands, sim: str, timing: dict, vcd: str | None = None, max_cycles: int = 5_000_000,

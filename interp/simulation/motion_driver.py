@@ -125,6 +125,7 @@ async def run_commands(dut):
                   "commands": len(pending), "skipped": 0,
                   "hold_stops": [s if s[1] is not None else [s[0], None, None] for s in stops]}
     else:
-        result = {"pulses": pulses, "errors": errors, "cycles": cycle, "position": position}
+        result = {"pulses": pulses, "errors": errors, "cycles": cycle, "position": position,
+                  "hold_stops": [s if s[1] is not None else [s[0], None, None] for s in stops]}
     with open(job["out"], "w") as f:
         json.dump(result, f)

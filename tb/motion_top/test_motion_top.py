@@ -294,6 +294,21 @@ async def hold_resume_override_fuzz(dut):
 
 
 @cocotb.test()
+async def s_curve_and_blocks(dut):
+    """block_shift > 0 (acceleration changes once per block) and jerk_shift > 0 (the S-curve
+    filter): every cycle as the model, 0 lost steps, also under feed hold."""
+    rng = seeded_rng(dut, "s_curve_and_blocks")
+    tb = await MotionTB(dut).start()
+    for n, (block_shift, jerk_shift) in enumerate([(0, 2), (1, 0), (1, 3), (2, 4), (0, 6)]):
+        tb.settings.update(block_shift=block_shift, jerk_shift=jerk_shift)
+        cmds = random_moves(rng, rng.randint(2, 5))
+        errors, want_errors, _, _ = await tb.run(cmds, hold=hold_pattern(rng),
+                                                 context=f"S-curve {n} (block {block_shift}, jerk {jerk_shift})")
+        assert errors == want_errors == []
+    tb.settings.update(block_shift=0, jerk_shift=0)
+
+
+@cocotb.test()
 async def underrun_stops_and_restarts(dut):
     """Commands arriving late (gaps of 0 .. 3000 cycles between pushes): each underrun ends in a
     controlled stop, the speed never jumps (checked every cycle), every step comes out once."""
