@@ -117,29 +117,35 @@ def test_rapids_and_empty_blocks():
     assert result.speeds[0][2] == pytest.approx(100.0 / 0.8)               # y at 100 mm/s caps it
 
 
-grid = st.integers(-300, 300).map(lambda n: n / 100)          # points on the 0.01 mm step grid
-points = st.tuples(grid, grid, grid)
+# moves on the 0.01 mm step grid: short ones (up to 0.3 mm, where the look-ahead binds) and
+# long ones; runs of short ones along one direction, whose junctions do not slow them
+short = st.lists(st.integers(1, 10).map(lambda n: (3 * n / 100, n / 100, 0.0)), min_size=1, max_size=40)
+# (longer than the junction deviation: runs shorter than it are corners of their own here)
+long = st.integers(2, 3000).map(lambda n: n / 100) | st.integers(-3000, -2).map(lambda n: n / 100)
 feeds = st.none() | st.floats(30, 9000)
-items = st.one_of(st.tuples(st.just("line"), points, feeds), st.tuples(st.just("dwell"), st.floats(0, 2)),
-                  st.tuples(st.just("event")))
+items = st.one_of(st.tuples(st.just("line"), st.tuples(long, long, long).map(lambda m: [m]), feeds),
+                  st.tuples(st.just("line"), short, feeds),
+                  st.tuples(st.just("dwell"), st.floats(0, 2)), st.tuples(st.just("event")))
 
 
 @settings(max_examples=150, deadline=None)
-@given(st.lists(items, min_size=1, max_size=60))
+@given(st.lists(items, min_size=1, max_size=20))
 def test_grbl_streaming_equals_our_plan_with_its_window(sequence):
     """On lines, Grbl's streamed plan is our planner's with a window of buffer_size - 2 (the
     block running and the 14 behind it): both implementations agree on every program."""
-    moves = []
+    program_moves = []
     position = (0.0, 0.0, 0.0)
     for number, item in enumerate(sequence, start=1):
         if item[0] == "line":
-            moves.append(Line(position, item[1], item[2], number))
-            position = item[1]
+            for delta in item[1]:
+                end = tuple(round(p + d, 2) for p, d in zip(position, delta))
+                program_moves.append(Line(position, end, item[2], number))
+                position = end
         elif item[0] == "dwell":
-            moves.append(Dwell(item[1], number))
+            program_moves.append(Dwell(item[1], number))
         else:
-            moves.append(Event("coolant_off", 0, number))
-    program = Program(moves)
+            program_moves.append(Event("coolant_off", 0, number))
+    program = Program(program_moves)
     segments, dwell = program_segments(program, MACHINE)
     ours = machine_time(plan(segments, junction_deviation_mm=0.01, window=SETTINGS.buffer_size - 2)) + dwell
     reference = grbl.run(program, SETTINGS)
@@ -161,3 +167,31 @@ def test_arc_geometry_of_a_helix():
     assert length == pytest.approx(math.pi / 2)
     assert start_unit == pytest.approx((1.0, 0.0, 0.0), abs=1e-12)
     assert end_unit == pytest.approx((0.0, -1.0, 0.0), abs=1e-12)
+
+
+def test_program_segments_stops_and_tolerances():
+    from interp.gcode.interpreter import interpret
+    program = interpret("G21 G90 G1 X10 F600\nX10 Y10\nG4 P0.5\nG64 P0.002 X0 Y10\nG61 X0 Y0\n"
+                        "G64 G2 X0 Y0 I5 J0\nM2\n")
+    segments, dwell = program_segments(program, MACHINE)
+    assert dwell == 0.5
+    assert [s.stop_before for s in segments] == [True, False, True, True, False]
+    assert [s.tolerance_mm for s in segments] == [None, None, 0.002, None, None]
+    assert segments[-1].radius_mm == 5.0 and segments[-1].length_mm == pytest.approx(10 * math.pi)
+    assert segments[1].start_unit == (0.0, 1.0, 0.0) and segments[1].feed_mm_s == 10.0
+
+
+def test_benchmark_table(tmp_path, monkeypatch, capsys):
+    from interp.benchmarks import machine_time as benchmark
+    (tmp_path / "a.ngc").write_text("G21 G90 G1 X10 F6000\nY10\nG2 X10 Y10 I-1 J0\nG1 G61 X0\nY0\nM2\n")
+    (tmp_path / "b.nc").write_text("G21 G42 X1\n")          # refused by the front end
+    monkeypatch.setattr(benchmark, "corpus_files", lambda: sorted(tmp_path.iterdir()))
+    assert benchmark.main([]) == 0
+    out = capsys.readouterr().out
+    row = next(line for line in out.splitlines() if line.startswith("| a.ngc"))
+    ours, window, grbl_s, ratio, arcs = [c.strip() for c in row.split("|")[2:7]]
+    assert float(ratio) == pytest.approx(float(ours) / float(grbl_s), abs=1e-4)
+    assert float(window) >= float(ours) and arcs.startswith("1 / ")
+    assert "refused: b.nc" in out
+    assert "a.ngc" in out.split("whole-program plan slower")[1]      # the G61 stops: slower
+    assert "G61 exact stops" in out

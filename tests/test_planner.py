@@ -8,8 +8,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from interp.gcode.planner import (CENTRIPETAL_SHARE, Plan, Segment, junction_speed, limits,
-                                  machine_time, plan, trapezoid_time)
+from interp.gcode.planner import (CENTRIPETAL_SHARE, Plan, Segment, _junction_limits, junction_speed,
+                                  limits, machine_time, plan, trapezoid_time)
 
 RATE = (100.0, 100.0, 50.0)
 ACCEL = (500.0, 400.0, 200.0)
@@ -72,12 +72,13 @@ def _assert_feasible(segments: list[Segment], plans: list[Plan], deviation: floa
             assert p.exit_mm_s == plans[index + 1].entry_mm_s
         if index == 0 or segment.stop_before:
             assert p.entry_mm_s == 0.0
-        else:
-            before = segments[index - 1]
-            used = deviation if segment.tolerance_mm is None else min(deviation, segment.tolerance_mm)
+            continue
+        before = segments[index - 1]
+        used = deviation if segment.tolerance_mm is None else min(deviation, segment.tolerance_mm)
+        if min(segment.length_mm, before.length_mm) > used:       # (short runs: their own tests)
             cap = junction_speed(before.end_unit, segment.start_unit, segment.axis_accel_mm_s2, used)
             assert p.entry_mm_s <= cap * (1 + SLACK) + 1e-12, "junction speed exceeded"
-            assert p.entry_mm_s <= plans[index - 1].cruise_mm_s * (1 + SLACK)
+        assert p.entry_mm_s <= plans[index - 1].cruise_mm_s * (1 + SLACK)
 
 
 @settings(max_examples=150, deadline=None)
@@ -105,6 +106,36 @@ def test_window_plan_is_feasible_and_never_faster(segments, deviation, window):
         assert streamed == whole
 
 
+# dense programs: short collinear lines at high feeds (a few with a corner or a stop),
+# where a short look-ahead limits the speed
+dense_lines = st.builds(lambda corner, length, feed, stop: line((1, 0.3 + corner, 0), length, feed,
+                                                                rate=(1000, 1000, 1000), stop_before=stop),
+                        st.sampled_from([0.0] * 8 + [0.2]), st.floats(0.05, 2), st.floats(100, 300),
+                        st.sampled_from([False] * 15 + [True]))
+dense = st.lists(dense_lines, min_size=1, max_size=60)
+
+
+@settings(max_examples=100, deadline=None)
+@given(programs | dense, deviations, st.integers(1, 12))
+def test_window_plan_is_the_streaming_hosts(segments, deviation, window):
+    """The window plan against a host written out plainly: at each segment, the backward
+    pass over the segments it knows (the next `window`) from a stop at the last of them,
+    and the forward step from the speed it actually has."""
+    bounds = [limits(s) for s in segments]
+    reach = [2 * accel * s.length_mm for (_, accel), s in zip(bounds, segments)]
+    caps = _junction_limits(segments, [cruise for cruise, _ in bounds], deviation)
+    streamed = plan(segments, junction_deviation_mm=deviation, window=window)
+    speed = 0.0
+    for index in range(len(segments)):
+        exit_sqr = 0.0
+        for ahead in range(min(index + window, len(segments) - 1), index, -1):
+            exit_sqr = min(caps[ahead], math.sqrt(exit_sqr + reach[ahead])) ** 2
+        exit_speed = min(math.sqrt(exit_sqr), math.sqrt(speed ** 2 + reach[index]))
+        assert streamed[index].entry_mm_s == speed
+        assert streamed[index].exit_mm_s == pytest.approx(exit_speed, rel=1e-12, abs=1e-12)
+        speed = streamed[index].exit_mm_s
+
+
 @settings(max_examples=100, deadline=None)
 @given(programs, deviations, st.floats(1.0, 10.0))
 def test_time_is_monotone_in_acceleration(segments, deviation, factor):
@@ -119,26 +150,47 @@ def test_time_is_monotone_in_acceleration(segments, deviation, factor):
 
 
 @settings(max_examples=300, deadline=None)
-@given(arcs)
-def test_arc_bounds_hold_at_every_angle(segment):
-    """Speed, centripetal and tangential acceleration at every angle of the circle, per axis."""
-    cruise, accel = limits(segment)
+@given(st.builds(dict, radius=st.floats(0.05, 100), angle=st.floats(0.01, 12) | st.floats(-12, -0.01),
+                 pitch=st.floats(-2, 2), plane=planes, start_angle=st.floats(-4, 4), feed=st.floats(0.5, 400)),
+       st.sampled_from([ACCEL, (500.0, 500.0, 500.0), (100.0, 900.0, 300.0)]))
+def test_arc_bounds_hold_along_the_arc(shape, accel):
+    """Speed, and tangential (speeding up or braking) plus centripetal acceleration at the
+    cruise speed, per axis, at every angle the arc passes (sampled finely)."""
+    segment = arc_segment(**shape, accel=accel)
+    cruise, tangential = limits(segment)
     p, q = segment.plane_axes
     w = 3 - p - q
     sin_a = abs(segment.start_unit[w])
     cos_a = math.sqrt(1 - sin_a ** 2)
-    assert cruise <= segment.feed_mm_s
-    assert (cruise * cos_a) ** 2 / segment.radius_mm <= CENTRIPETAL_SHARE * min(ACCEL[p], ACCEL[q]) * (1 + SLACK)
+    assert cruise <= segment.feed_mm_s and tangential > 0
     centripetal = (cruise * cos_a) ** 2 / segment.radius_mm
-    for step in range(64):
-        theta = 2 * math.pi * step / 64
-        velocity = {p: -math.sin(theta) * cruise * cos_a, q: math.cos(theta) * cruise * cos_a, w: cruise * sin_a}
-        acceleration = {p: -math.sin(theta) * accel * cos_a - math.cos(theta) * centripetal,
-                        q: math.cos(theta) * accel * cos_a - math.sin(theta) * centripetal,
-                        w: accel * sin_a}
-        for axis in range(3):
-            assert abs(velocity[axis]) <= RATE[axis] * (1 + SLACK)
-            assert abs(acceleration[axis]) <= ACCEL[axis] * (1 + SLACK)
+    samples = 2000
+    for step in range(samples + 1):
+        theta = shape["start_angle"] + shape["angle"] * step / samples      # position angle
+        velocity = {p: -math.sin(theta) * cruise * cos_a, q: math.cos(theta) * cruise * cos_a,
+                    w: cruise * sin_a}
+        for sign in (1, -1):
+            along = sign * tangential
+            acceleration = {p: -math.sin(theta) * along * cos_a - math.cos(theta) * centripetal,
+                            q: math.cos(theta) * along * cos_a - math.sin(theta) * centripetal,
+                            w: along * sin_a}
+            for axis in range(3):
+                assert abs(velocity[axis]) <= RATE[axis] * (1 + SLACK)
+                assert abs(acceleration[axis]) <= accel[axis] * (1 + SLACK)
+
+
+def test_full_circle_bound_is_the_euclidean_one():
+    """A whole turn meets every direction: the worst axis sees sqrt(a_t^2 + c^2)."""
+    cruise, accel = limits(arc_segment(1.0, 2 * math.pi, 0.0, (0, 1), 0.3, feed=100))
+    assert cruise == pytest.approx(math.sqrt(CENTRIPETAL_SHARE * 400))
+    assert accel == pytest.approx(math.sqrt(400 ** 2 - (CENTRIPETAL_SHARE * 400) ** 2))
+
+
+def test_short_arc_bound_is_wider_than_the_circle():
+    """A 10-degree arc moving along y: x sees mostly the centripetal, y the tangential."""
+    short = arc_segment(1.0, math.radians(10), 0.0, (0, 1), -math.radians(5), feed=100)
+    full = arc_segment(1.0, 2 * math.pi, 0.0, (0, 1), 0.0, feed=100)
+    assert limits(short)[0] > limits(full)[0] and limits(short)[1] > limits(full)[1]
 
 
 def test_line_limits_are_grbl_rules():
@@ -150,7 +202,8 @@ def test_line_limits_are_grbl_rules():
 
 
 def test_arc_limits_known_values():
-    # a flat arc of radius 1 mm in XY: v^2 <= share * 400 * 1; a_t = sqrt(1 - share^2) * 400
+    # a half circle of radius 1 mm in XY (meets every direction): v^2 <= share * 400 * 1,
+    # a_t = sqrt(1 - share^2) * 400
     cruise, accel = limits(arc_segment(1.0, math.pi, 0.0, (0, 1), 0.0, feed=100))
     assert cruise == pytest.approx(math.sqrt(CENTRIPETAL_SHARE * 400))
     assert accel == pytest.approx(math.sqrt(1 - CENTRIPETAL_SHARE ** 2) * 400)
@@ -211,6 +264,38 @@ def test_corner_and_tolerance():
     assert plan(corner, junction_deviation_mm=0.05)[0].exit_mm_s == pytest.approx(wide)
     corner[1].stop_before = True
     assert plan(corner, junction_deviation_mm=0.05)[0].exit_mm_s == 0.0
+
+
+def test_a_short_run_is_one_corner():
+    """An arc, a one-step correction line (0.01 mm) across it, and an arc continuing the
+    first tangentially: the run is shorter than the junction deviation, so the junctions
+    are judged across it (straight on) and the speed stays at the cruise."""
+    first = arc_segment(20.0, math.pi / 2, 0.0, (0, 1), 0.0, feed=30)
+    jog = line((0, 1, 0), length=0.01, feed=30)
+    second = arc_segment(20.0, math.pi / 2, 0.0, (0, 1), math.pi / 2, feed=30)
+    plans = plan([first, jog, second], junction_deviation_mm=0.01)
+    assert plans[0].exit_mm_s == plans[1].exit_mm_s == pytest.approx(30.0)
+    # a longer jog is a corner of its own; so is the short one under G64 P0.005
+    assert plan([first, line((0, 1, 0), length=0.02, feed=30), second],
+                junction_deviation_mm=0.01)[0].exit_mm_s < 5
+    jog.tolerance_mm = 0.005
+    assert plan([first, jog, second], junction_deviation_mm=0.01)[0].exit_mm_s < 5
+
+
+def test_a_short_run_is_never_slower_nor_a_reversal():
+    """Across the run the corner may be sharper than its own junctions: each junction keeps
+    the faster of the two rules.  A run in which a moving axis turns back is not bridged."""
+    corner = junction_speed((1, 0, 0), (0, 1, 0), ACCEL, 0.01)
+    segments = [line((1, 0, 0)), line((0, 1, 0), length=0.005), line((-1, 0, 0))]
+    assert [p.entry_mm_s for p in plan(segments, junction_deviation_mm=0.01)[1:]] == \
+        pytest.approx([corner, corner])                           # not the reversal's 0
+    segments = [line((1, 0, 0)), line((0, 1, 0), length=0.005), line((1, 0, 0))]
+    assert plan(segments, junction_deviation_mm=0.01)[0].exit_mm_s == pytest.approx(50.0)
+    for jog in ((-1, 0, 0), (-1, 1, 0)):                          # x turns back: two corners
+        segments = [line((1, 0, 0)), line(jog, length=0.005), line((1, 0, 0))]
+        entries = [p.entry_mm_s for p in plan(segments, junction_deviation_mm=0.01)[1:]]
+        assert entries == pytest.approx([junction_speed((1, 0, 0), jog, ACCEL, 0.01),
+                                         junction_speed(jog, (1, 0, 0), ACCEL, 0.01)])
 
 
 def test_tangent_arc_keeps_speed():

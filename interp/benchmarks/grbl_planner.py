@@ -303,3 +303,9 @@ def run(program: Program, settings: GrblSettings, *, keep_speeds: bool = False) 
         index += 1
     result.time_s = motion + result.dwell_s
     return result
+
+
+def tables(quick: bool):
+    """`interp bench` runs every module here: this one is the reference of machine_time.py
+    and has no table of its own."""
+    return []

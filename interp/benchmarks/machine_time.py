@@ -7,10 +7,11 @@ Every program of the corpus directory (INTERP_GCODE_CORPUS, see gcode_corpus.py)
 front end accepts is read with the machine file (the default machine unless --machine) and
 timed twice:
 
-  * ours: the program's command segments (lines between step-rounded points, arcs and
-    helices exact) planned by interp.gcode.planner over the whole program, and with a
-    streaming window of --window segments (default 32), each segment a trapezoid at its
-    acceleration, plus the dwells;
+  * ours: the program's motion commands as the compiler emits them (interp.gcode.compile,
+    once it plans its commands; until then segments built here from the moves: lines
+    between step-rounded points, arcs and helices exact) planned by interp.gcode.planner
+    over the whole program, and with a streaming window of --window segments (default 32),
+    each segment a trapezoid at its acceleration, plus the dwells;
   * Grbl: interp.benchmarks.grbl_planner, arcs as chords (arc tolerance 0.002 mm), a
     16-slot buffer in streaming order, plus the dwells.
 
@@ -26,6 +27,7 @@ import sys
 from bisect import bisect_right
 from dataclasses import dataclass
 
+from ..cores import UsageError
 from ..gcode.errors import GcodeError
 from ..gcode.interpreter import interpret
 from ..gcode.machine import Machine, load_machine
@@ -119,29 +121,55 @@ def program_segments(program: Program, machine: Machine, *,
 @dataclass
 class Row:
     name: str
-    ours_s: float
-    window_s: float
+    ours_s: float               # the whole-program plan of our commands, with the dwells
+    window_s: float             # the same with the streaming window
     grbl_s: float
     arcs: int
     chords: int
     segments: int
     stops: int
+    moves_s: float = math.nan   # our plan of segments built from the moves (= ours_s without the compiler)
+    source: str = "moves"       # where our segments come from: "compiler" or "moves"
 
     @property
     def ratio(self) -> float:
         return self.ours_s / self.grbl_s if self.grbl_s else math.nan
 
 
+def compiled_segments(program: Program, machine: Machine) -> list[Segment] | None:
+    """Our segments as the compiler emits its move commands (interp.gcode.compile, when its
+    commands carry the planner's view of them: `Cmd.motion`), or None with a compiler that
+    does not plan."""
+    from ..gcode import compile as compiler
+
+    if "plans" not in getattr(compiler.Compiled, "__dataclass_fields__", {}):
+        return None
+    compiled = compiler.compile_program(program, machine)
+    rate = tuple(a.max_rate_mm_min / 60.0 for a in machine.axes)
+    accel = tuple(a.accel_mm_s2 for a in machine.axes)
+    motions = [c.motion for c in compiled.commands if getattr(c, "motion", None) is not None]
+    return [Segment(m.length_mm, m.start_unit, m.end_unit, m.feed_mm_s, rate, accel,
+                    radius_mm=m.radius_mm, plane_axes=m.plane_axes, stop_before=m.stop_before,
+                    tolerance_mm=m.tolerance_mm) for m in motions]
+
+
 def measure(program: Program, machine: Machine, name: str = "", *, window: int = STREAM_WINDOW,
-            arc_tolerance_mm: float = grbl_planner.DEFAULT_ARC_TOLERANCE) -> Row:
-    segments, dwell = program_segments(program, machine)
+            arc_tolerance_mm: float = grbl_planner.DEFAULT_ARC_TOLERANCE,
+            use_compiler: bool = True) -> Row:
+    """One program's row: ours from the compiler's commands when the compiler plans (else
+    from the moves), Grbl's from the reference."""
+    own, dwell = program_segments(program, machine)
     deviation = machine.values["motion"]["junction_deviation_mm"]
+    moves_s = machine_time(plan(own, junction_deviation_mm=deviation)) + dwell
+    segments = compiled_segments(program, machine) if use_compiler else None
+    source = "moves" if segments is None else "compiler"
+    segments = own if segments is None else segments
     ours = machine_time(plan(segments, junction_deviation_mm=deviation)) + dwell
     streamed = machine_time(plan(segments, junction_deviation_mm=deviation, window=window)) + dwell
     grbl = grbl_planner.run(program, grbl_planner.GrblSettings.from_machine(
         machine, arc_tolerance_mm=arc_tolerance_mm))
     return Row(name, ours, streamed, grbl.time_s, grbl.arcs, grbl.chords, len(segments),
-               sum(s.stop_before for s in segments))
+               sum(s.stop_before for s in own), moves_s, source)
 
 
 SLOWER = 1e-6           # relative: a difference below this is rounding, not slower
@@ -149,21 +177,82 @@ SLOWER = 1e-6           # relative: a difference below this is rounding, not slo
 
 def why_slower(program: Program, machine: Machine, row: Row) -> str:
     """Where the extra seconds against Grbl come from, found by re-planning without each of
-    our rules that Grbl does not have, in turn: the G61 exact stops, then the centripetal
-    bound of the arcs (arcs planned like lines of their start tangent); the rest is the
-    path itself (an exact arc is longer than Grbl's chords, which cut inside it)."""
+    our rules that Grbl does not have, in turn: the compiler's commands (against segments
+    built from the moves), the G61 exact stops, then the centripetal bound of the arcs (arcs
+    planned like lines of their start tangent); the rest is the path itself (an exact arc is
+    longer than Grbl's chords, which cut inside it)."""
     deviation = machine.values["motion"]["junction_deviation_mm"]
     segments, dwell = program_segments(program, machine, exact_stop_modes=())
     no_stops = machine_time(plan(segments, junction_deviation_mm=deviation)) + dwell
     flat = [Segment(s.length_mm, s.start_unit, s.end_unit, s.feed_mm_s, s.axis_rate_mm_s,
                     s.axis_accel_mm_s2, None, None, s.stop_before, s.tolerance_mm) for s in segments]
     unbounded = machine_time(plan(flat, junction_deviation_mm=deviation)) + dwell
-    parts = [(row.ours_s - no_stops, "G61 exact stops (Grbl runs G61 with its junction deviation)"),
+    parts = [(row.ours_s - row.moves_s, "the compiler's commands against the moves (step rounding, "
+                                        "one-step corrections at arc ends)"),
+             (row.moves_s - no_stops, "G61 exact stops (Grbl runs G61 with its junction deviation)"),
              (no_stops - unbounded, "the centripetal bound v^2 <= a_n R on tight arcs (Grbl's chord "
                                     "junctions allow about v^2 = a R delta / arc tolerance)"),
              (unbounded - row.grbl_s, "the rest: exact arc lengths (longer than chords) and junctions")]
-    return f"{row.ours_s - row.grbl_s:+.3f} s: " + "; ".join(
-        f"{seconds:+.3f} s {what}" for seconds, what in parts if abs(seconds) > 5e-4)
+    named = [f"{seconds:+.3f} s {what}" for seconds, what in parts if abs(seconds) > 5e-4]
+    return f"{row.ours_s - row.grbl_s:+.4f} s: " + ("; ".join(named) or "below a millisecond")
+
+
+def corpus_rows(machine: Machine, *, window: int = STREAM_WINDOW, only: str | None = None,
+                arc_tolerance_mm: float = grbl_planner.DEFAULT_ARC_TOLERANCE,
+                progress=None) -> tuple[list[Row], list[str], list[str]]:
+    """(rows, refused programs, reasons we are slower) over the corpus; `progress(row)` is
+    called after each program."""
+    rows: list[Row] = []
+    refused: list[str] = []
+    reasons: list[str] = []
+    for path in corpus_files():
+        if only and only not in path.name:
+            continue
+        text = path.read_text(encoding="utf-8", errors="surrogateescape")
+        try:
+            program = interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools)
+        except GcodeError as err:
+            refused.append(f"{path.name}: {err}")
+            continue
+        try:
+            row = measure(program, machine, path.name, window=window, arc_tolerance_mm=arc_tolerance_mm)
+        except UsageError as err:                       # the compiler refuses it
+            refused.append(f"{path.name}: {err}")
+            continue
+        rows.append(row)
+        if row.ours_s > row.grbl_s * (1 + SLOWER):
+            reasons.append(f"{row.name} ({row.ratio:.4f}): {why_slower(program, machine, row)}")
+        if progress:
+            progress(row)
+    return rows, refused, reasons
+
+
+def _cells(row: Row) -> list:
+    return [row.name, f"{row.ours_s:.3f}", f"{row.window_s:.3f}", f"{row.grbl_s:.3f}",
+            f"{row.ratio:.4f}", f"{row.arcs} / {row.chords}"]
+
+
+def _total(rows: list[Row]) -> list:
+    ours = math.fsum(r.ours_s for r in rows)
+    grbl = math.fsum(r.grbl_s for r in rows)
+    return [f"**all {len(rows)}**", f"{ours:.3f}", f"{math.fsum(r.window_s for r in rows):.3f}",
+            f"{grbl:.3f}", f"{ours / grbl if grbl else math.nan:.4f}",
+            f"{sum(r.arcs for r in rows)} / {sum(r.chords for r in rows)}"]
+
+
+def _header(window: int) -> list[str]:
+    return ["program", "ours (s)", f"ours, window {window} (s)", "Grbl (s)", "ours / Grbl",
+            "arcs exact / Grbl chords"]
+
+
+def tables(quick: bool):
+    """For `interp bench`: the table with the default machine (quick: the programs whose
+    name has "ugs_"), nothing when there is no corpus."""
+    rows, _, _ = corpus_rows(load_machine(), only="ugs_" if quick else None)
+    if not rows:
+        return []
+    return [("Machine time: our planner against Grbl's (corpus, default machine)",
+             _header(STREAM_WINDOW), [_cells(r) for r in rows] + [_total(rows)])]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -175,38 +264,23 @@ def main(argv: list[str] | None = None) -> int:
                         help="Grbl's arc tolerance in mm (default 0.002)")
     parser.add_argument("--only", help="only programs whose name contains this text")
     args = parser.parse_args(argv)
+    if args.window < 1:
+        parser.error("--window must be >= 1")
     machine = load_machine(args.machine)
-    files = [f for f in corpus_files() if not args.only or args.only in f.name]
-    if not files:
+    if not corpus_files():
         print(f"no G-code corpus at {CORPUS} (set INTERP_GCODE_CORPUS)", file=sys.stderr)
         return 1
-    rows: list[Row] = []
-    refused: list[str] = []
-    reasons: list[str] = []
-    print(f"| program | ours (s) | ours, window {args.window} (s) | Grbl (s) | ours / Grbl "
-          f"| arcs exact / Grbl chords |")
+    print("| " + " | ".join(_header(args.window)) + " |")
     print("|---|---:|---:|---:|---:|---:|")
-    for path in files:
-        text = path.read_text(encoding="utf-8", errors="surrogateescape")
-        try:
-            program = interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools)
-        except GcodeError as err:
-            refused.append(f"{path.name}: {err}")
-            continue
-        row = measure(program, machine, path.name, window=args.window,
-                      arc_tolerance_mm=args.arc_tolerance)
-        rows.append(row)
-        if row.ours_s > row.grbl_s * (1 + SLOWER):
-            reasons.append(f"{row.name} ({row.ratio:.4f}): {why_slower(program, machine, row)}")
-        print(f"| {row.name} | {row.ours_s:.3f} | {row.window_s:.3f} | {row.grbl_s:.3f} "
-              f"| {row.ratio:.4f} | {row.arcs} / {row.chords} |", flush=True)
-    ours = math.fsum(r.ours_s for r in rows)
-    window = math.fsum(r.window_s for r in rows)
-    grbl = math.fsum(r.grbl_s for r in rows)
-    print(f"| **all {len(rows)}** | {ours:.3f} | {window:.3f} | {grbl:.3f} | {ours / grbl:.4f} "
-          f"| {sum(r.arcs for r in rows)} / {sum(r.chords for r in rows)} |")
+    rows, refused, reasons = corpus_rows(
+        machine, window=args.window, only=args.only, arc_tolerance_mm=args.arc_tolerance,
+        progress=lambda row: print("| " + " | ".join(_cells(row)) + " |", flush=True))
+    print("| " + " | ".join(_total(rows)) + " |")
+    sources = sorted({r.source for r in rows})
+    print(f"\nour segments: from the {' and '.join(sources)}"
+          + (" (this compiler does not plan its commands yet)" if sources == ["moves"] else ""))
     for line in refused:
-        print(f"refused by the front end: {line}")
+        print(f"refused: {line}")
     slower_window = [r for r in rows if r.window_s > r.grbl_s * (1 + SLOWER)]
     print(f"\nwhole-program plan slower than Grbl (by more than {SLOWER:g}) on {len(reasons)} of "
           f"{len(rows)} programs" + (":" if reasons else ""))

@@ -12,6 +12,9 @@ speed, the path acceleration, and the entry and exit speeds, so that
   * no segment is entered or left faster than the junction between it and its neighbour
     allows (Grbl's junction-deviation rule; G64 P lowers the deviation for one junction; an
     exact stop, `stop_before`, makes the junction speed 0);
+  * a run of lines shorter in all than the junction deviation between two others
+    (step-rounding corrections, micro-segments) may take the corner between the tangents
+    around it, unless an axis turns back in it;
   * every segment can always stop within what follows it (backward pass:
     v_entry^2 <= v_exit^2 + 2 a L, the last segment and the segment before every stop end
     at 0) and every speed is reachable from the one before (forward pass:
@@ -21,21 +24,21 @@ speed, the path acceleration, and the entry and exit speeds, so that
     reached at the end (a triangle when the segment is too short to reach cruise).
 
 Lines take Grbl's rules: cruise = min(feed, min over axes of rate_i / |u_i|) and
-accel = min over axes of a_i / |u_i|.  Arcs and helices are bounded for the whole arc, at
-every angle of the circle (a safe bound, not the arc's own angular span): with the helix's
-pitch angle alpha (sin alpha = the tangent's component along the plane's normal axis w),
-the plane axes (p, q) see the speed v cos(alpha) turning round the circle and the normal
-axis v sin(alpha) constantly, so
+accel = min over axes of a_i / |u_i|.  Arcs and helices are bounded once for the whole arc,
+at every tangent direction phi (in the plane (p, q)) the arc passes through: with the
+helix's pitch angle alpha (sin alpha = the tangent's component along the plane's normal
+axis w), the plane axes see the speed v cos(alpha), the tangential acceleration
+a_t cos(alpha) along the tangent and the centripetal c = (v cos(alpha))^2 / R across it:
 
-    cruise: v cos(alpha) <= min(rate_p, rate_q),  v sin(alpha) <= rate_w,
-            (v cos(alpha))^2 / R <= a_n = CENTRIPETAL_SHARE * min(a_p, a_q)   (centripetal)
-    accel:  (a_t cos(alpha))^2 + (v_c cos(alpha))^4 / R^2 <= min(a_p, a_q)^2,
-            a_t sin(alpha) <= a_w
+    v cos(alpha) |cos phi| <= rate_p,   a_t cos(alpha) |cos phi| + c |sin phi| <= a_p
+    v cos(alpha) |sin phi| <= rate_q,   a_t cos(alpha) |sin phi| + c |cos phi| <= a_q
+    v sin(alpha) <= rate_w,             a_t sin(alpha) <= a_w
+    c <= a_n = CENTRIPETAL_SHARE * min(a_p / max |sin phi|, a_q / max |cos phi|)
 
-(a plane axis sees the tangential and the centripetal acceleration at right angles, each
-at most once per turn, so the worst axis sees their Euclidean sum; the centripetal part is
-taken at the cruise speed v_c, the highest speed on the arc).  CENTRIPETAL_SHARE reserves
-part of the plane axes' acceleration for speeding up and slowing down on tight arcs.
+for every phi of the arc, c taken at the cruise speed v_c (the highest on the arc), a_t of
+either sign.  Over a whole turn: v_c^2 cos^2(alpha) / R <= CENTRIPETAL_SHARE * min(a_p, a_q)
+and (a_t cos(alpha))^2 + c^2 <= min(a_p, a_q)^2.  CENTRIPETAL_SHARE reserves part of the
+plane axes' acceleration for speeding up and slowing down on tight arcs.
 docs/planner.md has the formulas, the rules and the limits.
 """
 from __future__ import annotations
@@ -52,8 +55,11 @@ STRAIGHT_COS = -0.999999
 # The share of the plane axes' acceleration a tight arc may spend on centripetal
 # acceleration at its cruise speed; the rest, sqrt(1 - share^2) of it, is left for the
 # tangential acceleration (0.9 leaves 0.436; on the corpus of the machine-time
-# benchmark 0.9 was the best of 0.5 .. 0.99).
+# benchmark 0.9 to 0.95 gave the shortest times of 0.5 .. 0.99, within 0.02 %).
 CENTRIPETAL_SHARE = 0.9
+# An arc's span of tangent directions is widened by this on each side (radians), so that
+# the bounds hold however its tangents were rounded.
+SPAN_MARGIN = 1e-3
 # Relative tolerance of the feasibility checks (floating point).
 EPSILON = 1e-9
 
@@ -86,17 +92,21 @@ class Plan:
 def _limit_by_axes(maxima: Vector, unit: Vector) -> float:
     """min over the axes the direction moves of maxima_i / |unit_i| (Grbl's rule)."""
     limit = math.inf
-    for most, part in zip(maxima, unit):
-        if abs(part) > 1e-12:
-            limit = min(limit, most / abs(part))
+    for axis in range(3):
+        part = abs(unit[axis])
+        if part > 1e-12:
+            value = maxima[axis] / part
+            if value < limit:
+                limit = value
     return limit
 
 
 def _unit(vector: Vector) -> Vector:
-    size = math.sqrt(sum(c * c for c in vector))
+    x, y, z = vector
+    size = math.sqrt(x * x + y * y + z * z)
     if size == 0.0:
         raise ValueError("a segment's tangent must not be the zero vector")
-    return tuple(c / size for c in vector)
+    return (x / size, y / size, z / size)
 
 
 def _check(segment: Segment) -> None:
@@ -114,6 +124,65 @@ def _check(segment: Segment) -> None:
             raise ValueError(f"an arc needs two different plane axes (got {segment.plane_axes!r})")
 
 
+def _arc_span(segment: Segment, cos_a: float) -> tuple[float, float] | None:
+    """The tangent directions an arc sweeps in its plane, as an interval of angles
+    (radians, from the plane's u axis towards v), widened by SPAN_MARGIN; None when it
+    covers the whole circle or its tangents, length and radius do not agree."""
+    p, q = segment.plane_axes
+    sweep = segment.length_mm * cos_a / segment.radius_mm
+    if cos_a <= 1e-12 or sweep >= 2 * math.pi - 2 * SPAN_MARGIN:
+        return None
+    start = math.atan2(segment.start_unit[q], segment.start_unit[p])
+    end = math.atan2(segment.end_unit[q], segment.end_unit[p])
+    counter = (end - start) % (2 * math.pi)            # the sweep if counter-clockwise
+    if _circular_distance(counter, sweep) <= SPAN_MARGIN:
+        return start - SPAN_MARGIN, start + sweep + SPAN_MARGIN
+    if _circular_distance(2 * math.pi - counter, sweep) <= SPAN_MARGIN:
+        return start - sweep - SPAN_MARGIN, start + SPAN_MARGIN
+    return None
+
+
+def _circular_distance(x: float, y: float) -> float:
+    d = (x - y) % (2 * math.pi)
+    return min(d, 2 * math.pi - d)
+
+
+def _contains(span: tuple[float, float] | None, angle: float) -> bool:
+    """Whether the span holds angle + k pi for some whole k."""
+    if span is None:
+        return True
+    low, high = span
+    return math.ceil((low - angle) / math.pi) <= math.floor((high - angle) / math.pi)
+
+
+def _largest(span, function, peak: float) -> float:
+    """Largest |function| (|cos| or |sin|) over the span; it peaks at peak + k pi."""
+    if _contains(span, peak):
+        return 1.0
+    return max(abs(function(span[0])), abs(function(span[1])))
+
+
+def _tangential_room(span, along_p: float, along_q: float, centripetal: float) -> float:
+    """The largest in-plane tangential acceleration A1 such that at every tangent angle phi
+    of the span A1 |cos phi| + c |sin phi| <= along_p and A1 |sin phi| + c |cos phi| <=
+    along_q.  Each bound (A - c |sin phi|) / |cos phi| has its least values where
+    |sin phi| = c / A (per quarter turn), so the least over the span lies there or at an end."""
+    angles = [] if span is None else [span[0], span[1]]
+    for most, critical in ((along_p, 0.0), (along_q, math.pi / 2)):
+        ratio = min(1.0, centripetal / most)
+        for angle in (critical + math.asin(ratio), critical - math.asin(ratio)):
+            if _contains(span, angle):
+                angles.append(angle)
+    room = math.inf
+    for angle in angles:
+        c, s = abs(math.cos(angle)), abs(math.sin(angle))
+        if c > 1e-12:
+            room = min(room, (along_p - centripetal * s) / c)
+        if s > 1e-12:
+            room = min(room, (along_q - centripetal * c) / s)
+    return max(0.0, room)
+
+
 def limits(segment: Segment) -> tuple[float, float]:
     """(max cruise mm/s, path acceleration mm/s^2) of one segment (module docstring rules)."""
     _check(segment)
@@ -126,17 +195,24 @@ def limits(segment: Segment) -> tuple[float, float]:
     sin_a = min(abs(_unit(segment.start_unit)[w]), 1.0)
     cos_a = math.sqrt(max(0.0, 1.0 - sin_a * sin_a))
     radius = segment.radius_mm
-    plane_accel = min(accel[p], accel[q])
+    span = _arc_span(segment, cos_a)
+    # over the span: the plane speed's largest share on p (|cos phi|) and on q (|sin phi|);
+    # the centripetal acceleration points across the tangent, so its shares are swapped
+    on_p, on_q = _largest(span, math.cos, 0.0), _largest(span, math.sin, math.pi / 2)
     cruise = segment.feed_mm_s
     if cos_a > 1e-12:
-        cruise = min(cruise, min(rate[p], rate[q]) / cos_a,
-                     math.sqrt(CENTRIPETAL_SHARE * plane_accel * radius) / cos_a)
+        centripetal_most = min(accel[p] / on_q if on_q > 1e-12 else math.inf,
+                               accel[q] / on_p if on_p > 1e-12 else math.inf)
+        for most, share in ((rate[p], on_p), (rate[q], on_q)):
+            if share > 1e-12:
+                cruise = min(cruise, most / (share * cos_a))
+        cruise = min(cruise, math.sqrt(CENTRIPETAL_SHARE * centripetal_most * radius) / cos_a)
     if sin_a > 1e-12:
         cruise = min(cruise, rate[w] / sin_a)
     tangential = math.inf
     if cos_a > 1e-12:
         centripetal = (cruise * cos_a) ** 2 / radius
-        tangential = math.sqrt(max(0.0, plane_accel ** 2 - centripetal ** 2)) / cos_a
+        tangential = _tangential_room(span, accel[p], accel[q], centripetal) / cos_a
     if sin_a > 1e-12:
         tangential = min(tangential, accel[w] / sin_a)
     return cruise, tangential
@@ -154,12 +230,12 @@ def junction_speed(before: Vector, after: Vector, axis_accel_mm_s2: Vector,
     with theta the angle between the paths (cos theta = -before . after), a_j the axes'
     limit in the direction after - before.  Straight on: no limit (inf); reversal: 0."""
     before, after = _unit(before), _unit(after)
-    cos_theta = -sum(b * a for b, a in zip(before, after))
+    cos_theta = -(before[0] * after[0] + before[1] * after[1] + before[2] * after[2])
     if cos_theta > REVERSAL_COS:
         return 0.0
     if cos_theta < STRAIGHT_COS:
         return math.inf
-    change = _unit(tuple(a - b for a, b in zip(after, before)))
+    change = _unit((after[0] - before[0], after[1] - before[1], after[2] - before[2]))
     accel = _limit_by_axes(axis_accel_mm_s2, change)
     sin_half = math.sqrt(0.5 * (1.0 - cos_theta))
     return math.sqrt(accel * junction_deviation_mm * sin_half / (1.0 - sin_half))
@@ -183,21 +259,63 @@ def trapezoid_time(length: float, entry: float, exit: float, cruise: float, acce
     return (2.0 * cruise - entry - exit) / accel + (length - ramps) / cruise
 
 
+def _deviation(segment: Segment, junction_deviation_mm: float) -> float:
+    """The junction deviation of the junction into `segment` (G64 P lowers it)."""
+    if segment.tolerance_mm is None:
+        return junction_deviation_mm
+    return min(junction_deviation_mm, segment.tolerance_mm)
+
+
+def _reverses(segments: list[Segment], before: int, after: int) -> bool:
+    """Whether an axis moving at the end of segments[before] or at the start of
+    segments[after] moves the other way in a segment between them."""
+    for axis in range(3):
+        ends = {math.copysign(1.0, u) for u in (segments[before].end_unit[axis],
+                                                segments[after].start_unit[axis]) if abs(u) > 1e-9}
+        for index in range(before + 1, after):
+            for u in (segments[index].start_unit[axis], segments[index].end_unit[axis]):
+                if abs(u) > 1e-9 and -math.copysign(1.0, u) in ends:
+                    return True
+    return False
+
+
 def _junction_limits(segments: list[Segment], cruise: list[float],
                      junction_deviation_mm: float) -> list[float]:
-    """The highest entry speed of every segment from its junction alone."""
+    """The highest entry speed of every segment from its junction alone.  A run of lines
+    whose lengths add up to no more than the junction deviation (step-rounding
+    corrections, CAM micro-segments) between two others, in which no moving axis turns
+    back, is a single corner: its junctions may also take the speed of the corner between
+    the tangent before the run and the tangent after it."""
+    count = len(segments)
     caps = []
     for index, segment in enumerate(segments):
         if index == 0 or segment.stop_before:
             caps.append(0.0)
             continue
-        before = segments[index - 1]
-        deviation = junction_deviation_mm
-        if segment.tolerance_mm is not None:
-            deviation = min(deviation, segment.tolerance_mm)
-        speed = junction_speed(before.end_unit, segment.start_unit,
-                               segment.axis_accel_mm_s2, deviation)
+        speed = junction_speed(segments[index - 1].end_unit, segment.start_unit,
+                               segment.axis_accel_mm_s2, _deviation(segment, junction_deviation_mm))
         caps.append(min(speed, cruise[index - 1], cruise[index]))
+    first = 1
+    while first < count:
+        after, total, deviation = first, 0.0, math.inf
+        while after < count and not segments[after].stop_before:
+            deviation = min(deviation, _deviation(segments[after], junction_deviation_mm))
+            if total + segments[after].length_mm > deviation or segments[after].radius_mm is not None:
+                break
+            total += segments[after].length_mm
+            after += 1
+        if after == first:
+            first += 1
+            continue
+        if after < count and not segments[after].stop_before and total <= deviation \
+                and not _reverses(segments, first - 1, after):
+            # a short run first..after-1, within every deviation of its junctions, in which
+            # no moving axis turns back
+            speed = junction_speed(segments[first - 1].end_unit, segments[after].start_unit,
+                                   segments[after].axis_accel_mm_s2, deviation)
+            for index in range(first, after + 1):      # (never below the junction's own)
+                caps[index] = max(caps[index], min(speed, cruise[index - 1], cruise[index]))
+        first = after + 1
     return caps
 
 
@@ -210,6 +328,21 @@ def _backward(caps: list[float], reach: list[float], first: int, last: int) -> l
         out[index - first] = entry
         exit_sqr = entry * entry
     return out
+
+
+def _window_entry(caps: list[float], reach: list[float], whole: list[float], first: int,
+                  last: int) -> float:
+    """The entry speed of segment `first` that can still stop at the end of `last`: the
+    backward pass over first..last.  Where it meets a junction's limit it joins the
+    whole-program pass (which is at least as fast and at most that limit there), so the
+    rest is that pass's."""
+    exit_sqr = 0.0
+    for index in range(last, first - 1, -1):
+        speed = math.sqrt(exit_sqr + reach[index])
+        if speed >= caps[index]:
+            return whole[first]
+        exit_sqr = speed * speed
+    return math.sqrt(exit_sqr)
 
 
 def plan(segments: list[Segment], *, junction_deviation_mm: float,
@@ -237,7 +370,7 @@ def plan(segments: list[Segment], *, junction_deviation_mm: float,
         if window is not None and index + 1 < count:
             last = min(index + window, count - 1)
             if last < count - 1:
-                exit_speed = min(exit_speed, _backward(caps, reach, index + 1, last)[0])
+                exit_speed = min(exit_speed, _window_entry(caps, reach, whole, index + 1, last))
         entry[index + 1] = exit_speed
     return [Plan(cruise_mm_s=cruise[i], accel_mm_s2=accel[i], entry_mm_s=entry[i],
                  exit_mm_s=entry[i + 1],
