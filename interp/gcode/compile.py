@@ -494,7 +494,8 @@ class Compiler:
                 cmd.exit = 0
                 continue
             reach = math.isqrt((nxt.budget >> PF) + nxt.exit * nxt.exit) - EXIT_MARGIN
-            cmd.exit = max(0, min(cmd.exit, reach))
+            quantum = self.out.settings["speed_quantum"]
+            cmd.exit = max(0, min(cmd.exit, reach, cmd.feed // quantum, nxt.feed // quantum))
 
     def profile(self) -> None:
         """Plan the move commands and fill in their profile fields and the settings."""

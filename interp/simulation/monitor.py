@@ -37,8 +37,8 @@ Checks (each a row of the table):
     8 consecutive events near it, their time less 2q, plus the acceleration times the run's
     length; a the acceleration, W the S-curve's window);
   * resume: 90 % of that speed (at most the cap) is reached again within v / a + W + 2 T + 16
-    clocks, where the command has room for it and the override does not change meanwhile
-    (else the row says "not checked").
+    clocks, where the command has room for it, the override does not change and no hold comes
+    meanwhile (else the row says "not checked").
 """
 from __future__ import annotations
 
@@ -290,11 +290,13 @@ def _holds(report, controls, t, x, g, v, feed, limit, accel, owner, counts, dx, 
         allowed = target / a_r + window + 2 * grid + HOLD_LATENCY
         room = x[ends[owner[k_r]] - 1] - x[k_r]
         changes = [c for c, _ in overrides if r <= c <= r + allowed]
+        later = [hh for hh, _ in holds[number:] if hh <= r + allowed]
         after = np.nonzero((t > r) & (local >= target))[0]       # (the run's mean: never early)
         after = after[after >= k_r + LOCAL_EVENTS]
         reached = float(t[after[0]] - r) if len(after) else math.inf
-        if room < target * target / a_r + target * (window + grid) or changes:
-            why = "the command ends first" if not changes else "the override changes meanwhile"
+        if room < target * target / a_r + target * (window + grid) or changes or later:
+            why = ("the override changes meanwhile" if changes else "held again meanwhile" if later
+                   else "the command ends first")
             report.checks.append((f"resume {number} time", reached, allowed, "clocks", f"not checked ({why})"))
             continue
         good = reached <= allowed
