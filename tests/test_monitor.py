@@ -132,3 +132,12 @@ def test_random_programs_pass_on_the_ideal_machine():
         out = compile_program(Program(moves), MACHINE)
         report = monitor(ideal_rows(out.commands, out.settings), out, MACHINE)
         assert report.ok, (seed, report.violations)
+
+
+def test_speed_plot(run, tmp_path):
+    from interp.plots.speed import plot_speed
+
+    out, rows = run
+    png = tmp_path / "speed.png"
+    plot_speed(png, monitor(rows, out, MACHINE), title="ideal machine")
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

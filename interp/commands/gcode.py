@@ -381,7 +381,7 @@ def add_parser(sub) -> None:
     p.add_argument("--pause-seconds", type=float, default=0.0, metavar="S",
                    help="machine time of each pause (M0, M1, M6, M60), default 0")
     p.add_argument("--max-seconds", type=float, metavar="S",
-                   help="machine-time limit (default 2 x the estimate + 10 s)")
+                   help="machine-time limit (default 2 x the estimate / the slowest override, + the holds + 10 s)")
     p.add_argument("--vcd", metavar="FILE", help="waveform file")
     p.add_argument("--plot", metavar="FILE.png", help="PNG of the stepped XY path over the programmed one")
     p.add_argument("--profile", choices=PROFILES, help="speed profile (default: the machine file's motion.profile)")
