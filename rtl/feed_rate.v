@@ -12,8 +12,8 @@
 // The path speed is feed / 2^FRAC steps per clock.  The costs are rounded to
 // the nearest integer: relative speed error <= 2^-(FRAC+1) / sqrt(2).  They are
 // exact integer square roots, rounded to nearest, of 2 * 2^(2 FRAC) and
-// 3 * 2^(2 FRAC), formed by the constant function `root` on 2 FRAC + 4 bit words
-// (digit by digit, shifts and subtractions only), so any FRAC up to 64 is exact.
+// 3 * 2^(2 FRAC), formed at elaboration by step_cost (shared with step_pacer),
+// so any FRAC up to 64 is exact.
 //
 // While `tick` is high and no step leaves, acc holds (no burst of stored
 // ticks after a pause).  The feed of the step that leaves is latched with it
@@ -37,43 +37,10 @@ module feed_rate #(
     end
 
     localparam integer AW = (FEED_W > FRAC + 2 ? FEED_W : FRAC + 2) + 2;  // signed accumulator
-    // radicand words: 3 * 2^(2 FRAC) < 2^(2 FRAC + 2), and at least AW bits
-    localparam integer RW = 2 * FRAC + 4 > AW ? 2 * FRAC + 4 : AW + AW % 2;
-
-    // round(sqrt(n)): the integer square root digit by digit (two radicand bits a
-    // digit), then up by one if n - r^2 > r (n is an integer, so never a tie).
-    function [RW-1:0] root(input [RW-1:0] n);
-        reg [RW-1:0] rest, r, trial;
-        integer i;
-        begin
-            rest = n;
-            r    = {RW{1'b0}};
-            for (i = RW / 2 - 1; i >= 0; i = i - 1) begin
-                trial = (r << (i + 1)) | ({{(RW-1){1'b0}}, 1'b1} << (2 * i));  // (2r + 2^i) 2^i
-                if (rest >= trial) begin
-                    rest = rest - trial;
-                    r    = r | ({{(RW-1){1'b0}}, 1'b1} << i);
-                end
-            end
-            root = rest > r ? r + 1'b1 : r;
-        end
-    endfunction
-
-    localparam [RW-1:0] ONE_SQUARED = {{(RW-1){1'b0}}, 1'b1} << (2 * FRAC);
-    localparam [RW-1:0] COST1 = {{(RW-1){1'b0}}, 1'b1} << FRAC;
-    localparam [RW-1:0] COST2 = root(ONE_SQUARED << 1);             // round(sqrt(2) * 2^FRAC)
-    localparam [RW-1:0] COST3 = root((ONE_SQUARED << 1) + ONE_SQUARED);  // round(sqrt(3) * 2^FRAC)
-
     reg  [AW-1:0]     acc;
     reg  [FEED_W-1:0] feed_q;
-    reg  [AW-1:0]     cost;
-    always @* begin
-        case (axes)
-            2'd2:    cost = COST2[AW-1:0];
-            2'd3:    cost = COST3[AW-1:0];
-            default: cost = COST1[AW-1:0];
-        endcase
-    end
+    wire [AW-1:0]     cost;
+    step_cost #(.FRAC(FRAC), .COST_W(AW)) u_cost (.axes(axes), .cost(cost));
 
     assign tick = ~acc[AW-1];
     wire [AW-1:0] feed_ext   = {{(AW-FEED_W){1'b0}}, feed};

@@ -242,7 +242,7 @@ module motion_top #(
     // ---------------- synchronization buffer, speed, output ----------------
     wire [2:0]        out_step, out_dir;
     wire [FEED_W-1:0] out_cost;
-    wire              out_valid, stop, sync_overflow, drive_ready, fire, moving;
+    wire              out_valid, stop, sync_overflow, drive_ready, fire, moving, late;
     wire [SLW-1:0]    sync_level;
     step_sync #(.AXES(3), .DEPTH(SDEPTH), .LATENCY(2), .DATA_W(FEED_W), .LW(SLW)) u_sync (
         .clk(clk), .rst(flush), .in_step(core_step), .in_dir(core_dir), .in_data(cost_q),
@@ -263,7 +263,7 @@ module motion_top #(
         .speed_quantum(speed_quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
         .override(override), .hold(hold), .step_valid(out_valid), .step_axes(out_axes),
         .step_cost(out_cost), .drive_ready(drive_ready), .fire(fire), .speed(speed), .moving(moving),
-        .stopped(stopped)
+        .stopped(stopped), .late(late)
     );
 
     wire [2:0] drv_step, drv_dir;
@@ -363,6 +363,6 @@ module motion_top #(
         end
     end
 
-    wire unused = &{1'b0, arc_busy, cv_busy, sync_level, unused_overflow};
+    wire unused = &{1'b0, arc_busy, cv_busy, sync_level, unused_overflow, late};
 endmodule
 `default_nettype wire

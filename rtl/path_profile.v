@@ -84,6 +84,8 @@ module path_profile #(
 
     localparam integer PW    = 1 + 2 * FEED_W + NW + PF + 1 + LEN_W + ZW;
     localparam integer SUM_W = FEED_W + MW;
+    localparam integer GUARD = 8;                                   // the pacer's phase headroom
+    localparam integer PHASE_W = (FEED_W > FRAC + 1 ? FEED_W : FRAC + 1) + MW + GUARD;
 
     wire [PW-1:0]     head;
     wire              head_valid, next_pop, unused_overflow;
@@ -101,7 +103,7 @@ module path_profile #(
     );
     assign {h_barrier, h_feed, h_limit, h_exit, h_rate, h_length, h_budget} = head;
 
-    wire up, down, block, ramp_moving;
+    wire up, down, block, ramp_moving, segment;
     speed_ramp #(.FEED_W(FEED_W), .NW(NW), .PF(PF), .LEN_W(LEN_W), .ZW(ZW)) u_ramp (
         .clk(clk), .rst(rst),
         .next_valid(head_valid), .next_barrier(h_barrier), .next_feed(h_feed), .next_limit(h_limit),
@@ -109,7 +111,7 @@ module path_profile #(
         .next_pop(next_pop), .barrier_done(barrier_done),
         .speed_quantum(speed_quantum), .block_shift(block_shift), .override(override), .hold(hold),
         .speed(speed), .up(up), .down(down), .block(block), .moving(ramp_moving), .stopped(stopped),
-        .late(late)
+        .late(late), .segment(segment)
     );
 
     reg  [FEED_W-1:0] speed_f;      // the filter's speed: follows `speed`, a quantum per block
@@ -137,14 +139,15 @@ module path_profile #(
         .speed_quantum(speed_quantum), .jerk_shift(jerk_shift), .sum(sum), .shift(shift), .empty(empty)
     );
 
-    wire due, overrun;
-    step_pacer #(.FEED_W(FEED_W), .FRAC(FRAC), .MW(MW), .SUM_W(SUM_W)) u_pacer (
+    wire                             due, overrun;
+    wire [PHASE_W-1:0]               phase;
+    step_pacer #(.FEED_W(FEED_W), .FRAC(FRAC), .MW(MW), .SUM_W(SUM_W), .GUARD(GUARD), .PHASE_W(PHASE_W)) u_pacer (
         .clk(clk), .rst(rst), .sum(sum), .jerk_shift(shift), .step_valid(step_valid),
         .step_axes(step_axes), .step_cost(step_cost), .drive_ready(drive_ready), .fire(fire),
-        .due(due), .overrun(overrun)
+        .due(due), .overrun(overrun), .phase(phase)
     );
 
     assign moving = ramp_moving | ~empty;
-    wire unused = &{1'b0, unused_overflow, due, overrun, up, down};   // motion_top refuses a push when either queue is full
+    wire unused = &{1'b0, unused_overflow, due, overrun, phase, up, down, segment};   // motion_top refuses a push when either queue is full
 endmodule
 `default_nettype wire

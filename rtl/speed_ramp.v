@@ -54,6 +54,7 @@ module speed_ramp #(
     output reg               down,           // n fell at the last edge
     output wire              block,          // this clock ends a block
     output wire              moving,         // n != 0 or a segment in progress
+    output wire              segment,        // a segment in progress
     output wire              stopped,        // hold and n = 0
     output reg               late            // strobe: a stop or exit reached above its speed
 );
@@ -72,7 +73,6 @@ module speed_ramp #(
     localparam integer ZXW = (ZW > RW ? ZW : RW) + 17;    // Zx, signed (<< block_shift <= 15)
     localparam integer SW  = LEN_W + 2;                   // S, signed
     localparam integer MW  = NW + FEED_W;                 // the refinement's remainder
-    localparam [1:0] IDLE = 2'd0, BUSY = 2'd1, DONE = 2'd2;
     localparam [NW-1:0] ONE_N = {{(NW-1){1'b0}}, 1'b1};
     localparam [NW-1:0] NMAX  = {NW{1'b1}};
     localparam [31:0]   NW32  = NW;
@@ -92,10 +92,6 @@ module speed_ramp #(
     reg  [FEED_W-1:0] feed, limit;
     reg  [NW-1:0]   exit_cur;    // the segment's exit speed (quanta) and f (f + 1)
     reg  [QW-1:0]   f_sq_cur;
-    reg  [1:0]      pre;         // the successor's set-up
-    reg  [NW-1:0]   n_sh;        // the n that p_sh belongs to
-    reg  [PW-1:0]   p_sh;        // next_rate * n_sh
-    reg  [QW-1:0]   f_pre;       // f (f + 1) of the successor
     reg  [7:0]      ref_count;
     reg  [MW-1:0]   ref_r;
     reg  [MW-2:0]   ref_d;
@@ -109,14 +105,18 @@ module speed_ramp #(
     wire        head      = next_valid & ~next_pop;
     wire        move_head = head & ~next_barrier;
     wire        bar_head  = head & next_barrier;
-    wire        known     = (pre == DONE) & (n_sh == n);
+    wire        known;       // the successor's set-up (speed_ramp_setup)
+    wire [PW-1:0] p_sh;
+    wire [QW-1:0] f_pre;
+    wire [FEED_W+7:0] fo_next;
+    wire        fn_valid;
     wire        succ      = move_head & known;
-    wire [NW-1:0] fx      = next_exit == {NW{1'b0}} ? ONE_N : next_exit;
     wire [NW-1:0] fx_cur  = exit_cur == {NW{1'b0}} ? ONE_N : exit_cur;
     wire [NW-1:0] floor_n = succ ? fx_cur : ONE_N;
     wire [QW-1:0] f_sq    = succ ? f_sq_cur : {{(QW-2){1'b0}}, 2'd2};
     wire        exit_zero = ~succ | (exit_cur == {NW{1'b0}});
     assign moving  = (n != {NW{1'b0}}) | seg;
+    assign segment = seg;
     assign stopped = hold_q & (n == {NW{1'b0}});
 
     wire [7:0]  ovr = override == 8'd0 ? 8'd1 : override > 8'd200 ? 8'd200 : override;
@@ -183,26 +183,27 @@ module speed_ramp #(
     wire [NW-1:0] n_d = st_up ? n + ONE_N : st_dn ? n - ONE_N : n;
     wire late_n   = crossing & (exit_zero ? n > ONE_N : n_d > floor_n);
     wire [MW+SW-1:0] rem_ext = {{MW{1'b0}}, remaining};    // S > 0 at a switch
+    // a load carries S = c <= 0: charged as K quanta-clocks, K = 1 if c > -A, else
+    // 2^NW - 1, and 2 p' floor((K A + c) / A) given back by the refinement
+    wire signed [SW+NW:0] rem_wide = {{(NW+1){remaining[SW-1]}}, remaining};
+    wire signed [SW+NW:0] a_wide   = {{(SW+NW+1-FEED_W){1'b0}}, speed_quantum};
+    wire signed [SW+NW:0] a_k      = $signed({{(SW+1-FEED_W){1'b0}}, speed_quantum, {NW{1'b0}}}) - a_wide;
+    wire        carry_small = rem_wide + a_wide > 0;
+    wire signed [SW+NW:0] load_r = rem_wide + (carry_small ? a_wide : a_k);
+    wire [MW+SW+NW:0] load_r_ext = {{MW{1'b0}}, load_r};
     wire signed [ZXW-1:0] budget_next = $signed({{(ZXW-ZW){1'b0}}, next_budget}) <<< bs_q;
 
-    // the successor's set-up: p' n and f (f + 1)
-    wire          mp_busy, mp_done, mf_busy, mf_done, mo_busy, mo_done;
-    wire [PW:0]   mp_product;
-    wire [2*NW:0] mf_product;
+    // the cap's feed * override, recomputed all the time
+    wire          mo_busy, mo_done;
     wire [FEED_W+7:0] mo_product;
-    wire pre_start = (pre == IDLE) & move_head & ~pop & ~mp_busy;
-    speed_ramp_mul #(.AW(PF + 1), .BW(NW)) u_mul_p (
-        .clk(clk), .rst(rst), .start(pre_start), .a(next_rate), .b(n),
-        .busy(mp_busy), .done(mp_done), .product(mp_product));
-    speed_ramp_mul #(.AW(NW + 1), .BW(NW)) u_mul_f (
-        .clk(clk), .rst(rst), .start(pre_start), .a({1'b0, fx} + 1'b1), .b(fx),
-        .busy(mf_busy), .done(mf_done), .product(mf_product));
     speed_ramp_mul #(.AW(FEED_W), .BW(8)) u_mul_fo (
         .clk(clk), .rst(rst), .start(~mo_busy), .a(feed), .b(ovr),
         .busy(mo_busy), .done(mo_done), .product(mo_product));
     wire [NW-1:0] n_next = final_q ? {NW{1'b0}} : n_d;
-    wire [NW:0] gap_full = {1'b0, n_next} - {1'b0, n_sh};   // n after this edge - n_sh, signed
-    wire signed [2:0] gap = $signed(gap_full) > 2 ? 3'sd2 : $signed(gap_full) < -2 ? -3'sd2 : gap_full[2:0];
+    speed_ramp_setup #(.FEED_W(FEED_W), .NW(NW), .PF(PF)) u_setup (
+        .clk(clk), .rst(rst), .pop(pop), .move_head(move_head), .n(n), .n_next(n_next),
+        .next_rate(next_rate), .next_exit(next_exit), .next_feed(next_feed), .ovr(ovr),
+        .known(known), .p_sh(p_sh), .f_pre(f_pre), .fo_next(fo_next), .fn_valid(fn_valid));
 
     always @(posedge clk) begin
         if (rst) begin
@@ -211,7 +212,6 @@ module speed_ramp #(
             remaining <= {SW{1'b0}}; budget_x <= {ZXW{1'b0}};
             seg <= 1'b0; rate <= {(PF+1){1'b0}}; feed <= {FEED_W{1'b0}}; limit <= {FEED_W{1'b0}};
             exit_cur <= {NW{1'b0}}; f_sq_cur <= {QW{1'b0}};
-            pre <= IDLE; n_sh <= {NW{1'b0}}; p_sh <= {PW{1'b0}}; f_pre <= {QW{1'b0}};
             ref_count <= 8'd0; ref_r <= {MW{1'b0}}; ref_d <= {(MW-1){1'b0}}; ref_m <= {(PW+1){1'b0}};
             fo <= {(FEED_W+8){1'b0}}; fo_valid <= 1'b0; fo_ok <= 1'b0; bar_count <= 8'd0;
             up <= 1'b0; down <= 1'b0; next_pop <= 1'b0; late <= 1'b0; hold_q <= 1'b0;
@@ -246,30 +246,19 @@ module speed_ramp #(
                 rate <= next_rate; feed <= next_feed; limit <= next_limit;
                 exit_cur <= next_exit; f_sq_cur <= f_pre;
                 remaining <= (switch_s ? rem1 : remaining) + $signed({2'b00, next_length});
-                budget_x  <= budget_next - (switch_s ? $signed({{(ZXW-PW-1){1'b0}}, p_sh, 1'b0})
-                                                    : $signed({{(ZXW-PF-2){1'b0}}, next_rate, 1'b0}));
+                budget_x  <= budget_next - (switch_s ? $signed({{(ZXW-PW-1){1'b0}}, p_sh, 1'b0}) :
+                                            carry_small ? $signed({{(ZXW-PF-2){1'b0}}, next_rate, 1'b0}) :
+                                            $signed({{(ZXW-PW-2){1'b0}}, next_rate, {NW{1'b0}}, 1'b0}) -
+                                            $signed({{(ZXW-PF-2){1'b0}}, next_rate, 1'b0}));
                 seg <= 1'b1;
             end else if (end_s) begin
                 remaining <= rem1; budget_x <= {ZXW{1'b0}}; seg <= 1'b0;
             end else begin
                 remaining <= seg ? rem1 : remaining; budget_x <= zx1;
             end
-            // the successor's set-up
-            if (pop) pre <= IDLE;
-            else if (pre_start) begin
-                pre <= BUSY; n_sh <= n;
-            end else if (pre == BUSY && mp_done) begin
-                pre <= DONE; p_sh <= mp_product[PW-1:0]; f_pre <= mf_product[QW-1:0];
-            end else if (pre == DONE) begin
-                n_sh <= n_sh + {{(NW-2){gap[2]}}, gap[1:0]};
-                p_sh <= gap == 3'sd2 ? p_sh + {{(PW-PF-2){1'b0}}, next_rate, 1'b0} :
-                        gap == 3'sd1 ? p_sh + {{(PW-PF-1){1'b0}}, next_rate} :
-                        gap == -3'sd1 ? p_sh - {{(PW-PF-1){1'b0}}, next_rate} :
-                        gap == -3'sd2 ? p_sh - {{(PW-PF-2){1'b0}}, next_rate, 1'b0} : p_sh;
-            end
             // feed * override
             if (switch_s | load) begin
-                fo_valid <= 1'b0; fo_ok <= 1'b0;
+                fo <= fo_next; fo_valid <= fn_valid; fo_ok <= 1'b0;
             end else begin
                 if (mo_done & fo_ok) begin
                     fo <= mo_product; fo_valid <= 1'b1;
@@ -280,7 +269,11 @@ module speed_ramp #(
             if (switch_s && n != {NW{1'b0}}) begin
                 ref_r <= rem_ext[MW-1:0]; ref_d <= {speed_quantum, {(NW-1){1'b0}}};
                 ref_m <= {next_rate, {NW{1'b0}}}; ref_count <= NW8;
-            end else if (crossing | load) begin
+            end else if (load) begin
+                ref_r <= load_r[SW+NW] ? {MW{1'b0}} : load_r_ext[MW-1:0];
+                ref_d <= {speed_quantum, {(NW-1){1'b0}}};
+                ref_m <= {next_rate, {NW{1'b0}}}; ref_count <= NW8;
+            end else if (crossing) begin
                 ref_count <= 8'd0;
             end else if (ref_count != 8'd0) begin
                 if (ref_hit) ref_r <= ref_r - {1'b0, ref_d};
@@ -289,6 +282,26 @@ module speed_ramp #(
         end
     end
 
-    wire unused = &{1'b0, mf_busy, mf_done, mp_product[PW], mf_product[2*NW:QW], gap_full[NW:3], na_sum[NAW], rem_ext[MW+SW-1:MW]};
+`ifdef FORMAL
+    // (formal/speed_ramp.sby) n moves only at a DDA tick and by one quantum, except
+    // the last quantum at the clock a segment ends at rest (from n = 1, else `late`);
+    // the registers kept by adders equal their products; the successor's set-up too
+    // (the harness holds the head until it is popped).
+    reg f_past_valid = 1'b0;
+    always @(posedge clk) f_past_valid <= 1'b1;
+    wire [QW-1:0]  f_q  = {{NW{1'b0}}, n} * ({{NW{1'b0}}, n} + {{(QW-1){1'b0}}, 1'b1});
+    wire [PW-1:0]  f_p  = {{(PW-PF-1){1'b0}}, rate} * {{PF{1'b0}}, n};
+    wire [NAW-1:0] f_na = {{PF{1'b0}}, n} * {{NW{1'b0}}, acc};
+    always @(*) if (f_past_valid && !rst) begin
+        if (n_next != n) assert (dtick || final_q);
+        if (!late_n) assert (n_next == n || n_next == n + ONE_N || n_next + ONE_N == n);
+        if (final_q && !late_n) assert (n <= ONE_N);
+        assert (q == f_q);
+        assert (p == f_p);
+        assert (na == f_na);
+    end
+`endif
+
+    wire unused = &{1'b0, na_sum[NAW], rem_ext[MW+SW-1:MW], load_r_ext[MW+SW+NW:MW]};
 endmodule
 `default_nettype wire

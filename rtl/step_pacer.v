@@ -23,7 +23,8 @@ module step_pacer #(
     parameter integer FRAC   = 16,          // fraction bits: an axial step costs 2^FRAC (1 .. 64)
     parameter integer MW     = 6,           // largest jerk_shift (2 .. 15), as jerk_filter's
     parameter integer SUM_W  = FEED_W + MW, // width of sum: must be FEED_W + MW
-    parameter integer GUARD  = 8            // phase bits above the largest cost << MW (1 .. 32)
+    parameter integer GUARD  = 8,           // phase bits above the largest cost << MW (1 .. 32)
+    parameter integer PHASE_W = FEED_W > FRAC + 1 ? FEED_W + MW + GUARD : FRAC + 1 + MW + GUARD  // width of phase: must be max(FEED_W, FRAC + 1) + MW + GUARD
 ) (
     input  wire              clk,
     input  wire              rst,
@@ -35,7 +36,8 @@ module step_pacer #(
     input  wire              drive_ready,  // the output stage takes a step now
     output wire              fire,         // the step leaves this clock
     output wire              due,          // phase >= cost << shift
-    output reg               overrun       // the phase saturated (sticky until rst)
+    output reg               overrun,      // the phase saturated (sticky until rst)
+    output reg [PHASE_W-1:0] phase         // the phase accumulator (monitor)
 );
     initial begin
         if (FEED_W < 2) $error("%m: FEED_W must be at least 2");
@@ -43,16 +45,17 @@ module step_pacer #(
         if (MW < 2 || MW > 15) $error("%m: MW must be 2 .. 15");
         if (SUM_W != FEED_W + MW) $error("%m: SUM_W must be FEED_W + MW");
         if (GUARD < 1 || GUARD > 32) $error("%m: GUARD must be 1 .. 32");
+        if (PHASE_W != (FEED_W > FRAC + 1 ? FEED_W : FRAC + 1) + MW + GUARD)
+            $error("%m: PHASE_W must be max(FEED_W, FRAC + 1) + MW + GUARD");
     end
 
     localparam integer CW = FEED_W > FRAC + 1 ? FEED_W : FRAC + 1;  // cost width
-    localparam integer PW = CW + MW + GUARD;                        // phase width
+    localparam integer PW = PHASE_W;
     localparam [3:0]   DEEPEST = MW[3:0];
 
     wire [CW-1:0] lecture;
     step_cost #(.FRAC(FRAC), .COST_W(CW)) u_cost (.axes(step_axes), .cost(lecture));
 
-    reg  [PW-1:0] phase;
     wire [3:0]    used = jerk_shift > DEEPEST ? DEEPEST : jerk_shift;
     wire [CW-1:0] cost = step_cost != {FEED_W{1'b0}} ? {{(CW-FEED_W){1'b0}}, step_cost} : lecture;
     wire [PW-1:0] need = {{(PW-CW){1'b0}}, cost} << used;

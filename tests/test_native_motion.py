@@ -33,7 +33,7 @@ ACCEL = QUANTUM / 4                             # path units per clock^2
 SETTINGS = {"speed_quantum": QUANTUM, "block_shift": 0, "jerk_shift": 0, "override": 100}
 
 
-def profiled(rows, accel=ACCEL, quantum=QUANTUM, lecture=True):
+def profiled(rows, accel=ACCEL, quantum=QUANTUM, lecture=True):  # noqa: D103
     """Rows of 10 fields (kind plane feed x y z i j k l) -> 16 with bench profiles."""
     cmds = [Command(r[0], r[2], *r[3:10], plane=r[1]) for r in rows]
     cmds = profile_for(cmds, quantum=quantum, accel=accel, frac=PARAMS["FRAC"], pf=PARAMS["PF"],
@@ -130,31 +130,42 @@ def test_random_jobs_native_equals_icarus(native, tmp_path):
         assert len(got["events"]) == sum(r[0] == 5 for r in rows)
 
 
-def test_slow_job_skips_quiet_cycles(native, tmp_path):
-    """A few steps at 1 step per 3000 cycles: nearly every cycle is skipped, nothing changes."""
+def slow(feed):
+    """Settings and profile arguments for a slow job: the quantum an eighth of the feed, the
+    rate 2^18 (a quantum every 64 clocks: the ramp's DDA phase comes back every 2^6 blocks,
+    which the skipping of dwells needs)."""
+    quantum = max(1, feed // 8)
+    return {**SETTINGS, "speed_quantum": quantum}, {"quantum": quantum, "accel": quantum / 64}
+
+
+def test_slow_job_with_dwell(native, tmp_path):
+    """A few steps at 1 step per 3000 cycles and a long dwell: the dwell is skipped, the slow
+    moves are not (only rest is skipped); the same as every cycle simulated."""
     feed = ONE // 3000
-    rows = [(0, 0, feed, 7, -3, 2, 0, 0, 0, 0), (2, 0, feed, 0, 0, 0, 3, 0, 0, 0), (4, 0, 0, 100, 0, 0, 0, 0, 0, 0)]
+    settings, args = slow(feed)
+    rows = [(0, 0, feed, 7, -3, 2, 0, 0, 0, 0), (2, 0, feed, 0, 0, 0, 3, 0, 0, 0), (4, 0, 0, 10**6, 0, 0, 0, 0, 0, 0),
+            (0, 0, feed, -1, 0, 0, 0, 0, 0, 0)]
     commands = tmp_path / "slow.txt"
-    write_commands(commands, profiled(rows, accel=ACCEL / 10**6))
+    write_commands(commands, profiled(rows, **args))
     got = run_native(commands, steps_path=tmp_path / "a.csv", timing=TIMING, max_cycles=10**7, parameters=PARAMS,
-                     settings=SETTINGS)
+                     settings=settings)
     exact = run_native(commands, steps_path=tmp_path / "b.csv", timing=TIMING, max_cycles=10**7,
-                       parameters=PARAMS, exact=True, settings=SETTINGS)
+                       parameters=PARAMS, exact=True, settings=settings)
     assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
-    assert got["skipped"] > 0.9 * got["cycles"] and exact.pop("skipped") == 0
+    assert 0.9 * 10**6 < got["skipped"] < 10**6 and exact.pop("skipped") == 0
     got.pop("skipped")
-    assert got == exact and got["position"] == [7, -3, 2]
+    assert got == exact and got["position"] == [6, -3, 2] and not got["stopped"]
 
 
 def test_dwell_and_event_drain_skip(native, tmp_path, monkeypatch):
-    """With the step buffer empty (a dwell, the drain before an event) the state other than the
-    counters repeats every few cycles: those stretches are skipped too, exactly. No steps file
-    asked for: none written."""
+    """At rest (a dwell after the speed reached 0) the state other than the counters repeats
+    every few cycles: those stretches are skipped, exactly (the same as Icarus and as every
+    cycle simulated).  No steps file asked for: none written."""
     rows = [(0, 0, ONE // 7, 5, 2, 0, 0, 0, 0, 0), (4, 0, 0, 200_000, 0, 0, 0, 0, 0, 0),
             (5, 0, 0, 3, 9, 0, 0, 0, 0, 0), (4, 0, 0, 1000, 0, 0, 0, 0, 0, 0), (0, 0, ONE // 5, -5, 1, 0, 0, 0, 0, 0)]
     got = both(tmp_path, rows, max_cycles=10**6, name="dwell")
     assert got["position"] == [0, 3, 0] and got["events"] and not got["stopped"]
-    write_commands(tmp_path / "long.txt", [(4, 0, 0, 10**9, 0, 0, 0, 0, 0, 0)])
+    write_commands(tmp_path / "long.txt", profiled([(4, 0, 0, 10**9, 0, 0, 0, 0, 0, 0)]))
     monkeypatch.chdir(tmp_path)
     long = run_native(tmp_path / "long.txt", steps_path=None, timing=TIMING, max_cycles=2 * 10**9, parameters=PARAMS)
     assert long["cycles"] > 10**9 and long["skipped"] > 0.999 * 10**9
@@ -212,10 +223,11 @@ def test_bad_command_file(native, tmp_path, text, where):
 def test_progress_callback(native, tmp_path):
     """A 12-step line at 1 step per 10^6 cycles: progress every 2^22 cycles while it runs."""
     commands = tmp_path / "long.txt"
-    write_commands(commands, profiled([(0, 0, ONE // 1_000_000, 12, 5, 0, 0, 0, 0, 0)], accel=ACCEL / 10**9))
+    settings, args = slow(ONE // 1_000_000)
+    write_commands(commands, profiled([(0, 0, ONE // 1_000_000, 12, 5, 0, 0, 0, 0, 0)], **args))
     calls = []
     got = run_native(commands, steps_path=tmp_path / "s.csv", timing=TIMING, max_cycles=10**9,
-                     parameters=PARAMS, progress=lambda *a: calls.append(a), settings=SETTINGS)
+                     parameters=PARAMS, progress=lambda *a: calls.append(a), settings=settings)
     assert got["steps"] == 12 and got["cycles"] > 11_000_000
     assert len(calls) >= 2 and all(c[0] >= 1 << 22 and c[2] == 1 for c in calls)
     assert [c[0] for c in calls] == sorted({c[0] for c in calls}) and calls[-1][0] < got["cycles"]

@@ -9,9 +9,10 @@ from hypothesis import given, settings, strategies as st
 from interp.models.pacing import JerkFilter, StepPacer, code_of, code_value, lecture_cost, moving_sum, pace
 
 
-def run_filter(plan, quantum, jerk_shift, block_shift, mw=4, lead=0, phase=0, model=None):
-    """Drive the filter with a ramp (C1 convention: a strobe with a block tick, the
-    speed changes at the end of that clock); returns (speeds, sums, F registers, model)."""
+def run_filter(plan, quantum, jerk_shift, block_shift, mw=4, lead=0, phase=0, model=None, late=None):
+    """Drive the filter with a ramp (a strobe with a block tick, the speed changing at
+    the end of that clock); `late`: the last drop to 0 comes that many clocks after a
+    tick, inside the block (as a stop's end may).  Returns (speeds, sums, F, model)."""
     size = 1 << block_shift
     f = model or JerkFilter(16, mw)
     if model is None:
@@ -22,7 +23,9 @@ def run_filter(plan, quantum, jerk_shift, block_shift, mw=4, lead=0, phase=0, mo
     while quiet < ((1 << jerk_shift) + 1) * size + 1:
         tick = t >= lead and t % size == phase
         up = down = 0
-        if tick:
+        if late is not None and k >= len(plan) and n == 1:
+            down = int(t >= lead and t % size == (phase + late) % size)
+        elif tick:
             if k < len(plan):
                 up, down = int(plan[k] > 0), int(plan[k] < 0 and n > 0)
                 k += 1
@@ -55,6 +58,21 @@ def test_filter_is_the_moving_sum(plan, quantum, jerk_shift, block_shift, data):
     assert sum(regs) == m * sum(speeds)             # distance exactly M times
     assert sums == (speeds if jerk_shift == 0 else regs)
     assert f.empty and f.total == 0 and f.delta == 0
+
+
+@settings(max_examples=150, deadline=None)
+@given(plan=plans, quantum=st.integers(1, 1000), jerk_shift=st.integers(0, 4),
+       block_shift=st.integers(1, 3), data=st.data())
+def test_filter_drop_inside_a_block_keeps_the_distance(plan, quantum, jerk_shift, block_shift, data):
+    """The last drop of a stop inside a block: the debt is paid back, the distance exact."""
+    size = 1 << block_shift
+    phase = data.draw(st.integers(0, size - 1))
+    late = data.draw(st.integers(1, size - 1))
+    speeds, sums, _, f = run_filter(plan + [1], quantum, jerk_shift, block_shift, phase=phase, late=late)
+    assert sum(sums) == (1 << jerk_shift) * sum(speeds)
+    assert f.empty and f.owed == 0 and not f.pending
+    if jerk_shift == 0:
+        assert sums == speeds
 
 
 def test_filter_exhaustive_small():
@@ -116,3 +134,23 @@ def test_pacer_model_is_pace(costs, sums, shift, seed):
 
 def test_lecture_costs():
     assert [lecture_cost(a, 16) for a in (0, 1, 2, 3)] == [65536, 65536, 92682, 113512]
+
+
+@settings(max_examples=60, deadline=None)
+@given(top=st.integers(1, 12), cruise=st.integers(0, 30), quantum=st.integers(1, 50),
+       jerk_shift=st.integers(0, 4), block_shift=st.integers(0, 2), steps=st.integers(1, 40))
+def test_last_step_leaves_as_the_filtered_speed_reaches_zero(top, cruise, quantum, jerk_shift,
+                                                             block_shift, steps):
+    """Trapezoid -> S-curve filter -> pacer, the segment's length split into step costs
+    that sum to it exactly (as the host sets them), the speed at most one step per
+    clock: every step leaves, the last one in
+    the clock after the filtered speed's last non-zero clock, and the phase ends at 0."""
+    plan = [1] * top + [0] * cruise + [-1] * top
+    speeds, sums, _, _ = run_filter(plan, quantum, jerk_shift, block_shift, mw=4)
+    length = sum(speeds)
+    cost = max(max(speeds), length // steps)          # at most one step per clock
+    costs = [cost] * (length // cost - 1) + [length - cost * (length // cost - 1)]
+    assert sum(costs) == length
+    fired, phase = pace(sums + [0, 0], costs, jerk_shift)
+    last_f = max(t for t, f in enumerate(sums) if f)
+    assert len(fired) == len(costs) and fired[-1] == last_f + 1 and phase == 0

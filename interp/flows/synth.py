@@ -84,6 +84,9 @@ CORES = [
     Target("feed_rate", "feed_rate", {}, width=None),         # its feed word: FEED_W, FRAC
     Target("step_sync", "step_sync", {}, width=None),
     Target("step_dir", "step_dir", {}, width=None),
+    # the path-speed profile generator at the G-code build's widths
+    Target("speed_ramp", "speed_ramp", {"FEED_W": 50, "NW": 40, "PF": 24, "LEN_W": 82, "ZW": 108},
+           width=None),
     # W: the command fields (X, Y, Z, I, J, K, L) and the cores' coordinates
     Target("motion_top", "motion_top", {"W": WIDTH, "POS_W": WIDTH}, width="W"),
 ]

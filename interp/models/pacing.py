@@ -61,14 +61,15 @@ def lecture_cost(axes: int, frac: int) -> int:
 
 
 # ---------------------------------------------------------------- cycle models
-def code_of(up: int, down: int) -> int:
-    """The 2-bit code of a block: bit 0 up, bit 1 down (both = no change)."""
-    return (int(bool(down)) << 1) | int(bool(up))
+def code_of(up: int, down: int, pending: int = 0) -> int:
+    """The 2-bit code of a block: up - down - pending (a drop made inside the block),
+    in two's complement (-2 .. +1 quanta)."""
+    return (int(bool(up)) - int(bool(down)) - int(bool(pending))) & 3
 
 
 def code_value(code: int) -> int:
-    """+1, -1 or 0 quanta for a code."""
-    return (code & 1) - (code >> 1)
+    """The quanta of a code: -2 .. +1."""
+    return code - 4 if code & 2 else code
 
 
 class JerkFilter(CycleModel):
@@ -79,10 +80,14 @@ class JerkFilter(CycleModel):
     delay line of 2^MW entries (c_delayed = the code written 2^J ticks ago);
     `count` (entries written since the last restart, saturating at 2^MW)
     masks entries older than the restart.  jerk_shift is latched into `shift`
-    only while empty; a new value restarts the line.
+    only while empty; a new value restarts the line.  A `down` without `block`
+    (the last drop of a stop, inside a block) is `pending` until the block's
+    end; meanwhile the filter books A << shift per clock into `owed` and pays
+    it back from F: sum = F - min(owed, F).
     """
 
-    watch = {"sum": False, "empty": False, "shift": False, "delta": True, "total": False}
+    watch = {"sum": False, "empty": False, "shift": False, "delta": True, "total": False,
+             "owed": False, "pending": False}
 
     def __init__(self, feed_w: int = 16, mw: int = 6):
         self.feed_w, self.mw = feed_w, mw
@@ -94,17 +99,23 @@ class JerkFilter(CycleModel):
     def reset(self, jerk_shift: int = 0) -> None:
         self.delta = self.total = 0       # D (signed) and F
         self.count = self.wp = self.q = self.c_last = 0
+        self.pending = self.owed = 0
         self.shift = min(jerk_shift, self.mw)
         self.inputs: Mapping[str, int] = {}
 
     # combinational outputs on the current state and inputs
     @property
     def empty(self) -> int:
-        return int(self.total == 0 and self.delta == 0 and self.inputs.get("speed", 0) == 0)
+        return int(self.total == 0 and self.delta == 0 and self.inputs.get("speed", 0) == 0
+                   and self.owed == 0 and not self.pending)
+
+    @property
+    def pay(self) -> int:
+        return 0 if self.shift == 0 else min(self.owed, self.total)
 
     @property
     def sum(self) -> int:
-        return self.inputs.get("speed", 0) if self.shift == 0 else self.total
+        return self.inputs.get("speed", 0) if self.shift == 0 else self.total - self.pay
 
     def set_inputs(self, inputs: Mapping[str, int]) -> None:
         """Show combinational outputs for these inputs before the edge."""
@@ -119,8 +130,11 @@ class JerkFilter(CycleModel):
         m = 1 << self.shift
         empty = self.empty
         a = i["speed_quantum"]
+        pay, accrue = self.pay, (a << self.shift if self.pending and self.shift else 0)
+        c_now = code_of(i["up"], i["down"], self.pending)
+        self.owed += accrue - pay
+        self.pending = int(not i["block"] and bool(self.pending or i["down"]))
         if i["block"]:
-            c_now = code_of(i["up"], i["down"])
             if m == 1:
                 c_del = self.c_last if self.count >= 1 else 0
             else:

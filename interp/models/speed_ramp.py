@@ -112,10 +112,11 @@ class SpeedRamp(CycleModel):
     Inputs per clock (dict): rst, next_valid, next_barrier, next_feed, next_limit,
     next_exit, next_rate, next_length, next_budget, barrier_done, speed_quantum,
     block_shift, override, hold.  Outputs: speed, up, down, block, moving,
-    stopped, next_pop, late (and the state the bench compares).
+    segment, stopped, next_pop, late (and the state the bench compares).
     """
 
     watch = {"speed": False, "up": False, "down": False, "block": False, "moving": False,
+             "segment": False,
              "stopped": False, "next_pop": False, "late": False, "n": False,
              "remaining": True, "budget_x": True, "known": False}
 
@@ -127,6 +128,7 @@ class SpeedRamp(CycleModel):
         self.mul_p = ShiftMult(nw)
         self.mul_f = ShiftMult(nw)
         self.mul_fo = ShiftMult(8)
+        self.mul_fn = ShiftMult(8)
         self.reset()
 
     def reset(self) -> None:
@@ -138,11 +140,13 @@ class SpeedRamp(CycleModel):
         self.n_sh = self.p_sh = self.f_pre = 0
         self.ref_count = self.ref_r = self.ref_d = self.ref_m = 0
         self.fo = self.fo_valid = self.fo_ok = 0
+        self.fo_next = self.fn_valid = self.fn_ok = 0
         self.bar_count = 0
         self.up = self.down = self.next_pop = self.late = self.hold_q = 0
         self.mul_p.reset()
         self.mul_f.reset()
         self.mul_fo.reset()
+        self.mul_fn.reset()
 
     # registered outputs
     @property
@@ -152,6 +156,10 @@ class SpeedRamp(CycleModel):
     @property
     def speed(self) -> int:
         return self.v
+
+    @property
+    def segment(self) -> int:
+        return self.seg
 
     @property
     def moving(self) -> int:
@@ -252,6 +260,7 @@ class SpeedRamp(CycleModel):
         exit_n, f_sq_n = self.exit, self.f_sq
         rem_n, zx_n = rem1 if self.seg else self.remaining, zx1
         ref_start = 0
+        load_r = 0
         if cross:
             if exit_t == 0:                           # the final drop: the segment ends at rest
                 late = int(n > 1)
@@ -276,7 +285,12 @@ class SpeedRamp(CycleModel):
             rate_n, feed_n, limit_n = n_rate, g("next_feed", 0), g("next_limit", 0)
             exit_n, f_sq_n = n_exit, self.f_pre
             rem_n = self.remaining + g("next_length", 0)
-            zx_n = (g("next_budget", 0) << bs) - 2 * n_rate
+            # the carry c = S <= 0 is charged as K quanta-clocks (K = 1 if c > -A, else
+            # 2^NW - 1) and 2 p' floor((K A + c) / A) given back by the refinement
+            small = self.remaining + a_q > 0
+            k_charge = 2 * n_rate if small else (n_rate << (self.nw + 1)) - 2 * n_rate
+            load_r = self.remaining + (a_q if small else (a_q << self.nw) - a_q)
+            zx_n = (g("next_budget", 0) << bs) - k_charge
             p_d = 0
         bar_pop = int(bool(bar_head and not self.seg and n == 0
                            and (self.bar_count or g("barrier_done", 0))))
@@ -289,10 +303,13 @@ class SpeedRamp(CycleModel):
             self.n_sh = n
         start_fo = not self.mul_fo.busy
         fo_done, fo_prod = self.mul_fo.done, self.mul_fo.product
+        start_fn = not self.mul_fn.busy
+        fn_done, fn_prod = self.mul_fn.done, self.mul_fn.product
         p_done = self.mul_p.done
         self.mul_p.clock(pre_start, n_rate, n)
         self.mul_f.clock(pre_start, fx + 1, fx)
         self.mul_fo.clock(start_fo, self.feed, ovr)
+        self.mul_fn.clock(start_fn, g("next_feed", 0), ovr)
         if pop:
             self.pre = IDLE
         elif pre_start:
@@ -304,20 +321,31 @@ class SpeedRamp(CycleModel):
             gap = max(-2, min(2, n_d - self.n_sh))
             self.n_sh += gap
             self.p_sh += gap * n_rate
-        # feed * override for the cap, recomputed all the time
+        # feed * override for the cap, recomputed all the time, for the segment and
+        # for the head (taken over at the switch)
         if switch or load:
-            self.fo_valid = self.fo_ok = 0
+            self.fo, self.fo_valid, self.fo_ok = self.fo_next, self.fn_valid, 0
         else:
             if fo_done and self.fo_ok:
                 self.fo, self.fo_valid = fo_prod, 1
             if start_fo:
                 self.fo_ok = 1
+        if pop:
+            self.fn_valid = self.fn_ok = 0
+        else:
+            if fn_done and self.fn_ok:
+                self.fo_next, self.fn_valid = fn_prod, 1
+            if start_fn:
+                self.fn_ok = int(bool(move_head))
 
         # refinement of the carried budget: + 2 p' floor(S / A), MSB first
         if ref_start and n:
             self.ref_r, self.ref_d = self.remaining, a_q << (self.nw - 1)
             self.ref_m, self.ref_count = n_rate << self.nw, self.nw
-        elif cross or load:
+        elif load:
+            self.ref_r, self.ref_d = max(load_r, 0), a_q << (self.nw - 1)
+            self.ref_m, self.ref_count = n_rate << self.nw, self.nw
+        elif cross:
             self.ref_count = 0
         elif self.ref_count:
             if ref_hit:
@@ -396,11 +424,14 @@ def run_profile(segments: list[Segment], *, widths: Mapping[str, int] | None = N
     return drive(model, profile_stimulus(segments, **options))
 
 
-def plan_exits(segments: list[Segment], quantum: int, pf: int) -> list[Segment]:
+def plan_exits(segments: list[Segment], quantum: int, pf: int,
+               underrun_safe: bool = False) -> list[Segment]:
     """A reference backward pass (the host's job, here for tests): each segment's
     exit speed in quanta is the highest n <= both cruise speeds from which the rest
     of the queue can still be stopped, n^2 + 3 n <= Z0' / 2^PF + f' (f' + 1)
-    (R(n, u) <= n^2 + n - f^2 - f + 2 n), the last exit 0.  Barriers stop."""
+    (R(n, u) <= n^2 + n - f^2 - f + 2 n), the last exit 0.  Barriers stop.
+    `underrun_safe`: f' = 1, every segment can stop within itself (a queue that runs
+    dry, or a successor set up late, still ends in a braked stop)."""
     out = list(segments)
     nxt_floor_sq = 0
     for i in range(len(out) - 1, -1, -1):
@@ -412,7 +443,7 @@ def plan_exits(segments: list[Segment], quantum: int, pf: int) -> list[Segment]:
             exit_n = 0
         else:
             nxt = out[i + 1]
-            room = (nxt.budget >> pf) + nxt_floor_sq
+            room = (nxt.budget >> pf) + (2 if underrun_safe else nxt_floor_sq)
             n = max(0, int((room) ** 0.5))
             while n > 0 and n * n + 3 * n > room:
                 n -= 1
@@ -427,7 +458,8 @@ def plan_exits(segments: list[Segment], quantum: int, pf: int) -> list[Segment]:
 def random_segments(rng, *, count: int, quantum: int, pf: int, block_shift: int,
                     feed_w: int, len_w: int, barriers: float = 0.0,
                     max_length: int | None = None, min_clocks: int = 0,
-                    max_quanta: int = 200) -> list[Segment]:
+                    max_quanta: int = 200, min_quanta: int = 1,
+                    underrun_safe: bool = False) -> list[Segment]:
     """Random moves (cruise 1 .. max_quanta quanta, rates 1/8 .. 1, lengths up to
     `max_length`, at least `min_clocks` clocks at the limit speed) with planned
     exits, and barriers with probability `barriers`."""
@@ -437,10 +469,10 @@ def random_segments(rng, *, count: int, quantum: int, pf: int, block_shift: int,
         if segs and rng.random() < barriers:
             segs.append(Segment(barrier=True))
             continue
-        feed = min(rng.randint(1, max_quanta) * quantum + rng.randrange(quantum), (1 << feed_w) - 1)
+        feed = min(rng.randint(min_quanta, max_quanta) * quantum + rng.randrange(quantum), (1 << feed_w) - 1)
         limit = min(feed + rng.randrange(feed + 1), (1 << feed_w) - 1)
         rate = rng.randint(max(1, (1 << pf) // 8), 1 << pf)
         length = rng.randint(min_clocks * limit + 1, max(max_length, min_clocks * limit + 1))
         segs.append(Segment(feed, limit, 0, rate, length,
                             segment_budget(rate, length, quantum, block_shift)))
-    return plan_exits(segs, quantum, pf)
+    return plan_exits(segs, quantum, pf, underrun_safe)

@@ -14,12 +14,15 @@ def trapezoid(top, cruise):
     return [1] * top + [0] * cruise + [-1] * top
 
 
-def ramp(rng, quantum, jerk_shift, block_shift, blocks, top=None, phase=None, lead=0, plan=None):
+def ramp(rng, quantum, jerk_shift, block_shift, blocks, top=None, phase=None, lead=0, plan=None,
+         late=None):
     """Inputs of a virtual trapezoid (random climbs, cruises, descents) ending at speed 0.
 
     Strobes come with the block ticks (every 2^block_shift clocks, at `phase`);
     the speed changes at the end of the strobe's clock (the ramp's contract).
-    `lead` idle clocks first.  Long enough for the filter to empty afterwards.
+    `lead` idle clocks first.  `late`: after the plan, the last drop (1 -> 0) comes
+    `late` clocks after a tick, inside a block, as a stop's end may.  Long enough
+    for the filter to empty afterwards.
     """
     size = 1 << block_shift
     phase = rng.randrange(size) if phase is None else phase
@@ -36,7 +39,9 @@ def ramp(rng, quantum, jerk_shift, block_shift, blocks, top=None, phase=None, le
     while quiet < ((1 << jerk_shift) + 2) * size + lead:
         tick = t % size == phase and t >= lead
         up = down = 0
-        if tick:
+        if late is not None and k >= len(plan) and n == 1:
+            down = int(t >= lead and t % size == (phase + late) % size)
+        elif tick:
             if k < len(plan):
                 want = plan[k]
                 up = int(want > 0 and n < top)
@@ -112,6 +117,29 @@ async def moving_sum_random(dut):
 
 
 @cocotb.test()
+async def drop_inside_a_block(dut):
+    """Stops whose last drop comes inside a block: the filter keeps the speed to the
+    block's end, books the extra as a debt and pays it back; distance exact, empty."""
+    rng = seeded_rng(dut, "drop_inside_a_block")
+    tb = await FilterTB(dut).start(0)
+    for jerk_shift in (0, 1, rng.randint(2, tb.mw)):
+        for block_shift in (1, rng.randint(2, 4)):
+            size = 1 << block_shift
+            late = rng.randint(1, size - 1)
+            ups = rng.randint(1, 6)           # ends at 1 quantum or more: the late drop happens
+            plan = [1] * ups + [0] * rng.randint(0, 9) + [-1] * rng.randint(0, ups - 1)
+            inputs = ramp(rng, rng.randint(1, 500), jerk_shift, block_shift, 0, lead=2,
+                          plan=plan, late=late)
+            context = f"late drop J {jerk_shift} block_shift {block_shift} late {late}"
+            samples = await tb.run(inputs, context=context)
+            speeds = [i["speed"] for i in inputs]
+            assert sum(s["sum"] for s in samples[1:]) == (1 << jerk_shift) * sum(speeds), \
+                f"{context}: distance not preserved"
+            assert max(s["owed"] for s in samples) > 0 or jerk_shift == 0, f"{context}: no debt booked"
+            assert samples[-1]["empty"] and samples[-1]["owed"] == 0, f"{context}: not empty at the end"
+
+
+@cocotb.test()
 async def full_speed_and_quantum(dut):
     """The widest words: speed near 2^FEED_W - 1 at the deepest shift (no overflow of F)."""
     rng = seeded_rng(dut, "full_speed_and_quantum")
@@ -172,4 +200,5 @@ def test_jerk_filter_wide(sim):
     from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="jerk_filter", test_module="test_jerk_filter", sim=sim,
                parameters={"FEED_W": 50, "MW": 12, "SUM_W": 62}, name="jerk_filter_wide",
-               testcase=["trapezoid_is_the_speed", "full_speed_and_quantum", "shift_changes_only_when_empty"])
+               testcase=["trapezoid_is_the_speed", "full_speed_and_quantum", "shift_changes_only_when_empty",
+                         "drop_inside_a_block"])

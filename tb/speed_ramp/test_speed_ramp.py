@@ -122,6 +122,20 @@ async def hold_and_override(dut):
                        (rng.randrange(1500, 2000), "override", 100)])
     samples = await t.run(segs, "hold/override", quantum=quantum, controls=controls)
     assert any(s["stopped"] for s in samples) or samples[-1]["n"] == 0
+    # a hold at cruise: stopped within v0^2 / (2 a) + v0 (1 / (2 p) + 2) + v0 (bs = 0)
+    rate = 1 << t.w["PF"]
+    seg = t.seg(100 * quantum, 100 * quantum * 3000, quantum=quantum, rate=rate // 2)
+    at = 800
+    samples = await t.run([seg], "hold at cruise", quantum=quantum,
+                          controls=[(at, "hold", 1), (at + 1500, "resume", 0)])
+    h = at                                   # the first clock with hold high
+    v0 = samples[h]["speed"]
+    stop = next(i for i in range(h, len(samples)) if samples[i]["stopped"])
+    travel = sum(s["speed"] for s in samples[h:stop])
+    p, a = 0.5, 0.5 * quantum
+    assert v0 == 100 * quantum and travel <= v0 * v0 / (2 * a) + v0 * (1 / (2 * p) + 2) + v0, travel
+    dut._log.info("hold at v0 = %d: %d path units to stopped, v0^2/2a = %.0f", v0, travel,
+                  v0 * v0 / (2 * a))
 
 
 @cocotb.test()

@@ -30,28 +30,39 @@
 // Compile-time settings (harness_config.h, written by interp/simulation/native/build.py): MT_W,
 // MT_FEED_W, MT_POS_W, MT_TW (parameter widths, each <= 64), MT_NW, MT_PF, MT_LEN_W,
 // MT_ZW (the profile fields' widths; length and budget any width), HAS_PLANE,
-// HAS_EVENTS (the ports exist), TRACE (VCD support), QUIET_SKIP with MT_AW
-// (feed_rate's accumulator u_feed.acc and feed_q are in the model, <= 64
-// bits) and, when found, MT_SINCE_W, MT_COUNT_W (step_dir's since_fall and
-// count) and MT_DWELL_W (motion_top's dwell_q).
+// HAS_EVENTS (the ports exist), TRACE (VCD support), QUIET_SKIP (the members below
+// were found in Verilator's model, each <= 64 bits): MT_ACC_W (speed_ramp's DDA phase
+// acc), MT_WA_W (jerk_filter's write_address), MT_SINCE_W, MT_COUNT_W (step_dir's
+// since_fall and count), MT_DWELL_W (motion_top's dwell_q).
 //
-// Quiet stretches (QUIET_SKIP; off with --exact 1 or --vcd): at a low feed the
-// drive waits thousands of cycles between steps, and in those cycles only
-// counters change.  When, some cycles after the last step, push, error or
-// event, every member of Verilator's model (root object) is bit-identical to
-// its value 6 cycles before (PERIOD: with the step buffer empty the STOP logic
-// cycles through 3 states) except these counters, and each of them moved as its
-// rule says every cycle, the following periods are the same up to the first cycle in which
-// a counter reaches the value the RTL acts on; the harness moves the counters
-// on to a cycle before that and counts the cycles in between.  The rules (the
-// RTL as it is; a change there needs a change here, and the tests compare
-// with --exact and with Icarus):
-//   feed_rate acc     grows by feed_q while negative (tick low), else holds;
-//                     read only through its sign (tick): stop before it turns >= 0
+// Quiet stretches (QUIET_SKIP; off with --exact 1 or --vcd): a long dwell, or a hold
+// that has stopped the machine, runs millions of cycles in which only counters
+// change.  Skipped ONLY while the path is at rest: speed 0, the ramp's n = 0 and no
+// segment in progress, the S-curve filter's sum and difference 0 (so no code left in
+// its delay line will change it: it is empty), the pacer then gets 0 every clock.
+// (Stretches between steps at a low speed are not skipped: the ramp's remaining
+// distance, budget and the pacer's phase are wider than 64 bits at the CLI build.)
+// When, some cycles after the last step, push, error, event or control, every member
+// of Verilator's model (root object) is bit-identical to its value PERIOD cycles
+// before (PERIOD = 18 << block_shift: the STOP logic of an empty step buffer cycles
+// through 3 states, the ramp's override product is recomputed every 9 clocks, its
+// block counter every 2^block_shift) except these counters, and each moved as its rule
+// says, the following periods are the same up to the first cycle in which a counter
+// reaches the value the RTL acts on; the harness moves the counters on to a cycle
+// before that and counts the cycles in between.  The rules (the RTL as it is; a change
+// there needs a change here, and the tests compare with --exact and with Icarus):
+//   speed_ramp acc      += rate per block, modulo 2^PF; at rest (n = 0, no segment,
+//                       p n = 0) its overflow changes nothing
+//   jerk_filter write_address  +1 per block, modulo 2^MW; the filter empty, every code
+//                       read and written is 0
+//                       (these two are not moved: values Verilator derives from them are
+//                       members too, so a jump is a whole number of the periods after which
+//                       both are back: 2^PF / gcd(their step a period, 2^PF) periods; with
+//                       the rate a multiple of 2^PF / 2 that is one, else it can be long)
 //   step_dir since_fall  +1 per cycle, saturating; read through `held`
-//                     (since_fall + 1 >= hold) and saturation: stop before held
-//   step_dir count    -1 per cycle in SETUP/PULSE; acts at 1: stop before
-//   motion_top dwell_q   -1 per cycle in DWELL; acts at 0: stop before
+//                       (since_fall + 1 >= hold) and saturation: stop before held
+//   step_dir count      -1 per cycle in SETUP/PULSE; acts at 1: stop before
+//   motion_top dwell_q  -1 per cycle in DWELL; acts at 0: stop before
 // Same files, same results; the cycle each thing happens in is unchanged.
 #include <algorithm>
 #include <cerrno>
@@ -265,6 +276,19 @@ std::vector<Control> read_controls(const char* path) {
         controls.push_back(c);
     }
     return controls;
+}
+
+// Periods after which a counter modulo 2^bits that moves by `step` a period is back
+// (both are powers of two, so the larger of two such numbers is a multiple of the other).
+uint64_t cycle_of(uint64_t step, int bits) {
+    step &= mask(bits);
+    uint64_t n = 1;
+    while (step && bits > 0 && !(step & 1)) {
+        step >>= 1;
+        --bits;
+    }
+    if (step) n = bits >= 63 ? (1ULL << 62) : (1ULL << bits);
+    return n;
 }
 
 // Buffered writer for the steps CSV (millions of rows).
@@ -489,33 +513,24 @@ int main(int argc, char** argv) {
         }
     };
 #define MT_COUNTER(member, width) Counter{&root->member, sizeof root->member, width, 0}
-    Counter acc = MT_COUNTER(motion_top__DOT__u_feed__DOT__acc, MT_AW);
-#ifdef MT_SINCE_W
+    Counter acc = MT_COUNTER(motion_top__DOT__u_profile__DOT__u_ramp__DOT__acc, MT_ACC_W);
+    Counter wa = MT_COUNTER(motion_top__DOT__u_profile__DOT__u_jerk__DOT__write_address, MT_WA_W);
     Counter since = MT_COUNTER(motion_top__DOT__u_out__DOT__since_fall, MT_SINCE_W);
-#endif
-#ifdef MT_COUNT_W
     Counter count = MT_COUNTER(motion_top__DOT__u_out__DOT__count, MT_COUNT_W);
-#endif
-#ifdef MT_DWELL_W
     Counter dwell = MT_COUNTER(motion_top__DOT__dwell_q, MT_DWELL_W);
-#endif
-    Counter* counters[] = {&acc,
-#ifdef MT_SINCE_W
-                           &since,
-#endif
-#ifdef MT_COUNT_W
-                           &count,
-#endif
-#ifdef MT_DWELL_W
-                           &dwell,
-#endif
+    Counter* counters[] = {&acc, &wa, &since, &count, &dwell};
+    // at rest: what the rules of acc and write_address need
+    auto at_rest = [&] {
+        return top->speed == 0 && root->motion_top__DOT__u_profile__DOT__u_ramp__DOT__n == 0 &&
+               root->motion_top__DOT__u_profile__DOT__u_ramp__DOT__seg == 0 &&
+               root->motion_top__DOT__u_profile__DOT__u_ramp__DOT__p == 0 &&
+               root->motion_top__DOT__u_profile__DOT__u_jerk__DOT__total == 0 &&
+               root->motion_top__DOT__u_profile__DOT__u_jerk__DOT__delta == 0;
     };
-    // The state other than the counters may repeat with a period instead of standing
-    // still: with the step buffer empty (a dwell, the drain before an event) STOP and the
-    // ticks in flight cycle through 3 states.  PERIOD is a multiple of every such period;
-    // the snapshot is compared with the state PERIOD cycles later and jumps are whole periods.
-    constexpr uint64_t PERIOD = 6;
-    uint64_t calm = 0, check_at = 8, skipped = 0;
+    // PERIOD: a multiple of every period of the rest of the state (see the header)
+    const uint64_t PERIOD = 18ULL << settings[1];
+    const bool debug_skip = std::getenv("MT_SKIP_DEBUG") != nullptr;   // why a stretch is not skipped
+    uint64_t calm = 0, check_at = 8, skipped = 0, window = PERIOD;
 #else
     (void)exact;
     const uint64_t skipped = 0;
@@ -523,7 +538,9 @@ int main(int argc, char** argv) {
 
     for (;;) {
         // inputs for the next rising edge, from the last sample (clk is low)
+        bool control_now = false;
         while (next_control < controls.size() && controls[next_control].cycle <= cycle) {
+            control_now = true;
             const Control& c = controls[next_control++];
             if (c.kind == 2) {
                 top->MT_OVERRIDE = c.value;
@@ -579,62 +596,66 @@ int main(int argc, char** argv) {
         }
 #ifdef QUIET_SKIP
         if (skip) {
-            bool active = push || rise || top->error;
+            bool active = push || rise || top->error || control_now;
 #ifdef HAS_EVENTS
             active = active || top->event_valid;
 #endif
             if (active) {
                 calm = 0;
+                window = PERIOD;
             } else if (++calm == check_at) {
                 std::memcpy(snapshot.data(), root, sizeof *root);
                 for (Counter* c : counters) c->before = c->get();
-            } else if (calm == check_at + PERIOD) {
+            } else if (calm == check_at + PERIOD && window == PERIOD && at_rest()) {
+                // modular counters: Verilator keeps values derived from them (the ramp's acc_n,
+                // the filter's read address) as members computed after an edge, so they are
+                // not patched: the window and the jump are whole numbers of their periods
+                const uint64_t unit = PERIOD * std::max(cycle_of(acc.get() - acc.before, MT_ACC_W),
+                                                        cycle_of(wa.get() - wa.before, MT_WA_W));
+                if (unit > PERIOD && unit <= (PERIOD << 12)) window = unit;   // compare after `unit`
+                else if (unit > PERIOD) calm = 0, check_at = 8;              // too long: no skip
+            }
+            if (calm != 0 && calm == check_at + window) {
                 calm = 0;
+                const uint64_t span = window;
+                window = PERIOD;
                 // the largest number of cycles every counter allows (0: none)
-                uint64_t jump = max_cycles - cycle - 1;       // cycle < max_cycles here
-                const int64_t a = sign_extend(acc.get(), MT_AW), a0 = sign_extend(acc.before, MT_AW);
-                const uint64_t feed = root->motion_top__DOT__u_feed__DOT__feed_q;
-                if (a < 0 && a0 < 0 && (uint64_t(a - a0) & mask(MT_AW)) == ((PERIOD * feed) & mask(MT_AW))) {
-                    if (feed) jump = std::min(jump, (uint64_t(-a) + feed - 1) / feed - 1);
-                } else if (!(a >= 0 && a == a0)) {
-                    jump = 0;
-                }
-#ifdef MT_SINCE_W
+                uint64_t jump = at_rest() ? max_cycles - cycle - 1 : 0;       // cycle < max_cycles here
+                if (next_control < controls.size())
+                    jump = std::min(jump, controls[next_control].cycle > cycle ? controls[next_control].cycle - cycle - 1 : 0);
                 const uint64_t s_now = since.get(), s_top = mask(MT_SINCE_W);
-                if (s_now == s_top ? since.before != s_top : s_now != since.before + PERIOD) jump = 0;
+                if (s_now == s_top ? since.before != s_top : s_now != since.before + span) jump = 0;
                 const uint64_t hold_time = top->hold_time;
                 if (s_now != s_top && s_now + 1 < hold_time) jump = std::min(jump, hold_time - s_now - 2);
-#endif
-#ifdef MT_COUNT_W
                 const uint64_t c_now = count.get();
-                if (c_now + PERIOD == count.before) jump = c_now >= 2 ? std::min(jump, c_now - 2) : 0;
+                if (c_now + span == count.before) jump = c_now >= 2 ? std::min(jump, c_now - 2) : 0;
                 else if (c_now != count.before) jump = 0;
-#endif
-#ifdef MT_DWELL_W
                 const uint64_t d_now = dwell.get();
-                if (d_now + PERIOD == dwell.before) jump = d_now >= 1 ? std::min(jump, d_now - 1) : 0;
+                if (d_now + span == dwell.before) jump = d_now >= 1 ? std::min(jump, d_now - 1) : 0;
                 else if (d_now != dwell.before) jump = 0;
-#endif
-                jump -= jump % PERIOD;          // whole periods: the rest of the state repeats
+                if (acc.get() != acc.before || wa.get() != wa.before) jump = 0;
+                jump -= jump % span;            // whole windows: the rest of the state repeats
                 if (jump) {
                     for (Counter* c : counters) {
                         const uint64_t v = c->get();
                         std::memcpy(snapshot.data() + c->offset(root), &v, c->size);
                     }
-                    if (std::memcmp(snapshot.data(), root, sizeof *root) != 0) jump = 0;
+                    if (std::memcmp(snapshot.data(), root, sizeof *root) != 0) {
+                        if (debug_skip) {
+                            const unsigned char* now = reinterpret_cast<const unsigned char*>(root);
+                            for (size_t k = 0; k < sizeof *root; ++k)
+                                if (snapshot[k] != now[k]) std::fprintf(stderr, "skip: cycle %" PRIu64 " byte %zu differs\n", cycle, k);
+                        }
+                        jump = 0;
+                    }
+                } else if (debug_skip) {
+                    std::fprintf(stderr, "skip: cycle %" PRIu64 " rest %d\n", cycle, int(at_rest()));
                 }
                 if (jump) {
                     const uint64_t before = cycle;
-                    if (a < 0) acc.set(uint64_t(a + int64_t(jump * feed)) & mask(MT_AW));
-#ifdef MT_SINCE_W
                     if (s_now != s_top) since.set(jump >= s_top - s_now ? s_top : s_now + jump);
-#endif
-#ifdef MT_COUNT_W
-                    if (c_now + PERIOD == count.before) count.set(c_now - jump);
-#endif
-#ifdef MT_DWELL_W
-                    if (d_now + PERIOD == dwell.before) dwell.set(d_now - jump);
-#endif
+                    if (c_now + span == count.before) count.set(c_now - jump);
+                    if (d_now + span == dwell.before) dwell.set(d_now - jump);
                     cycle += jump;
                     skipped += jump;
                     if ((before >> progress_log2) != (cycle >> progress_log2)) {
