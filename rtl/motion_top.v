@@ -1,17 +1,19 @@
 // SPDX-License-Identifier: Apache-2.0
 `default_nettype none
-// Motion subsystem: segment queue -> interpolator cores ->
+// Motion subsystem: command queues -> interpolator cores ->
 // synchronization buffer -> speed-setting block -> step/dir output stage.
-//   segment queue ........... sync_fifo u_queue (commands, QDEPTH entries)
+//   geometry queue .......... sync_fifo u_queue (commands, QDEPTH entries)
 //   line, 2 or 3 axes ....... line_pair u_lines: two lin_exact sharing the leading
 //                             axis: core A makes (lead, minor 1), core B (lead,
 //                             minor 2); both get every tick, so each lead step is one tick
 //   circular arc, helix ..... arc_plane u_arc: circ_arc in the plane's (u, v), the
 //                             helix axis w by line core A (lead N, minor cmd_z)
 //   curve ................... curve_tangent (the paper's tangent method)
-//   synchronization buffer .. step_sync u_sync (lecture: 2 D flip-flops per axis, STOP)
-//   speed-setting block ..... feed_rate u_feed (lecture: Δt, x1.41 / x1.73 after
-//                             steps on 2 / 3 axes)
+//   synchronization buffer .. step_sync u_sync (lecture: 2 D flip-flops per axis, STOP);
+//                             each step carries its command's cost
+//   speed-setting block ..... path_profile u_profile (lecture: "БЗС"): the profile
+//                             queue, speed_ramp (acceleration, braking, hold, override),
+//                             jerk_filter (S-curve), step_pacer (releases the steps)
 //   output stage ............ step_dir u_out (pulse width, dir setup and hold)
 //
 // Commands (pushed with cmd_valid; fields signed W bits, relative to the
@@ -24,25 +26,40 @@
 //                  the host's count of the arc's steps (see arc_plane.v)
 //   kind 3 CURVE   curve_tangent with ΔX = cmd_x + cmd_i·x + cmd_j·y,
 //                  ΔY = cmd_y + cmd_k·x + cmd_l·y (x, y from the start), cmd_z steps
-//   kind 4 DWELL   wait until the drive has stopped, then cmd_x clock cycles (unsigned)
-//   kind 5 EVENT   wait until the drive has stopped, then event_valid for one cycle
-//                  with event_code = cmd_x[7:0], event_value = cmd_y
+//   kind 4 DWELL   wait until the speed is 0 and the drive has stopped, then cmd_x
+//                  clock cycles (unsigned)
+//   kind 5 EVENT   wait until the speed is 0 and the drive has stopped, then
+//                  event_valid for one cycle with event_code = cmd_x[7:0], event_value = cmd_y
 //   kind 6, 7      illegal
-// cmd_feed: path speed, steps per clock x 2^FRAC (ignored by DWELL and EVENT).
-// Bad commands are dropped with `error` (one-cycle strobe) and `error_code`
-// (held until the next error or rst); the queue behind them runs on:
-//   1 unknown kind, 2 feed 0, 3 a line coordinate = -2^(W-1), 4 the arc or
-//   curve core refused the command (e.g. an inconsistent centre),
-//   5 queue overflow (cmd_valid while cmd_full: the new command is refused,
-//   the queue is kept), 6 step buffer overflow (never happens; a monitor),
-//   7 an arc in plane 3.
-// `hold` (feed hold) stops steps from leaving; the cores fill the buffer and
-// stop.  pos_x/y/z count the pulses at the drive (rising edges of step_*).
+// The profile of a move (speeds in path units per clock, 2^FRAC = one axial step):
+//   cmd_feed cruise speed, cmd_limit ceiling for override > 100 % (>= cmd_feed),
+//   cmd_exit exit speed in quanta of speed_quantum, cmd_rate acceleration p * 2^PF
+//   (1 .. 2^PF), cmd_cost path units per step (0: the lecture's 1, sqrt 2, sqrt 3 x
+//   2^FRAC), cmd_length the exact sum of the step costs (> 0), cmd_budget the braking
+//   budget floor(2 rate length / (2^block_shift A)).  DWELL and EVENT ignore them and
+//   enter the profile queue as barriers.
+// Every check that can be made is made when the command is pushed: a refused command
+// never enters a queue; `error` (one-cycle strobe, the cycle after the push) and
+// `error_code` (held until the next error or rst):
+//   1 unknown kind, 2 feed 0, 3 a line coordinate = -2^(W-1), 5 queue full
+//   (cmd_valid while cmd_full), 7 an arc in plane 3, 8 bad profile (rate 0 or
+//   > 2^PF, length 0, limit < feed).
+// At run time: 4 the arc or curve core refused its command (e.g. an inconsistent
+// centre): a FAULT, both queues are flushed, the speed block stops, and every later
+// push is refused with 4 until rst; 6 step buffer overflow (never happens; a monitor).
+// `hold` (feed hold) decelerates the path to speed 0 (`stopped`) and resumes on
+// release; no step is lost.  pos_x/y/z count the pulses at the drive (rising edges
+// of step_*).
 module motion_top #(
     parameter integer W      = 16,  // command field width, signed (>= 6)
-    parameter integer FEED_W = 16,  // feed word width (>= 1)
-    parameter integer FRAC   = 16,  // feed fraction bits: feed 2^FRAC = 1 step per clock (1 .. 64)
-    parameter integer QDEPTH = 4,   // commands the queue holds (>= 1)
+    parameter integer FEED_W = 16,  // speed word width, path units per clock (>= 2)
+    parameter integer FRAC   = 16,  // fraction bits: an axial step is 2^FRAC path units (1 .. 64)
+    parameter integer NW     = 16,  // speed in quanta, width (1 .. FEED_W)
+    parameter integer PF     = 12,  // rate fraction bits: cmd_rate 2^PF = a quantum per block (>= 1)
+    parameter integer LEN_W  = 34,  // segment length width, path units (>= FEED_W)
+    parameter integer ZW     = 48,  // braking budget width (>= LEN_W)
+    parameter integer MW     = 6,   // S-curve filter depth 2^MW blocks (2 .. 15)
+    parameter integer QDEPTH = 4,   // commands the queues hold (>= 1)
     parameter integer QLW    = 3,   // width of queue_level (2^QLW > QDEPTH)
     parameter integer SDEPTH = 2,   // steps the synchronization buffer holds (>= 2)
     parameter integer TW     = 8,   // width of the timing registers of the output stage
@@ -62,10 +79,22 @@ module motion_top #(
     input  wire [W-1:0]      cmd_j,
     input  wire [W-1:0]      cmd_k,
     input  wire [W-1:0]      cmd_l,
+    input  wire [FEED_W-1:0] cmd_limit,
+    input  wire [NW-1:0]     cmd_exit,
+    input  wire [PF:0]       cmd_rate,
+    input  wire [FEED_W-1:0] cmd_cost,
+    input  wire [LEN_W-1:0]  cmd_length,
+    input  wire [ZW-1:0]     cmd_budget,
     output wire              cmd_full,
-    output wire [QLW-1:0]    queue_level,
+    output wire [QLW-1:0]    queue_level,   // entries of the geometry queue
     // machine
-    input  wire              hold,          // feed hold: no step leaves
+    input  wire [FEED_W-1:0] speed_quantum, // A: path units per clock per quantum (constant while busy)
+    input  wire [3:0]        block_shift,   // a block is 2^block_shift clocks
+    input  wire [3:0]        jerk_shift,    // S-curve: 2^jerk_shift blocks (0 .. MW; 0 trapezoid)
+    /* verilator lint_off SYMRSVDWORD */   // `override` is a C++ word, not a Verilog one
+    input  wire [7:0]        override,      // percent of cmd_feed, 1 .. 200 (clamped)
+    /* verilator lint_on SYMRSVDWORD */
+    input  wire              hold,          // feed hold: decelerate to 0, resume on release
     input  wire [TW-1:0]     pulse_width,   // output stage timing, clock cycles
     input  wire [TW-1:0]     setup,
     input  wire [TW-1:0]     hold_time,
@@ -78,18 +107,25 @@ module motion_top #(
     output reg  [POS_W-1:0]  pos_x,         // signed absolute position, steps
     output reg  [POS_W-1:0]  pos_y,
     output reg  [POS_W-1:0]  pos_z,
+    output wire [FEED_W-1:0] speed,         // virtual path speed v, path units per clock
+    output wire              stopped,       // hold has brought the speed to 0
     output wire              busy,          // a command queued or running, or a step not yet out
     output reg               done,          // one-cycle strobe when busy falls
     output reg               error,         // one-cycle strobe: a command was refused
-    output reg  [2:0]        error_code,
+    output reg  [3:0]        error_code,
     output reg               event_valid,   // one-cycle strobe: an EVENT command's turn
     output reg  [7:0]        event_code,    // (both change when an EVENT is accepted)
     output reg  [W-1:0]      event_value
 );
     initial begin
         if (W < 6) $error("%m: W must be at least 6");
-        if (FEED_W < 1) $error("%m: FEED_W must be at least 1");
+        if (FEED_W < 2) $error("%m: FEED_W must be at least 2");
         if (FRAC < 1 || FRAC > 64) $error("%m: FRAC must be 1 .. 64");
+        if (NW < 1 || NW > FEED_W) $error("%m: NW must be 1 .. FEED_W");
+        if (PF < 1) $error("%m: PF must be at least 1");
+        if (LEN_W < FEED_W) $error("%m: LEN_W must be at least FEED_W");
+        if (ZW < LEN_W) $error("%m: ZW must be at least LEN_W");
+        if (MW < 2 || MW > 15) $error("%m: MW must be 2 .. 15");
         if (QDEPTH < 1 || (1 << QLW) <= QDEPTH) $error("%m: need QDEPTH >= 1 and 2^QLW > QDEPTH");
         if (SDEPTH < 2) $error("%m: SDEPTH must be at least 2");
         if (TW < 1) $error("%m: TW must be at least 1");
@@ -98,49 +134,60 @@ module motion_top #(
 
     localparam [2:0] K_LINE = 3'd0, K_ARC_CW = 3'd1, K_ARC_CCW = 3'd2, K_CURVE = 3'd3, K_DWELL = 3'd4,
                      K_EVENT = 3'd5;
-    localparam [2:0] E_KIND = 3'd1, E_FEED = 3'd2, E_RANGE = 3'd3, E_CORE = 3'd4,
-                     E_QUEUE = 3'd5, E_SYNC = 3'd6, E_PLANE = 3'd7;
+    localparam [3:0] E_KIND = 4'd1, E_FEED = 4'd2, E_RANGE = 4'd3, E_CORE = 4'd4,
+                     E_QUEUE = 4'd5, E_SYNC = 4'd6, E_PLANE = 4'd7, E_PROFILE = 4'd8;
     localparam [2:0] S_IDLE = 3'd0, S_LINE = 3'd1, S_ARC = 3'd2, S_CURVE = 3'd3,
-                     S_DRAIN = 3'd4, S_DWELL = 3'd5, S_EVENT = 3'd6;
+                     S_DRAIN = 3'd4, S_DWELL = 3'd5, S_EVENT = 3'd6, S_FAULT = 3'd7;
     localparam integer CMD_W = 5 + FEED_W + 7 * W;
     localparam integer SLW = 4;             // step buffer level width
     localparam integer CPW = W + 8;         // curve projection width
 
-    // ---------------- segment queue ----------------
+    reg  [2:0] state;
+    wire       fault = state == S_FAULT;
+    wire       flush = rst | fault;         // a fault empties the queues and stops the speed block
+
+    // ---------------- checks at the push ----------------
+    wire [W-1:0] min_w = {1'b1, {(W-1){1'b0}}};
+    wire [PF:0]  rate_top = {1'b1, {PF{1'b0}}};
+    wire p_move    = cmd_kind <= K_CURVE;
+    wire p_arc     = cmd_kind == K_ARC_CW || cmd_kind == K_ARC_CCW;
+    wire bad_kind  = cmd_kind > K_EVENT;
+    wire bad_feed  = p_move && cmd_feed == {FEED_W{1'b0}};
+    wire bad_range = cmd_kind == K_LINE && (cmd_x == min_w || cmd_y == min_w || cmd_z == min_w);
+    wire bad_plane = p_arc && cmd_plane == 2'd3;
+    wire bad_profile = p_move && (cmd_rate == {(PF+1){1'b0}} || cmd_rate > rate_top ||
+                                  cmd_length == {LEN_W{1'b0}} || cmd_limit < cmd_feed);
+    wire bad_cmd   = bad_kind | bad_feed | bad_range | bad_plane | bad_profile;
+    wire geo_full, prof_full;
+    assign cmd_full = geo_full | prof_full;
+    wire push = cmd_valid & ~fault & ~bad_cmd & ~cmd_full;
+
+    // ---------------- geometry queue ----------------
     wire [CMD_W-1:0] head;
-    wire             q_valid, q_overflow, q_pop;
+    wire             q_valid, q_pop, unused_overflow;
     sync_fifo #(.WIDTH(CMD_W), .DEPTH(QDEPTH), .LW(QLW)) u_queue (
-        .clk(clk), .rst(rst), .push(cmd_valid),
-        .din({cmd_kind, cmd_plane, cmd_feed, cmd_x, cmd_y, cmd_z, cmd_i, cmd_j, cmd_k, cmd_l}),
-        .pop(q_pop), .dout(head), .valid(q_valid), .full(cmd_full), .level(queue_level),
-        .overflow(q_overflow)
+        .clk(clk), .rst(flush), .push(push),
+        .din({cmd_kind, cmd_plane, cmd_cost, cmd_x, cmd_y, cmd_z, cmd_i, cmd_j, cmd_k, cmd_l}),
+        .pop(q_pop), .dout(head), .valid(q_valid), .full(geo_full), .level(queue_level),
+        .overflow(unused_overflow)
     );
     wire [2:0]        h_kind;
     wire [1:0]        h_plane;
-    wire [FEED_W-1:0] h_feed;
+    wire [FEED_W-1:0] h_cost;
     wire [W-1:0]      h_x, h_y, h_z, h_i, h_j, h_k, h_l;
-    assign {h_kind, h_plane, h_feed, h_x, h_y, h_z, h_i, h_j, h_k, h_l} = head;
+    assign {h_kind, h_plane, h_cost, h_x, h_y, h_z, h_i, h_j, h_k, h_l} = head;
 
     // ---------------- dispatcher ----------------
-    reg  [2:0] state;
-    reg  [FEED_W-1:0] feed_q;
+    reg  [FEED_W-1:0] cost_q;
     reg  [W-1:0] dwell_q;
 
-    wire [W-1:0] min_w = {1'b1, {(W-1){1'b0}}};
-
     wire idle      = state == S_IDLE;
-    wire is_move   = h_kind == K_LINE || h_kind == K_ARC_CW || h_kind == K_ARC_CCW || h_kind == K_CURVE;
     wire is_arc    = h_kind == K_ARC_CW || h_kind == K_ARC_CCW;
-    wire bad_kind  = h_kind > K_EVENT;
-    wire bad_feed  = is_move && h_feed == {FEED_W{1'b0}};
-    wire bad_range = h_kind == K_LINE && (h_x == min_w || h_y == min_w || h_z == min_w);
-    wire bad_plane = is_arc && h_plane == 2'd3;
-    wire dispatch  = idle & q_valid;
-    wire accept    = dispatch & ~bad_kind & ~bad_feed & ~bad_range & ~bad_plane;
+    wire dispatch  = idle & q_valid;        // every queued command was checked at its push
     assign q_pop   = dispatch;
-    wire start_line  = accept && h_kind == K_LINE;
-    wire start_arc   = accept && is_arc;
-    wire start_curve = accept && h_kind == K_CURVE;
+    wire start_line  = dispatch && h_kind == K_LINE;
+    wire start_arc   = dispatch && is_arc;
+    wire start_curve = dispatch && h_kind == K_CURVE;
 
     wire core_tick;             // ~STOP of the synchronization buffer
 
@@ -194,21 +241,29 @@ module motion_top #(
 
     // ---------------- synchronization buffer, speed, output ----------------
     wire [2:0]        out_step, out_dir;
-    wire [FEED_W-1:0] out_feed;
-    wire              out_valid, stop, sync_overflow, feed_tick, drive_ready;
+    wire [FEED_W-1:0] out_cost;
+    wire              out_valid, stop, sync_overflow, drive_ready, fire, moving, late;
     wire [SLW-1:0]    sync_level;
-    wire              release_ok = feed_tick & drive_ready & ~hold;
-    wire              fire = release_ok & out_valid;
     step_sync #(.AXES(3), .DEPTH(SDEPTH), .LATENCY(2), .DATA_W(FEED_W), .LW(SLW)) u_sync (
-        .clk(clk), .rst(rst), .in_step(core_step), .in_dir(core_dir), .in_data(feed_q),
-        .stop(stop), .tick(release_ok), .out_valid(out_valid), .out_step(out_step),
-        .out_dir(out_dir), .out_data(out_feed), .level(sync_level), .overflow(sync_overflow)
+        .clk(clk), .rst(flush), .in_step(core_step), .in_dir(core_dir), .in_data(cost_q),
+        .stop(stop), .tick(fire), .out_valid(out_valid), .out_step(out_step),
+        .out_dir(out_dir), .out_data(out_cost), .level(sync_level), .overflow(sync_overflow)
     );
     assign core_tick = ~stop;
 
     wire [1:0] out_axes = {1'b0, out_step[0]} + {1'b0, out_step[1]} + {1'b0, out_step[2]};
-    feed_rate #(.FEED_W(FEED_W), .FRAC(FRAC)) u_feed (
-        .clk(clk), .rst(rst), .feed(out_feed), .axes(out_axes), .take(fire), .tick(feed_tick)
+    wire       drained  = ~out_valid & drive_ready & ~moving;   // speed 0, every step out
+    wire       barrier_done = (state == S_DWELL && dwell_q == {W{1'b0}}) || (state == S_EVENT && drained);
+    wire [QLW-1:0] profile_level;
+    path_profile #(.FEED_W(FEED_W), .FRAC(FRAC), .NW(NW), .PF(PF), .LEN_W(LEN_W), .ZW(ZW), .MW(MW),
+                   .QDEPTH(QDEPTH), .QLW(QLW)) u_profile (
+        .clk(clk), .rst(flush), .push(push), .push_barrier(~p_move), .push_feed(cmd_feed),
+        .push_limit(cmd_limit), .push_exit(cmd_exit), .push_rate(cmd_rate), .push_length(cmd_length),
+        .push_budget(cmd_budget), .full(prof_full), .level(profile_level), .barrier_done(barrier_done),
+        .speed_quantum(speed_quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
+        .override(override), .hold(hold), .step_valid(out_valid), .step_axes(out_axes),
+        .step_cost(out_cost), .drive_ready(drive_ready), .fire(fire), .speed(speed), .moving(moving),
+        .stopped(stopped), .late(late)
     );
 
     wire [2:0] drv_step, drv_dir;
@@ -225,11 +280,11 @@ module motion_top #(
                       (state == S_ARC   && (arc_done | arc_error)) ||
                       (state == S_CURVE && (cv_done | cv_error));
     wire core_error = (state == S_ARC && arc_error) || (state == S_CURVE && cv_error);
-    wire drained    = ~out_valid & drive_ready;
     reg  sync_overflow_q, busy_q;
     reg  [2:0] step_q;
 
-    assign busy = ~idle | q_valid | out_valid | ~drive_ready;
+    assign busy = (~idle & ~fault) | q_valid | profile_level != {QLW{1'b0}} | out_valid | ~drive_ready
+                  | moving;
 
     function [POS_W-1:0] moved(input [POS_W-1:0] pos, input rise, input neg);
         moved = rise ? (neg ? pos - 1'b1 : pos + 1'b1) : pos;
@@ -238,7 +293,7 @@ module motion_top #(
     always @(posedge clk) begin
         if (rst) begin
             state      <= S_IDLE;
-            feed_q     <= {FEED_W{1'b0}};
+            cost_q     <= {FEED_W{1'b0}};
             dwell_q    <= {W{1'b0}};
             event_valid <= 1'b0;
             event_code  <= 8'd0;
@@ -250,12 +305,12 @@ module motion_top #(
             busy_q     <= 1'b0;
             done       <= 1'b0;
             error      <= 1'b0;
-            error_code <= 3'd0;
+            error_code <= 4'd0;
             sync_overflow_q <= 1'b0;
         end else begin
             case (state)
-                S_IDLE: if (accept) begin
-                    feed_q <= h_feed;
+                S_IDLE: if (dispatch) begin
+                    cost_q <= h_cost;
                     case (h_kind)
                         K_LINE:  state <= S_LINE;
                         K_CURVE: state <= S_CURVE;
@@ -271,7 +326,8 @@ module motion_top #(
                         default: state <= S_ARC;
                     endcase
                 end
-                S_LINE, S_ARC, S_CURVE: if (core_done) state <= S_IDLE;
+                S_LINE, S_ARC, S_CURVE: if (core_error) state <= S_FAULT;
+                                        else if (core_done) state <= S_IDLE;
                 S_DRAIN: if (drained) state <= S_DWELL;
                 S_EVENT: if (drained) state <= S_IDLE;
                 S_DWELL: begin
@@ -280,7 +336,7 @@ module motion_top #(
                     else
                         dwell_q <= dwell_q - 1'b1;
                 end
-                default: state <= S_IDLE;
+                default: state <= S_FAULT;      // until rst
             endcase
 
             event_valid <= state == S_EVENT && drained;
@@ -294,17 +350,19 @@ module motion_top #(
 
             sync_overflow_q <= sync_overflow;
             error <= 1'b1;
-            if (dispatch & bad_kind)                    error_code <= E_KIND;
-            else if (dispatch & bad_feed)               error_code <= E_FEED;
-            else if (dispatch & bad_range)              error_code <= E_RANGE;
-            else if (dispatch & bad_plane)              error_code <= E_PLANE;
-            else if (core_error)                        error_code <= E_CORE;
-            else if (q_overflow)                        error_code <= E_QUEUE;
+            if (core_error)                             error_code <= E_CORE;
+            else if (cmd_valid & fault)                 error_code <= E_CORE;
+            else if (cmd_valid & bad_kind)              error_code <= E_KIND;
+            else if (cmd_valid & bad_feed)              error_code <= E_FEED;
+            else if (cmd_valid & bad_range)             error_code <= E_RANGE;
+            else if (cmd_valid & bad_plane)             error_code <= E_PLANE;
+            else if (cmd_valid & bad_profile)           error_code <= E_PROFILE;
+            else if (cmd_valid & cmd_full)              error_code <= E_QUEUE;
             else if (sync_overflow & ~sync_overflow_q)  error_code <= E_SYNC;
             else                                        error <= 1'b0;
         end
     end
 
-    wire unused = &{1'b0, arc_busy, cv_busy, sync_level};
+    wire unused = &{1'b0, arc_busy, cv_busy, sync_level, unused_overflow, late};
 endmodule
 `default_nettype wire

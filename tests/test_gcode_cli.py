@@ -9,6 +9,7 @@ where interp.gcode.interpreter or interp.simulation.native is missing.
 import csv
 import importlib.util
 import json
+import math
 import os
 
 import pytest
@@ -27,32 +28,44 @@ PROGRAM = Program(moves=[Line((0, 0, 0), (10, 0, 5), None, 2), Event("spindle_cw
                   units="mm", end_machine=(0.0, 10.0, -1.0))
 
 
-def fake_harness(commands_path, sim, *, steps_path, timing, max_cycles, progress, vcd, shift=(0, 0, 0),
-                 errors=()):
-    """Adds up the command file's moves; one step row per command, one event per EVENT."""
+def fake_harness(commands_path, sim, *, steps_path, timing, max_cycles, progress, vcd, settings, controls,
+                 shift=(0, 0, 0), errors=()):
+    """An ideal motion_top: the command file's moves by the step models, each event at the time
+    the command's trapezoid (its profile fields) covers it; one event per EVENT."""
+    from interp.models.motion import Command, command_steps
+    from interp.simulation.monitor import trapezoid_times
+
     pos, events, rows = [0, 0, 0], [], []
+    a_q, bs = settings["speed_quantum"], settings["block_shift"]
+    speed, now = 0.0, 0.0
     with open(commands_path) as f:
-        for n, line in enumerate(f, 1):
-            kind, plane, feed, x, y, z, i, j, k, l = map(int, line.split())
-            if kind == LINE:
-                pos = [p + d for p, d in zip(pos, (x, y, z))]
-            elif kind in (ARC_CW, ARC_CCW):
-                iu, iv, iw = [(0, 1, 2), (2, 0, 1), (1, 2, 0)][plane]
-                pos[iu] += x
-                pos[iv] += y
-                pos[iw] += z
-            elif kind == EVENT:
-                events.append([n * 10, x, y])
-            rows.append((n * 10, 1, 0, 0))
-            if progress:
-                progress(n * 10, n, n)
+        lines = [list(map(int, line.split())) for line in f]
+    for n, fields in enumerate(lines, 1):
+        if progress:                # command n is dispatched now
+            progress(int(now), len(rows), n)
+        kind, plane, feed, x, y, z, i, j, k, l, limit, exit, rate, cost, length, budget = fields
+        if kind in (LINE, ARC_CW, ARC_CCW):
+            steps, _ = command_steps(Command(kind, feed, x, y, z, i, j, k, l, plane=plane), 32)
+            accel = rate / (1 << 24) * a_q / (1 << bs) / (1 << 48)
+            exit_speed = exit * a_q / (1 << 48)
+            times, duration = trapezoid_times(len(steps), cost / (1 << 48), speed, feed / (1 << 48),
+                                              exit_speed, accel)
+            rows += [(math.ceil(now + t), *s) for t, s in zip(times, steps)]
+            now += duration
+            speed = exit_speed
+            for s in steps:
+                pos = [p + d for p, d in zip(pos, s)]
+        elif kind == EVENT:
+            events.append([math.ceil(now), x, y])
+        elif kind == 4:
+            now += x & 0xFFFFFFFF
     if steps_path:
         with open(steps_path, "w", newline="") as f:
             out = csv.writer(f)
             out.writerow(["cycle", "dx", "dy", "dz"])
             out.writerows(rows)
-    return {"cycles": 1000, "position": [p + s for p, s in zip(pos, shift)], "errors": [list(e) for e in errors],
-            "events": events, "steps": len(rows)}
+    return {"cycles": math.ceil(now), "position": [p + s for p, s in zip(pos, shift)],
+            "errors": [list(e) for e in errors], "events": events, "steps": len(rows), "hold_stops": []}
 
 
 @pytest.fixture
@@ -82,10 +95,13 @@ def test_check_json_fields(fakes, nc, capsys):
     assert info["end"] == [0, 10, -1] and info["end_steps"] == [0, 1000, -100]
     assert (info["moves"], info["arcs"], info["events"]) == (3, 1, 3)
     assert info["warnings"] == ["line 1: something the interpreter noticed"]
-    # 10 mm x, 5 z at the axes' rate; 6 mm at 300 mm/min; a quarter of r = 10 at 1200 mm/min; 0.5 s
+    # 10 mm x, 5 z at the axes' rate; 6 mm at 300 mm/min; a quarter of r = 10 at 1200 mm/min; 0.5 s;
+    # plus the ramps (500 mm/s^2): a little more
     rapid = (10 ** 2 + 5 ** 2) ** 0.5 / (6000 * (10 ** 2 + 5 ** 2) ** 0.5 / 10) * 60
     want = rapid + 6 / 300 * 60 + 3.14159265 * 5 / 1200 * 60 + 0.5
-    assert abs(info["machine_time_s"] - want) < 1e-6
+    assert want < info["machine_time_s"] < want + 0.5
+    assert info["profile"] == "trapezoid" and info["settings"]["block_shift"] == 0
+    assert info["step_events"] == 1000 + 600 + 1414     # the rapid (x leads), z down, two octants of 1000 / sqrt 2
     assert "interp: warning: line 1: something the interpreter noticed" in captured.err
 
 
@@ -99,8 +115,9 @@ def test_simulation_summary_and_files(fakes, nc, tmp_path, capsys):
     steps, events = tmp_path / "s.csv", tmp_path / "e.csv"
     assert main(["gcode", str(nc), "--steps", str(steps), "--events", str(events), "--clock-hz", "1e6"]) == 0
     out = capsys.readouterr().out.strip().splitlines()
-    assert len(out) == 1 and out[0].startswith("7 step cycles, end X0 Y10 Z-1 mm (work) = (0, 1000, -100) steps, "
-                                               "1000 clock cycles, 0.001 s machine time at 1e+06 Hz, 3 events")
+    assert len(out) == 2 and out[0].startswith(f"{len(steps.read_text().splitlines()) - 1} step cycles, end X0 Y10 "
+                                               "Z-1 mm (work) = (0, 1000, -100) steps, ")
+    assert out[1].startswith("monitor: ok, ")
     rows = list(csv.reader(events.open()))
     assert rows[0] == ["cycle", "event", "value"]
     assert [r[1:] for r in rows[1:]] == [["spindle_cw", "12000"], ["spindle_off", "0"], ["program_end", "2"]]
@@ -118,10 +135,22 @@ def test_end_mismatch_and_rtl_errors_exit_1(fakes, nc, capsys):
     assert main(["gcode", str(nc)]) == 1
     err = capsys.readouterr().err
     assert "interp: error: the RTL ended at (1, 1000, -100) steps, the program at (0, 1000, -100)" in err
-    fakes.setattr(gcode, "run_simulation", lambda *a, **k: fake_harness(*a, **k, errors=[(35, 4)]))
+    starts = []
+    fakes.setattr(gcode, "run_simulation", lambda *a, **k: fake_harness(*a, **k))
+    assert main(["gcode", str(nc)]) == 0
+    capsys.readouterr()
+    fakes.setattr(gcode.Progress, "__call__", lambda self, cycle, steps, n: (starts.append(cycle),
+                                                                             self.history.append((cycle, n))))
+    assert main(["gcode", str(nc)]) == 0
+    capsys.readouterr()
+    cycle = starts[2] + 1               # during the third command: the line of source line 4
+    fakes.setattr(gcode, "run_simulation", lambda *a, **k: fake_harness(*a, **k, errors=[(cycle, 4)]))
+    starts.clear()
     assert main(["gcode", str(nc)]) == 1
     err = capsys.readouterr().err
-    assert "motion_top error 4 (the core refused the command) at cycle 35, line 4" in err
+    from interp.models.motion import ERROR_TEXT
+
+    assert f"motion_top error 4 ({ERROR_TEXT[4]}) at cycle {cycle}, line 4" in err
 
 
 def test_event_codes_in_the_commands(fakes, nc, tmp_path):
@@ -136,7 +165,7 @@ def test_event_codes_in_the_commands(fakes, nc, tmp_path):
     kinds = [list(map(int, line.split())) for line in seen["lines"]]
     assert [k[3] for k in kinds if k[0] == EVENT] == [EVENT_CODES[n] for n in ("spindle_cw", "spindle_off",
                                                                                "program_end")]
-    assert all(len(k) == 10 for k in kinds)
+    assert all(len(k) == 16 for k in kinds)
 
 
 @pytest.mark.parametrize("argv,text", [
@@ -150,6 +179,23 @@ def test_event_codes_in_the_commands(fakes, nc, tmp_path):
     (["gcode", "{nc}", "--json"], "--json goes with --check"),
     (["gcode", "{nc}", "--pause-seconds", "-1"], "--pause-seconds"),
     (["gcode", "{nc}", "--sim", "questa"], "invalid choice"),
+    (["gcode", "{nc}", "--profile", "jerky"], "invalid choice"),
+    (["gcode", "{nc}", "--resume-at", "1"], "--resume-at without a --hold-at"),
+    (["gcode", "{nc}", "--hold-at", "1", "--resume-at", "2", "--resume-at", "3"], "--resume-at without a --hold-at"),
+    (["gcode", "{nc}", "--hold-at", "2", "--resume-at", "1"], "--resume-at 1 is not after its --hold-at 2"),
+    (["gcode", "{nc}", "--hold-at", "1", "--resume-at", "3", "--hold-at", "2", "--resume-at", "4"],
+     "--hold-at 2 overlaps the hold from 1 s (resumed at 3 s)"),
+    (["gcode", "{nc}", "--hold-at", "1", "--hold-at", "2"], "--hold-at 2 overlaps the hold from 1 s (never resumed)"),
+    (["gcode", "{nc}", "--hold-at", "-1"], "--hold-at needs a time in seconds >= 0"),
+    (["gcode", "{nc}", "--hold-at", "nan"], "--hold-at needs a time in seconds >= 0"),
+    (["gcode", "{nc}", "--hold-at", "soon"], "invalid float value"),
+    (["gcode", "{nc}", "--override", "0"], "--override 0: the percentage must be 1 .. 200"),
+    (["gcode", "{nc}", "--override", "201@1"], "the percentage must be 1 .. 200"),
+    (["gcode", "{nc}", "--override", "fast"], "--override fast: give PERCENT or PERCENT@SECONDS"),
+    (["gcode", "{nc}", "--override", "50@x"], "give PERCENT or PERCENT@SECONDS"),
+    (["gcode", "{nc}", "--override", "50@-2"], "--override @ needs a time in seconds >= 0"),
+    (["gcode", "{nc}", "--check", "--override", "50"], "go with a simulation, not --check"),
+    (["gcode", "{nc}", "--plot-speed", "/nonexistent/dir/s.png"], "cannot write /nonexistent/dir/s.png"),
 ])
 def test_errors_are_one_line_exit_2(fakes, nc, tmp_path, capsys, argv, text):
     def harness(*a, **k):
@@ -158,6 +204,50 @@ def test_errors_are_one_line_exit_2(fakes, nc, tmp_path, capsys, argv, text):
     fakes.setattr(gcode, "run_simulation", harness)
     argv = [a.format(nc=nc, tmp=tmp_path) for a in argv]
     one_line_error(capsys, 2, argv, text)
+
+
+def test_controls_reach_the_harness_in_cycles(fakes, nc, tmp_path, capsys):
+    seen = {}
+
+    def harness(path, sim, **kw):
+        seen.update(kw)
+        return fake_harness(path, sim, **kw)
+
+    fakes.setattr(gcode, "run_simulation", harness)
+    png = tmp_path / "speed.png"
+    # (the fake harness ignores holds and overrides: the monitor sees the 50 % broken; exit 1)
+    assert main(["gcode", str(nc), "--clock-hz", "1e6", "--override", "150", "--override", "50@0.25",
+                 "--hold-at", "0.5", "--resume-at", "0.75", "--hold-at", "1", "--resume-at", "1.5",
+                 "--profile", "scurve", "--plot-speed", str(png)]) == 1
+    assert seen["controls"] == [(250000, "override", 50), (500000, "hold", 0), (750000, "resume", 0),
+                                (1000000, "hold", 0), (1500000, "resume", 0)]
+    assert seen["settings"]["override"] == 150 and seen["settings"]["jerk_shift"] > 0
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "monitor: " in capsys.readouterr().out
+
+
+def test_profile_flag_overrides_the_machine_file(fakes, nc, capsys):
+    assert main(["gcode", str(nc), "--check", "--json", "--set", "motion.profile=scurve"]) == 0
+    assert json.loads(capsys.readouterr().out)["profile"] == "scurve"
+    assert main(["gcode", str(nc), "--check", "--json", "--set", "motion.profile=scurve", "--profile",
+                 "trapezoid"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert info["profile"] == "trapezoid" and info["settings"]["jerk_shift"] == 0
+
+
+def test_monitor_violation_fails_the_run(fakes, nc, capsys):
+    def fast(path, sim, **kw):
+        result = fake_harness(path, sim, **kw)
+        rows = list(csv.reader(open(kw["steps_path"])))
+        with open(kw["steps_path"], "w", newline="") as f:      # every event at half its time: 2x speed
+            csv.writer(f).writerows([rows[0]] + [[int(r[0]) // 2, *r[1:]] for r in rows[1:]])
+        return result
+
+    fakes.setattr(gcode, "run_simulation", fast)
+    assert main(["gcode", str(nc)]) == 1
+    captured = capsys.readouterr()
+    assert "monitor: " in captured.out and "violations" in captured.out
+    assert "the motion monitor found" in captured.err
 
 
 def test_bad_machine_file_one_line(fakes, nc, tmp_path, capsys):

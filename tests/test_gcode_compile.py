@@ -10,12 +10,17 @@ import tomllib
 
 import pytest
 
-from interp.gcode.compile import (ARC_LIMIT, DWELL_MAX, EVENT, EVENT_CODES, FRAC, LINE_MAX, PWM_FULL, CompileError,
-                                  Compiler, arc_cost, compile_program, line_cost, steps_estimate, COSTS)
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from interp.gcode.compile import (ARC_LIMIT, DWELL_MAX, EVENT, EVENT_CODES, EXIT_MARGIN, FRAC, LINE_MAX, PF,
+                                  PWM_FULL, CompileError, Compiler, compile_program)
+from interp.gcode.stepcount import arc_count, helix_count
 from interp.gcode.machine import SCHEMA, MachineError, default_machine_text, load_machine
 from interp.gcode.moves import PLANES, Arc, Dwell, Event, Line, Program
 from interp.models.arc import arc_error, arc_steps
-from interp.models.motion import ARC_CCW, ARC_CW, DWELL, LINE, line_steps
+from interp.models.lecture import within_half_step
+from interp.models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command, command_steps, interval_costs
 
 MACHINE = load_machine()
 
@@ -122,7 +127,7 @@ def test_long_lines_split_exactly():
     spm = (LINE_MAX // 1000)
     m = load_machine(sets=[f"axis.x.steps_per_mm={spm}", "axis.x.max_rate_mm_min=1000", "controller.clock_hz=1e9"])
     c = Compiler(m)
-    c.line_to([2 * LINE_MAX + 5, -3, LINE_MAX + 1], 7, 1, 1.0)
+    c.line_to([2 * LINE_MAX + 5, -3, LINE_MAX + 1], 7.0, 1)
     cmds = c.out.commands
     assert len(cmds) == 3 and total(cmds) == [2 * LINE_MAX + 5, -3, LINE_MAX + 1]
     assert all(max(abs(x.x), abs(x.y), abs(x.z)) <= LINE_MAX for x in cmds)
@@ -169,6 +174,19 @@ def linuxcnc_tolerance(r: float) -> float:
     return max(0.005, min(0.001 * r, 0.5))
 
 
+def leading_travel(r: float, a0: float, sweep: float) -> float:
+    """The travel of the leading axis along an arc of radius r from angle a0 through `sweep`
+    (each step of the arc core moves its octant's leading axis by one)."""
+    total, a, end, q = 0.0, a0, a0 + sweep, math.pi / 4
+    up = sweep > 0
+    while (a < end) if up else (a > end):
+        nxt = (math.floor(a / q + 1e-12) + 1) * q if up else (math.ceil(a / q - 1e-12) - 1) * q
+        nxt = min(nxt, end) if up else max(nxt, end)
+        total += max(abs(math.cos(nxt) - math.cos(a)), abs(math.sin(nxt) - math.sin(a))) * r
+        a = nxt
+    return total
+
+
 def test_arc_end_correction_random():
     seed = random.randrange(1 << 30)
     print("seed", seed)
@@ -190,16 +208,17 @@ def test_arc_end_correction_random():
         assert total(out.commands) == steps_of(end), (seed, n)
         # the arc commands go the programmed way round: their step counts add up to the source's
         part = (a1 - a0) % (2 * math.pi) if arc.ccw else (a0 - a1) % (2 * math.pi)
-        sweep = (part + 2 * math.pi * (arc.turns - 1)) * (1 if arc.ccw else -1)
-        want = steps_estimate(r * 100, a0, sweep) if r * 100 >= 1 else 0
+        sweep = part + 2 * math.pi * (arc.turns - 1)
         got = sum(cmd.k for cmd in arc_commands(out))
-        assert abs(got - want) <= 6 + abs(sweep) + 200 * linuxcnc_tolerance(r), (seed, n, got, want)
+        want = leading_travel(r * 100, a0, sweep if arc.ccw else -sweep)
+        assert abs(got - want) <= 6 + sweep + 200 * linuxcnc_tolerance(r), (seed, n, got, want)
         for cmd in arc_commands(out):
             assert arc_error(cmd.i, cmd.j, 0, 0, cmd.x, cmd.y, 32) is None, (seed, n, cmd)
             assert cmd.k >= 1
-            if cmd.k < 3000:        # the arc core's step model ends where the command says
+            if cmd.k < 3000:        # the arc core's step model ends where the command says, in k steps
                 path = arc_steps(cmd.i, cmd.j, 0, 0, cmd.x, cmd.y, cmd.kind == ARC_CCW, (cmd.x, cmd.y) == (0, 0))
                 assert (sum(p.dx for p in path), sum(p.dy for p in path)) == (cmd.x, cmd.y)
+                assert cmd.k == len(path) == cmd.motion.events - max(0, abs(cmd.z) - len(path))
         corrected += out.corrected
     assert corrected > 10           # the test does exercise the correction
 
@@ -237,7 +256,7 @@ def test_full_circles_and_turns_and_helix():
     assert len(cmds) == 3 and all((c.kind, c.x, c.y, c.i, c.j) == (ARC_CW, 0, 0, -1000, 0) for c in cmds)
     assert [c.z for c in cmds] == [-100, -100, -100] and out.end_steps == (1000, 0, -300)
     for c in cmds:
-        assert abs(c.k - 8 * 1000 / math.sqrt(2)) <= 3
+        assert c.k == len(arc_steps(c.i, c.j, 0, 0, 0, 0, False, True)) == c.motion.events
 
 
 def test_helix_counts_exact_for_small_arcs():
@@ -255,14 +274,48 @@ def test_helix_counts_exact_for_small_arcs():
         assert c.k == exact and c.z == 100
 
 
-def test_step_estimate_close_to_the_model():
-    rng = random.Random(11)
-    for _ in range(100):
-        ci, cj = rng.randint(-300, 300), rng.randint(-300, 300)
-        if (ci, cj) == (0, 0):
-            continue
-        n = len(arc_steps(ci, cj, 0, 0, 0, 0, True, True))
-        assert abs(steps_estimate(math.hypot(ci, cj), math.atan2(-cj, -ci), 2 * math.pi) - n) <= 3
+@st.composite
+def arcs(draw, radius=400):
+    """(ci, cj, x, y, ccw): an arc command the core accepts (start 0, centre (ci, cj), end (x, y))."""
+    r = draw(st.floats(0.5, radius))
+    a0, sweep = draw(st.floats(0, 2 * math.pi)), draw(st.sampled_from([0.0, 0.01, 0.3, 1.0, 3.0, 6.2, 2 * math.pi]))
+    ci, cj = round(-r * math.cos(a0)), round(-r * math.sin(a0))
+    if (ci, cj) == (0, 0):
+        ci = 1
+    r2, turn = ci * ci + cj * cj, draw(st.sampled_from([1, -1]))
+    a1 = math.atan2(-cj, -ci) + turn * (sweep + draw(st.floats(0, 0.2)))
+    rs = math.sqrt(r2)
+    x, y = round(ci + rs * math.cos(a1)), round(cj + rs * math.sin(a1))
+    if not within_half_step(r2, (x - ci) ** 2 + (y - cj) ** 2):
+        x, y = 0, 0                                         # a full circle
+    return ci, cj, x, y, turn > 0
+
+
+@settings(max_examples=300, deadline=None)
+@given(arcs())
+def test_arc_count_is_the_models(arc):
+    """The exact step count (octant interiors in closed form) equals the arc model's steps."""
+    ci, cj, x, y, ccw = arc
+    assert arc_count(ci, cj, x, y, ccw) == len(arc_steps(ci, cj, 0, 0, x, y, ccw, (x, y) == (0, 0)))
+
+
+@settings(max_examples=200, deadline=None)
+@given(arcs(60), st.integers(-300, 300), st.integers(-5, 400))
+def test_helix_count_is_the_models(arc, travel, count):
+    """Events of a helix (arc steps, w travel spread over `count` ticks, the rest after the arc)
+    equal the models' step list, for exact and inexact counts."""
+    ci, cj, x, y, ccw = arc
+    n = arc_count(ci, cj, x, y, ccw)
+    for k in (count, n):
+        steps, error = command_steps(Command(ARC_CCW if ccw else ARC_CW, 1, x, y, travel, ci, cj, k), 32)
+        assert not error and len(steps) == helix_count(n, travel, k)
+
+
+def test_arc_count_of_huge_circles():
+    """A full circle of 2^28 steps' radius (1.5e9 steps, counted without stepping through them):
+    eight octants of R / sqrt(2) steps on the leading axis each."""
+    r = 1 << 28
+    assert abs(arc_count(-r, 0, 0, 0, True) - 8 * r / math.sqrt(2)) <= 8
 
 
 def test_chords_for_unequal_steps_and_huge_radius():
@@ -289,59 +342,65 @@ def test_chords_for_unequal_steps_and_huge_radius():
 
 # ---------------- feeds ----------------
 
+def word(mm_s: float, spm: float, clock: float) -> float:
+    """A path speed in path units (2^-48 steps) per clock."""
+    return mm_s * spm * (1 << FRAC) / clock
+
+
 @pytest.mark.parametrize("clock", [1e6, 50e6, 200e6])
 @pytest.mark.parametrize("feed", [1, 10, 100, 1000, 6000])
-def test_feed_word_accuracy(clock, feed):
+def test_cruise_word_accuracy(clock, feed):
     m = load_machine(clock_hz=clock)
-    out = compile_program(Program([Line((0, 0, 0), (5, 0, 0), feed, 1)]), m)
-    word = out.commands[0].feed
-    achieved = word / (1 << FRAC) * clock * 60 / 100
-    assert abs(achieved - feed) / feed < 1e-4 and not out.warnings
+    out = compile_program(Program([Line((0, 0, 0), (500, 0, 0), feed, 1)]), m)
+    assert out.commands[0].feed == round(word(feed / 60, 100, clock)) and not out.warnings
 
 
 def test_feed_caps_rapids_and_errors():
     m = load_machine(sets=["axis.z.max_rate_mm_min=600"])
-    out = compile_program(Program([Line((0, 0, 0), (0, 0, -10), 2000, 5)]), m)
-    assert out.commands[0].feed == round(600 * 100 / 60 / 50e6 * (1 << FRAC))
+    out = compile_program(Program([Line((0, 0, 0), (0, 0, -100), 2000, 5)]), m)
+    assert out.commands[0].feed == round(word(10, 100, 50e6))
+    assert out.commands[0].limit == out.commands[0].feed       # no faster axis rate along z
     assert any(w.startswith("line 5: F2000 mm/min is above") for w in out.warnings)
     # a rapid: the slowest axis involved limits it (z at 600 mm/min over 10 of a 10.05 mm path)
     out = compile_program(Program([Line((0, 0, 0), (1, 0, -10), None, 6)]), m)
-    seconds = line_cost((100, 0, -1000)) * (1 << FRAC) / out.commands[0].feed / 50e6
-    assert abs(10 / seconds * 60 - 600) < 0.01          # z's speed, mm/min
-    with pytest.raises(CompileError, match="line 7: feed F1e-08 mm/min is too slow"):
+    path = math.hypot(1, 10)
+    assert out.commands[0].feed == round(word(10 * path / 10, 100, 50e6))
+    # a feed below the axes' ceiling: limit = the ceiling (feed override up to 200 %)
+    out = compile_program(Program([Line((0, 0, 0), (100, 0, 0), 3000, 7)]), MACHINE)
+    c = out.commands[0]
+    assert c.feed == round(word(50, 100, 50e6)) and c.limit == math.floor(word(100, 100, 50e6))
+    with pytest.raises(CompileError, match="line 7: feed 1e-08 mm/min is too slow"):
         compile_program(Program([Line((0, 0, 0), (1, 0, 0), 1e-8, 7)]), m)
-    out = compile_program(Program([Line((0, 0, 0), (1, 0, 0), 0.001, 8)]), load_machine(clock_hz=200e6))
-    assert any(w.startswith("line 8: the feed word ") and "is off by" in w for w in out.warnings)
 
 
 def test_feed_with_unequal_steps_per_mm():
-    # 3-4-5 in mm with x 100, y 50 steps/mm: (300, 200) steps, 100 axial and 200 diagonal, which
-    # the speed block charges 1 and sqrt(2): the word makes the 5 mm last 0.5 s at F600
+    # 3-4-5 in mm with x 100, y 50 steps/mm: (300, 200) steps, sqrt(300^2 + 200^2) = 360.6 steps
+    # along 5 mm: 72.1 steps/mm along the path; every one of the 300 step events costs 360.6 / 300
     m = load_machine(sets=["axis.y.steps_per_mm=50"])
-    out = compile_program(Program([Line((0, 0, 0), (3, 4, 0), 600, 1)]), m)
-    cost = 100 + 200 * COSTS[2]
-    assert line_cost((300, 200, 0)) == pytest.approx(cost, abs=1e-9)
-    assert out.commands[0].feed == round(cost * (1 << FRAC) / (0.5 * 50e6))
+    out = compile_program(Program([Line((0, 0, 0), (300, 400, 0), 600, 1)]), m)
+    c = out.commands[0]
+    spm = math.hypot(30000, 20000) / 500
+    assert c.feed == round(word(10, spm, 50e6))
+    assert c.cost == round(math.hypot(30000, 20000) * (1 << FRAC) / 30000) and c.length == 30000 * c.cost
 
 
-@pytest.mark.parametrize("move", [(1000, 500, 0), (1000, 500, 300), (7, -3, 2), (5000, 4999, 1)])
-def test_line_cost_is_the_speed_blocks_charge(move):
-    """line_cost equals the speed block's charges summed over the line's steps (the models)."""
-    want = sum(COSTS[sum(map(abs, s))] for s in line_steps(*move))
-    assert line_cost(move) == pytest.approx(want, rel=1e-4)
-
-
-@pytest.mark.parametrize("r, turn", [(10, 1), (10, -1), (300, 1), (3000, -1)])
-def test_arc_cost_is_the_speed_blocks_charge(r, turn):
-    """arc_cost (exact up to EXACT_COST_MAX steps, by octants above) within 0.01 % of the charges
-    over the arc model's steps, for a three-quarter arc from (r, 0) about the origin."""
-    from interp.gcode.compile import Cmd
-
-    ccw = turn > 0
-    end = (0, -r) if ccw else (0, r)
-    cmd = Cmd(ARC_CCW if ccw else ARC_CW, 1, end[0] - r, end[1], 0, -r, 0, 0)
-    want = sum(COSTS[abs(s.dx) + abs(s.dy)] for s in arc_steps(-r, 0, 0, 0, end[0] - r, end[1], ccw))
-    assert arc_cost(cmd) == pytest.approx(want, rel=1e-4)
+@pytest.mark.parametrize("moves", [
+    [Line((0, 0, 0), (10, 5, 0), 600, 1), Line((10, 5, 0), (10.07, 4.97, 0.02), 600, 2)],
+    [Line((0, 0, 0), (3, 0, 0), 600, 1), Arc((3, 0, 0), (0, -3, 1), (0, 0, 0), "XY", True, 1, 600, 2)],
+    [Line((0, 0, 0), (0, 3, 0), 600, 1), Arc((0, 3, 0), (0, 0, 3), (0, 0, 0), "YZ", False, 1, 600, 2)]])
+def test_costs_true_and_lecture(moves):
+    """cost = round(true length x 2^FRAC / N), length = N x cost; costs="lecture": cost 0 and
+    length = the lecture's sqrt(axes) costs over the models' steps (as the RTL rounds them)."""
+    true = compile_program(Program(moves), MACHINE)
+    lecture = compile_program(Program(moves), MACHINE, costs="lecture")
+    table = interval_costs(FRAC)
+    for t, c in zip(true.commands, lecture.commands):
+        steps, error = command_steps(c, 32)
+        assert not error and len(steps) == t.motion.events == c.motion.events
+        assert t.length == t.motion.events * t.cost
+        assert abs(t.cost * t.motion.events - t.motion.steps * (1 << FRAC)) <= t.motion.events
+        assert c.cost == 0 and c.length == sum(table[sum(map(abs, s))] for s in steps)
+        assert c.length >= t.length - t.motion.events        # the lecture's path is never shorter
 
 
 # ---------------- dwells, events, time ----------------
@@ -378,8 +437,85 @@ def test_machine_time_and_counts():
                     Arc((60, 0, 0), (60, 0, 0), (50, 0, 0), "XY", True, 1, 600, 2),   # 2 pi 10 mm at 10 mm/s
                     Dwell(1.5, 3)])
     out = compile_program(prog, MACHINE)
-    assert abs(out.machine_time_s - (6 + 2 * math.pi + 1.5)) < 1e-9
+    assert out.machine_time_s == pytest.approx(sum(p.time_s for p in out.plans) + 1.5)
+    assert 6 + 2 * math.pi + 1.5 < out.machine_time_s < 6 + 2 * math.pi + 1.5 + 0.1   # + the ramps
+    assert out.command_time[-1] == out.machine_time_s and out.command_time == sorted(out.command_time)
     assert (out.moves, out.arcs) == (2, 1)
+    # the S-curve's filter adds its window to each run between stops (here one run)
+    s = compile_program(prog, MACHINE, profile="scurve")
+    window = (1 << (s.settings["block_shift"] + s.settings["jerk_shift"])) / 50e6
+    assert s.machine_time_s == pytest.approx(out.machine_time_s + window)
+
+
+# ---------------- the speed profile ----------------
+
+def check_profile(out) -> None:
+    """Every move command's profile fields as the hardware design defines them."""
+    a, bs = out.settings["speed_quantum"], out.settings["block_shift"]
+    cmds = out.commands
+    for n, c in enumerate(cmds):
+        if c.motion is None:
+            assert (c.limit, c.exit, c.rate, c.cost, c.length, c.budget) == (0,) * 6
+            continue
+        assert 1 <= c.rate <= 1 << PF and c.feed >= 1 and c.limit >= c.feed
+        assert c.length > 0 and c.budget == 2 * c.rate * c.length // (a << bs)
+        assert c.exit * a <= c.feed
+        following = cmds[n + 1] if n + 1 < len(cmds) else None
+        if following is None or following.motion is None or following.motion.stop_before:
+            assert c.exit == 0
+        elif c.exit:        # the next command, entered at the exit, can brake to its own exit
+            assert (c.exit + EXIT_MARGIN) ** 2 <= (following.budget >> PF) + following.exit ** 2
+
+
+def test_profile_fields_and_settings():
+    prog = Program([Line((0, 0, 0), (10, 0, 0), 3000, 1), Line((10, 0, 0), (20, 0.01, 0), 3000, 2),
+                    Line((20, 0.01, 0), (20, 10, 0), 3000, 3), Dwell(0.1, 4), Line((20, 10, 0), (0, 0, 0), None, 5)])
+    out = compile_program(prog, MACHINE)
+    check_profile(out)
+    a = out.settings["speed_quantum"]
+    assert out.settings == {"speed_quantum": a, "block_shift": 0, "jerk_shift": 0, "override": 100}
+    # A = the largest path acceleration in path units / clock^2 (the diagonal rapid's, above 500)
+    assert a == math.ceil(max(word(p.accel_mm_s2, 100, 50e6) for p in out.plans) / 50e6)
+    assert a > math.ceil(word(500, 100, 50e6) / 50e6)
+    stops = [c.motion.stop_before for c in out.commands if c.motion]
+    assert stops == [True, False, False, True]               # the start, after the dwell
+    assert out.commands[0].exit > 0                          # straight on: no stop between 1 and 2
+    # a short straight continuation the plan brakes in exactly: its entry comes down a few quanta
+    tight = compile_program(Program([Line((0, 0, 0), (1, 0, 0), 1200, 1), Line((1, 0, 0), (1.2, 0, 0), 1200, 2)]),
+                            load_machine(clock_hz=50e3))
+    first, second = tight.commands
+    planned = math.floor(tight.plans[0].exit_mm_s * first.motion.spm * (1 << FRAC) / 50e3
+                         / tight.settings["speed_quantum"])
+    assert 0 < planned - EXIT_MARGIN - 1 <= first.exit < planned
+    check_profile(tight)
+    # the planner's accel in path units / clock^2: rate = floor(a_seg 2^bs / A 2^PF)
+    p = out.plans[0]
+    assert out.commands[0].rate == math.floor(word(p.accel_mm_s2, 100, 50e6) / 50e6 / a * (1 << PF))
+
+
+def test_path_modes_give_stops_and_tolerances():
+    from interp.gcode.compile import Compiler
+
+    prog = Program([Line((0, 0, 0), (1, 0, 0), 600, 1), Line((1, 0, 0), (2, 0, 0), 600, 3),
+                    Line((2, 0, 0), (3, 0, 0), 600, 5), Line((3, 0, 0), (4, 0, 0), 600, 7)],
+                   path_modes=[(2, "G61", None, None), (4, "G64", 0.05, None), (6, "G64", None, None)])
+    out = Compiler(MACHINE).run(prog)
+    motions = [c.motion for c in out.commands]
+    assert [m.stop_before for m in motions] == [True, True, False, False]
+    assert [m.tolerance_mm for m in motions] == [None, None, 0.05, None]
+
+
+def test_scurve_shifts():
+    # window >= accel / jerk: 500 / 20000 s = 1.25e6 cycles at 50 MHz -> 2^21 = 2^12 blocks of 2^9
+    out = compile_program(Program([Line((0, 0, 0), (10, 0, 0), 600, 1)]), MACHINE, profile="scurve")
+    assert (out.settings["jerk_shift"], out.settings["block_shift"]) == (12, 9) and out.profile == "scurve"
+    check_profile(out)
+    slow = load_machine(clock_hz=50e3)          # 1250 cycles: 2^11, all in the filter
+    out = compile_program(Program([Line((0, 0, 0), (10, 0, 0), 600, 1)]), slow, profile="scurve")
+    assert (out.settings["jerk_shift"], out.settings["block_shift"]) == (11, 0)
+    with pytest.raises(CompileError, match="S-curve's window"):
+        compile_program(Program([Line((0, 0, 0), (10, 0, 0), 600, 1)]),
+                        load_machine(sets=["motion.jerk_mm_s3=0.001"]), profile="scurve")
 
 
 # ---------------- the commands through the step-level model of motion_top ----------------
@@ -424,5 +560,10 @@ def test_commands_through_the_step_model():
         out = compile_program(Program(moves), MACHINE)
         steps, errors = motion.queue_steps(out.commands, 32)
         assert errors == [], seed
+        check_profile(out)
+        for c in out.commands:          # N of every move command is its step count in the models
+            if c.motion is not None:
+                assert c.motion.events == len(command_steps(c, 32)[0]), (seed, c)
+        assert len(steps) == out.step_events, seed
         assert [sum(s[k] for s in steps) for k in range(3)] == list(out.end_steps) == steps_of(here), seed
         assert all(max(abs(v) for v in s) <= 1 for s in steps), seed

@@ -16,7 +16,9 @@ import shutil
 import pytest
 
 from interp.cores import UsageError
-from interp.simulation.native import CLI_PARAMETERS, executable, run_cocotb_job, run_native, write_commands
+from interp.models.motion import Command
+from interp.models.profile import profile_for
+from interp.simulation.native import CLI_PARAMETERS, command_row, executable, run_cocotb_job, run_native, write_commands
 from interp.simulation.native.build import ports
 from interp.simulation.runner import RTL
 
@@ -26,6 +28,18 @@ FEATURES = ports(RTL)
 PARAMS = CLI_PARAMETERS
 ONE = 1 << PARAMS["FRAC"]                       # feed of 1 step per clock
 TIMING = (3, 2, 4)                              # pulse width, dir setup, dir hold (cycles)
+QUANTUM = ONE >> 12                             # A: 2^-12 steps per clock
+ACCEL = QUANTUM / 4                             # path units per clock^2
+SETTINGS = {"speed_quantum": QUANTUM, "block_shift": 0, "jerk_shift": 0, "override": 100}
+
+
+def profiled(rows, accel=ACCEL, quantum=QUANTUM, lecture=True):  # noqa: D103
+    """Rows of 10 fields (kind plane feed x y z i j k l) -> 16 with bench profiles."""
+    cmds = [Command(r[0], r[2], *r[3:10], plane=r[1]) for r in rows]
+    cmds = profile_for(cmds, quantum=quantum, accel=accel, frac=PARAMS["FRAC"], pf=PARAMS["PF"],
+                       width=PARAMS["W"], lecture=lecture, feed_w=PARAMS["FEED_W"],
+                       feed_max=(1 << PARAMS["FEED_W"]) - 1)
+    return [command_row(c) for c in cmds]
 
 
 @pytest.fixture(scope="session")
@@ -81,16 +95,18 @@ def end_point(rows) -> list[int]:
     return pos
 
 
-def both(tmp_path, rows, max_cycles=2_000_000, name="job", timing=TIMING):
-    """(native result, native CSV text, Icarus result, Icarus CSV text) of one job."""
+def both(tmp_path, rows, max_cycles=2_000_000, name="job", timing=TIMING, settings=SETTINGS, controls=()):
+    """The result of one job (rows of 10 fields get bench profiles), natively, natively
+    without skipping (--exact) and on Icarus: the same steps CSV and the same results."""
     commands = tmp_path / f"{name}.txt"
-    write_commands(commands, rows)
+    write_commands(commands, profiled(rows) if rows and len(rows[0]) == 10 else rows)
+    extra = {"settings": settings, "controls": controls}
     got = run_native(commands, steps_path=tmp_path / f"{name}_native.csv", timing=timing,
-                     max_cycles=max_cycles, parameters=PARAMS)
+                     max_cycles=max_cycles, parameters=PARAMS, **extra)
     exact = run_native(commands, steps_path=tmp_path / f"{name}_exact.csv", timing=timing,
-                       max_cycles=max_cycles, parameters=PARAMS, exact=True)
+                       max_cycles=max_cycles, parameters=PARAMS, exact=True, **extra)
     want = run_cocotb_job(commands, "icarus", timing, tmp_path / f"{name}_icarus.csv", max_cycles,
-                          parameters=PARAMS)
+                          parameters=PARAMS, **extra)
     texts = [(tmp_path / f"{name}_{k}.csv").read_bytes() for k in ("native", "exact", "icarus")]
     assert texts[0] == texts[1], "quiet-stretch skipping changed the steps"
     assert texts[0] == texts[2], "native and Icarus steps differ"
@@ -114,30 +130,42 @@ def test_random_jobs_native_equals_icarus(native, tmp_path):
         assert len(got["events"]) == sum(r[0] == 5 for r in rows)
 
 
-def test_slow_job_skips_quiet_cycles(native, tmp_path):
-    """A few steps at 1 step per 3000 cycles: nearly every cycle is skipped, nothing changes."""
+def slow(feed):
+    """Settings and profile arguments for a slow job: the quantum an eighth of the feed, the
+    rate 2^18 (a quantum every 64 clocks: the ramp's DDA phase comes back every 2^6 blocks,
+    which the skipping of dwells needs)."""
+    quantum = max(1, feed // 8)
+    return {**SETTINGS, "speed_quantum": quantum}, {"quantum": quantum, "accel": quantum / 64}
+
+
+def test_slow_job_with_dwell(native, tmp_path):
+    """A few steps at 1 step per 3000 cycles and a long dwell: the dwell is skipped, the slow
+    moves are not (only rest is skipped); the same as every cycle simulated."""
     feed = ONE // 3000
-    rows = [(0, 0, feed, 7, -3, 2, 0, 0, 0, 0), (2, 0, feed, 0, 0, 0, 3, 0, 0, 0), (4, 0, 0, 100, 0, 0, 0, 0, 0, 0)]
+    settings, args = slow(feed)
+    rows = [(0, 0, feed, 7, -3, 2, 0, 0, 0, 0), (2, 0, feed, 0, 0, 0, 3, 0, 0, 0), (4, 0, 0, 10**6, 0, 0, 0, 0, 0, 0),
+            (0, 0, feed, -1, 0, 0, 0, 0, 0, 0)]
     commands = tmp_path / "slow.txt"
-    write_commands(commands, rows)
-    got = run_native(commands, steps_path=tmp_path / "a.csv", timing=TIMING, max_cycles=10**7, parameters=PARAMS)
+    write_commands(commands, profiled(rows, **args))
+    got = run_native(commands, steps_path=tmp_path / "a.csv", timing=TIMING, max_cycles=10**7, parameters=PARAMS,
+                     settings=settings)
     exact = run_native(commands, steps_path=tmp_path / "b.csv", timing=TIMING, max_cycles=10**7,
-                       parameters=PARAMS, exact=True)
+                       parameters=PARAMS, exact=True, settings=settings)
     assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
-    assert got["skipped"] > 0.9 * got["cycles"] and exact.pop("skipped") == 0
+    assert 0.9 * 10**6 < got["skipped"] < 10**6 and exact.pop("skipped") == 0
     got.pop("skipped")
-    assert got == exact and got["position"] == [7, -3, 2]
+    assert got == exact and got["position"] == [6, -3, 2] and not got["stopped"]
 
 
 def test_dwell_and_event_drain_skip(native, tmp_path, monkeypatch):
-    """With the step buffer empty (a dwell, the drain before an event) the state other than the
-    counters repeats every few cycles: those stretches are skipped too, exactly. No steps file
-    asked for: none written."""
+    """At rest (a dwell after the speed reached 0) the state other than the counters repeats
+    every few cycles: those stretches are skipped, exactly (the same as Icarus and as every
+    cycle simulated).  No steps file asked for: none written."""
     rows = [(0, 0, ONE // 7, 5, 2, 0, 0, 0, 0, 0), (4, 0, 0, 200_000, 0, 0, 0, 0, 0, 0),
             (5, 0, 0, 3, 9, 0, 0, 0, 0, 0), (4, 0, 0, 1000, 0, 0, 0, 0, 0, 0), (0, 0, ONE // 5, -5, 1, 0, 0, 0, 0, 0)]
     got = both(tmp_path, rows, max_cycles=10**6, name="dwell")
     assert got["position"] == [0, 3, 0] and got["events"] and not got["stopped"]
-    write_commands(tmp_path / "long.txt", [(4, 0, 0, 10**9, 0, 0, 0, 0, 0, 0)])
+    write_commands(tmp_path / "long.txt", profiled([(4, 0, 0, 10**9, 0, 0, 0, 0, 0, 0)]))
     monkeypatch.chdir(tmp_path)
     long = run_native(tmp_path / "long.txt", steps_path=None, timing=TIMING, max_cycles=2 * 10**9, parameters=PARAMS)
     assert long["cycles"] > 10**9 and long["skipped"] > 0.999 * 10**9
@@ -166,16 +194,22 @@ def test_max_cycles_stop(native, tmp_path):
 def test_empty_command_file(native, tmp_path):
     got = both(tmp_path, [])
     assert got == {"cycles": 1, "position": [0, 0, 0], "errors": [], "events": [], "steps": 0,
-                   "stopped": False, "pushed": 0, "dispatched": 0, "commands": 0}
+                   "stopped": False, "pushed": 0, "dispatched": 0, "commands": 0, "hold_stops": []}
     assert (tmp_path / "job_native.csv").read_text() == "cycle,dx,dy,dz\n"
 
 
+TAIL = " 100 0 4096 0 65536 7"     # limit exit rate cost length budget
+
+
 @pytest.mark.parametrize("text, where", [
-    ("0 0 100 1 2 3 0 0 0 0\n0 0 5 1 2\n", "line 2: want 10 integers"),
-    ("0 0 100 1 2 3 0 0 0 x\n", "line 1: want 10 integers"),
-    ("\n9 0 100 1 2 3 0 0 0 0\n", "line 2: kind 9 is out of range"),
-    ("0 0 -5 1 2 3 0 0 0 0\n", "line 1: feed -5 is out of range"),
-    (f"0 0 1 {1 << 40} 0 0 0 0 0 0\n", f"line 1: x {1 << 40} is out of range"),
+    (f"0 0 100 1 2 3 0 0 0 0{TAIL}\n0 0 5 1 2\n", "line 2: want 16 integers"),
+    ("0 0 100 1 2 3 0 0 0 0\n", "line 1: want 16 integers"),
+    (f"0 0 100 1 2 3 0 0 0 x{TAIL}\n", "line 1: want 16 integers"),
+    (f"\n9 0 100 1 2 3 0 0 0 0{TAIL}\n", "line 2: kind 9 is out of range"),
+    (f"0 0 -5 1 2 3 0 0 0 0{TAIL}\n", "line 1: feed -5 is out of range"),
+    (f"0 0 1 {1 << 40} 0 0 0 0 0 0{TAIL}\n", f"line 1: x {1 << 40} is out of range"),
+    (f"0 0 1 1 0 0 0 0 0 0 1 0 1 0 {1 << 82} 1\n", f"line 1: length {1 << 82} is out of range"),
+    (f"0 0 1 1 0 0 0 0 0 0 1 0 1 0 1 -1\n", "line 1: budget -1 is out of range"),
 ])
 def test_bad_command_file(native, tmp_path, text, where):
     commands = tmp_path / "bad.txt"
@@ -189,11 +223,36 @@ def test_bad_command_file(native, tmp_path, text, where):
 def test_progress_callback(native, tmp_path):
     """A 12-step line at 1 step per 10^6 cycles: progress every 2^22 cycles while it runs."""
     commands = tmp_path / "long.txt"
-    write_commands(commands, [(0, 0, ONE // 1_000_000, 12, 5, 0, 0, 0, 0, 0)])
+    settings, args = slow(ONE // 1_000_000)
+    write_commands(commands, profiled([(0, 0, ONE // 1_000_000, 12, 5, 0, 0, 0, 0, 0)], **args))
     calls = []
     got = run_native(commands, steps_path=tmp_path / "s.csv", timing=TIMING, max_cycles=10**9,
-                     parameters=PARAMS, progress=lambda *a: calls.append(a))
+                     parameters=PARAMS, progress=lambda *a: calls.append(a), settings=settings)
     assert got["steps"] == 12 and got["cycles"] > 11_000_000
     assert len(calls) >= 2 and all(c[0] >= 1 << 22 and c[2] == 1 for c in calls)
     assert [c[0] for c in calls] == sorted({c[0] for c in calls}) and calls[-1][0] < got["cycles"]
     assert [c[1] for c in calls] == sorted(c[1] for c in calls) and 0 < calls[-1][1] <= 12
+
+
+def test_holds_and_override_native_equals_icarus(native, tmp_path):
+    """Feed holds, resumes and override changes from a controls schedule: the same steps CSV
+    and the same hold_stops natively, without skipping and on Icarus; every step out once."""
+    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
+    print(f"seed {seed} (SEED={seed} repeats this test)")
+    rng = random.Random(seed)
+    rows = [r for r in random_job(rng, 40) if r[0] != 6 and r[2] != 0 or r[0] in (4, 5)]
+    controls, cycle = [], 0
+    for _ in range(6):
+        cycle += rng.randint(200, 3000)
+        controls.append((cycle, "hold", 0))
+        cycle += rng.randint(1, 4000)
+        controls.append((cycle, "resume", 0))
+        cycle += rng.randint(1, 500)
+        controls.append((cycle, "override", rng.choice([30, 100, 150, 200])))
+    got = both(tmp_path, rows, name="holds", controls=controls)
+    assert not got["stopped"] and got["position"] == end_point(rows)
+    holds = got["hold_stops"]
+    assert [h[0] for h in holds] == [c[0] for c in controls if c[1] == "hold" and c[0] < got["cycles"]]
+    assert holds, "no hold came while the job ran"
+    for hold, stopped, steps in holds:
+        assert stopped is None or (stopped > hold and steps >= 0)

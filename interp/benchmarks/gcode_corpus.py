@@ -9,7 +9,8 @@ machine file: lines, run or refused (the one-line reason), whether the end posit
 with the tests' own reading of the program (interp.testing.gcode_reference, which shares no
 code with interp.gcode), moves, arcs, machine time.  With --simulate each program that runs
 is also simulated on the RTL (`--steps`, `--events`): clock cycles, wall time, cycles per
-second.  The tests (tests/test_gcode_corpus*.py) use the helpers here.
+second and the motion monitor's verdict.  Every row also gives the program's step events
+and the wall time of its --check (interpretation, compilation and the look-ahead plan).  The tests (tests/test_gcode_corpus*.py) use the helpers here.
 """
 from __future__ import annotations
 
@@ -90,18 +91,20 @@ def row(path: Path, machine: dict, options) -> list[str]:
     text = path.read_bytes()
     lines = text.count(b"\n") + (not text.endswith(b"\n"))
     extra = ["--clock-hz", str(options.clock_hz)] if options.clock_hz else []
+    start = time.perf_counter()
     status, out, err = interp_gcode([str(path), "--check", "--json", *extra])
+    check_wall = time.perf_counter() - start
     if status != 0:
         reason = (err.strip().splitlines() or [f"exit status {status}"])[-1]
-        cells = [path.name, str(lines), f"refused: {reason.replace('|', '/')}", "", "", "", ""]
-        return cells + (["", "", ""] if options.simulate else [])
+        cells = [path.name, str(lines), f"refused: {reason.replace('|', '/')}", "", "", "", "", "", ""]
+        return cells + (["", "", "", ""] if options.simulate else [])
     summary = json.loads(out)
     try:
         correct = "yes" if end_agrees(summary, reference(path, machine), machine) else "**NO**"
     except Refused as error:
         correct = f"reference refuses: {error}"
     cells = [path.name, str(lines), "run", correct, str(summary["moves"]), str(summary["arcs"]),
-             f"{summary['machine_time_s']:.3f}"]
+             str(summary["step_events"]), f"{summary['machine_time_s']:.3f}", f"{check_wall:.2f}"]
     if options.simulate:
         cells += simulate(path, summary, ["--clock-hz", str(options.clock_hz or SIMULATION_HZ)],
                           options)
@@ -110,18 +113,20 @@ def row(path: Path, machine: dict, options) -> list[str]:
 
 def simulate(path: Path, summary: dict, extra: list[str], options) -> list[str]:
     if summary["machine_time_s"] > options.max_machine_seconds:
-        return ["skipped (longer than --max-machine-seconds)", "", ""]
+        return ["skipped (longer than --max-machine-seconds)", "", "", ""]
     with tempfile.TemporaryDirectory(prefix="gcode_corpus_") as tmp:
         start = time.perf_counter()
         status, out, err = interp_gcode([str(path), *extra, "--steps", f"{tmp}/steps.csv",
                                          "--events", f"{tmp}/events.csv"])
         wall = time.perf_counter() - start
     match = re.search(r"(\d+) clock cycles", out)
+    verdict = next((line for line in out.splitlines() if line.startswith("monitor: ")), "monitor: none")
+    verdict = "ok" if verdict.startswith("monitor: ok") else verdict.removeprefix("monitor: ").replace("|", "/")
     if status != 0 or not match:
         reason = (err.strip().splitlines() or [f"exit status {status}"])[-1]
-        return [f"failed: {reason.replace('|', '/')}", f"{wall:.2f}", ""]
+        return [f"failed: {reason.replace('|', '/')}", f"{wall:.2f}", "", verdict]
     cycles = int(match.group(1))
-    return [str(cycles), f"{wall:.2f}", f"{cycles / wall:.3g}"]
+    return [str(cycles), f"{wall:.2f}", f"{cycles / wall:.3g}", verdict]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -143,9 +148,10 @@ def main(argv: list[str] | None = None) -> int:
         print(f"gcode_corpus: no programs in {CORPUS} (set INTERP_GCODE_CORPUS)", file=sys.stderr)
         return 2
     machine = machine_file()
-    head = ["program", "lines", "result", "end correct", "moves", "arcs", "machine time (s)"]
+    head = ["program", "lines", "result", "end correct", "moves", "arcs", "step events", "machine time (s)",
+            "--check wall (s)"]
     if options.simulate:
-        head += ["clock cycles", "wall (s)", "cycles/s"]
+        head += ["clock cycles", "wall (s)", "cycles/s", "monitor"]
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for path in files:

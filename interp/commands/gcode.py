@@ -2,13 +2,17 @@
 """`interp gcode FILE`: a G-code program through rtl/motion_top.v (docs/gcode-cli.md).
 
   interp gcode FILE [--machine FILE.toml] [--set KEY=VALUE]... [--clock-hz HZ]
-                    [--check [--json]] [--sim verilator|icarus] [--steps FILE]
-                    [--events FILE] [--pause-seconds S] [--max-seconds S]
-                    [--vcd FILE] [--plot FILE.png]
+                    [--profile trapezoid|scurve] [--check [--json]]
+                    [--sim verilator|icarus] [--steps FILE] [--events FILE]
+                    [--pause-seconds S] [--max-seconds S] [--vcd FILE] [--plot FILE.png]
+                    [--hold-at S --resume-at S]... [--override PERCENT[@S]]...
+                    [--plot-speed FILE.png]
 
 The program is read with LinuxCNC RS274NGC semantics (interp.gcode.interpreter),
-compiled for the machine (interp.gcode.compile) and, unless --check, simulated:
-Verilator through the native harness, Icarus through cocotb.
+compiled for the machine (interp.gcode.compile: the look-ahead plan and the speed
+profile's fields) and, unless --check, simulated: Verilator through the native
+harness, Icarus through cocotb, with the feed holds and overrides asked for; the
+motion monitor (interp.simulation.monitor) then checks the run's speeds.
 """
 from __future__ import annotations
 
@@ -25,6 +29,7 @@ from ..gcode.machine import AXES, Machine, load_machine
 from ..simulation.output import check_outputs, ensure_dir
 
 SIMS = ("verilator", "icarus")
+PROFILES = ("trapezoid", "scurve")
 
 # `interp demo`'s program: real units (mm, F in mm/min), the default machine file.  It runs
 # with a 50 kHz clock (DEMO_OPTIONS): the same steps as at 50 MHz, in a thousandth of the cycles.
@@ -58,22 +63,25 @@ def interpret_program(text: str, machine: Machine):
     return interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools)
 
 
-def compile_text(text: str, machine: Machine | None = None, pause_seconds: float = 0.0):
+def compile_text(text: str, machine: Machine | None = None, pause_seconds: float = 0.0,
+                 profile: str | None = None, costs: str = "true"):
     """(Program, Compiled) of a program's text, as `interp gcode` makes them (default machine)."""
     machine = machine or load_machine()
     program = interpret_program(text, machine)
-    return program, compile_program(program, machine, pause_seconds)
+    return program, compile_program(program, machine, pause_seconds, profile=profile, costs=costs)
 
 
 def run_simulation(commands_path: str, sim: str, *, steps_path, timing: dict, max_cycles: int,
-                   progress, vcd) -> dict:
-    """motion_top on the command file (interface 3); the harness's result dict."""
+                   progress, vcd, settings: dict, controls: list) -> dict:
+    """motion_top on the command file (interface 3) with the profile settings and the
+    hold / resume / override schedule [(cycle, kind, value)]; the harness's result dict."""
     try:
         from ..simulation import native
     except ImportError as err:
         raise RuntimeError(f"the simulation harness is not available: {err}") from None
     arguments = {"steps_path": steps_path, "timing": (timing["pulse_width"], timing["setup"], timing["hold"]),
-                 "max_cycles": max_cycles, "progress": progress, "vcd": vcd}
+                 "max_cycles": max_cycles, "progress": progress, "vcd": vcd, "settings": settings,
+                 "controls": controls}
     if sim == "verilator":
         return native.run_native(commands_path, **arguments)
     return native.run_cocotb_job(commands_path, sim=sim, **arguments)
@@ -103,6 +111,7 @@ def summary(program, compiled: Compiled, machine: Machine) -> dict:
             "chord_arcs": compiled.chords, "corrected_arcs": compiled.corrected,
             "events": len(compiled.events), "commands": len(compiled.commands),
             "machine_time_s": round(compiled.machine_time_s, 6), "clock_hz": machine.clock_hz,
+            "step_events": compiled.step_events, "profile": compiled.profile, "settings": dict(compiled.settings),
             "warnings": program.warnings + compiled.warnings, "messages": list(program.messages)}
 
 
@@ -199,6 +208,61 @@ class Progress:
         return f"line {self.line_of(before[-1])}" if before else "an unknown line"
 
 
+def _seconds(value: float, flag: str) -> float:
+    if not (math.isfinite(value) and value >= 0):
+        raise UsageError(f"{flag} needs a time in seconds >= 0 (got {value:g})")
+    return value
+
+
+def parse_override(text: str) -> tuple[int, float | None]:
+    """--override PERCENT[@SECONDS] -> (percent 1..200, seconds or None = from the start)."""
+    percent, at, seconds = text.partition("@")
+    try:
+        value = int(percent)
+        when = float(seconds) if at else None
+    except ValueError:
+        raise UsageError(f"--override {text}: give PERCENT or PERCENT@SECONDS, e.g. 150@2.5") from None
+    if not 1 <= value <= 200:
+        raise UsageError(f"--override {text}: the percentage must be 1 .. 200")
+    if when is not None:
+        _seconds(when, "--override @")
+    return value, when
+
+
+def controls_of(args, clock_hz: float) -> tuple[int, list[tuple[int, str, int]], list[tuple[float, float | None]]]:
+    """(initial override %, the harness's schedule [(cycle, kind, value)] sorted by cycle,
+    the hold intervals in seconds) from --hold-at / --resume-at / --override."""
+    holds = [_seconds(h, "--hold-at") for h in args.hold_at]
+    resumes = [_seconds(r, "--resume-at") for r in args.resume_at]
+    if len(resumes) > len(holds):
+        raise UsageError("--resume-at without a --hold-at before it (give them in pairs, in order)")
+    pairs = [(h, resumes[k] if k < len(resumes) else None) for k, h in enumerate(holds)]
+    for k, (h, r) in enumerate(pairs):
+        if r is not None and r <= h:
+            raise UsageError(f"--resume-at {r:g} is not after its --hold-at {h:g}")
+        if k + 1 < len(pairs) and (r is None or pairs[k + 1][0] < r):
+            raise UsageError(f"--hold-at {pairs[k + 1][0]:g} overlaps the hold from {h:g} s "
+                             f"({'never resumed' if r is None else f'resumed at {r:g} s'})")
+    initial, schedule = 100, []
+    for text in args.override:
+        percent, when = parse_override(text)
+        if when is None:
+            initial = percent
+        else:
+            schedule.append((_round_cycle(when, clock_hz), "override", percent))
+    for h, r in pairs:
+        schedule.append((_round_cycle(h, clock_hz), "hold", 0))
+        if r is not None:
+            schedule.append((_round_cycle(r, clock_hz), "resume", 0))
+    order = {"hold": 0, "override": 1, "resume": 2}
+    schedule.sort(key=lambda c: (c[0], order[c[1]]))
+    return initial, schedule, pairs
+
+
+def _round_cycle(seconds: float, clock_hz: float) -> int:
+    return math.floor(seconds * clock_hz + 0.5)
+
+
 # ---------------- the command ----------------
 
 def cmd_gcode(args) -> int:
@@ -209,9 +273,13 @@ def cmd_gcode(args) -> int:
     if args.max_seconds is not None and not args.max_seconds > 0:
         raise UsageError("--max-seconds must be positive")
     machine = load_machine(args.machine, args.set, args.clock_hz)
+    override, controls, holds = controls_of(args, machine.clock_hz)
+    if args.check and (controls or args.plot_speed or override != 100):
+        raise UsageError("--hold-at, --resume-at, --override and --plot-speed go with a simulation, not --check")
     if not args.check:
-        check_outputs(args.steps, args.events, args.vcd, args.plot)
-    program, compiled = compile_text(read_program(args.file), machine, args.pause_seconds)
+        check_outputs(args.steps, args.events, args.vcd, args.plot, args.plot_speed)
+    program, compiled = compile_text(read_program(args.file), machine, args.pause_seconds, args.profile)
+    compiled.settings["override"] = override
     for message in program.messages:
         print(f"interp: message: {message}", file=sys.stderr)
     for warning in program.warnings + compiled.warnings:
@@ -222,30 +290,48 @@ def cmd_gcode(args) -> int:
             print(json.dumps(info))
         else:
             print(f"{Path(args.file).name}: {info['moves']} moves ({info['arcs']} arcs), {info['events']} events, "
-                  f"{info['commands']} commands, machine time {compiled.machine_time_s:.3f} s, "
-                  f"end {where(program, compiled)}, {len(info['warnings'])} warnings")
+                  f"{info['commands']} commands, {info['step_events']} step events, {compiled.profile} profile, "
+                  f"machine time {compiled.machine_time_s:.3f} s, end {where(program, compiled)}, "
+                  f"{len(info['warnings'])} warnings")
         return 0
-    return simulate_program(args, program, compiled, machine)
+    return simulate_program(args, program, compiled, machine, controls, holds)
 
 
-def simulate_program(args, program, compiled: Compiled, machine: Machine) -> int:
+def simulate_program(args, program, compiled: Compiled, machine: Machine, controls=(), holds=()) -> int:
+    from ..simulation.monitor import monitor, read_rows, verdict
+
     clock = machine.clock_hz
-    max_seconds = args.max_seconds if args.max_seconds is not None else 2 * compiled.machine_time_s + 10
+    slowest = min([compiled.settings.get("override", 100)] + [v for _, k, v in controls if k == "override"])
+    held = sum((r if r is not None else 0) - h for h, r in holds if r is not None)
+    if args.max_seconds is not None:
+        max_seconds = args.max_seconds
+    else:
+        max_seconds = 2 * compiled.machine_time_s * 100 / slowest + held + 10
+        if any(r is None for _, r in holds):            # held to the end: a second after the hold
+            max_seconds = min(max_seconds, max(h for h, _ in holds) + 1 + compiled.machine_time_s * 0.01)
     max_cycles = math.ceil(max_seconds * clock)
     progress = Progress(compiled, clock, sys.stderr.isatty())
     with tempfile.TemporaryDirectory(prefix="interp_gcode_") as tmp:
         commands_path = Path(tmp) / "commands.txt"
         write_commands(commands_path, compiled.commands)
-        steps_path = args.steps or (str(Path(tmp) / "steps.csv") if args.plot else None)
+        steps_path = args.steps or str(Path(tmp) / "steps.csv")
         try:
             result = run_simulation(str(commands_path), args.sim, steps_path=steps_path,
                                     timing=machine.timing(), max_cycles=max_cycles, progress=progress,
-                                    vcd=args.vcd)
+                                    vcd=args.vcd, settings=dict(compiled.settings), controls=list(controls))
         finally:
             progress.close()
         worst = None
+        rows = read_rows(steps_path)
         if args.plot:
-            worst = plot_program(args.plot, program, read_step_rows(steps_path), machine, Path(args.file).name)
+            worst = plot_program(args.plot, program, [tuple(r) for r in rows.tolist()], machine,
+                                 Path(args.file).name)
+        report = monitor(rows, compiled, machine, controls=controls)
+        if args.plot_speed:
+            from ..plots.speed import plot_speed
+
+            plot_speed(args.plot_speed, report, title=f"interp gcode {Path(args.file).name}: path and axis speeds "
+                       f"({compiled.profile}, {clock:g} Hz)")
     if args.events:
         write_events(args.events, result["events"], compiled)
     cycles = result["cycles"]
@@ -258,6 +344,8 @@ def simulate_program(args, program, compiled: Compiled, machine: Machine) -> int
     position = tuple(result["position"])
     if not failures and position != tuple(compiled.end_steps):
         late = " (--max-seconds reached)" if cycles >= max_cycles else ""
+        if any(r is None for _, r in holds):
+            late = " (held by --hold-at without --resume-at)"
         failures.append(f"the RTL ended at {position} steps, the program at {tuple(compiled.end_steps)}{late}")
     if not failures and len(result["events"]) != len(compiled.events):
         failures.append(f"motion_top gave {len(result['events'])} events, the program has {len(compiled.events)}")
@@ -265,6 +353,13 @@ def simulate_program(args, program, compiled: Compiled, machine: Machine) -> int
     deviation = f", max deviation {worst:.3f} steps (XY)" if worst is not None else ""
     print(f"{result['steps']} step cycles, end {end}, {cycles} clock cycles, "
           f"{cycles / clock:.6g} s machine time at {clock:g} Hz, {len(result['events'])} events{deviation}")
+    for (h, _r), stop in zip(holds, result.get("hold_stops", [])):
+        when = "did not stop before its resume" if stop[1] is None else \
+            f"stopped {(stop[1] - stop[0]) / clock:.6g} s later"
+        print(f"hold at {h:g} s: {when}, {stop[2]} steps after it")
+    print(verdict(report))
+    if not report.ok and not failures:
+        failures.append(f"the motion monitor found {len(report.violations)} violations (see above)")
     for failure in failures:
         print(f"interp: error: {failure}", file=sys.stderr)
     return 1 if failures else 0
@@ -286,9 +381,18 @@ def add_parser(sub) -> None:
     p.add_argument("--pause-seconds", type=float, default=0.0, metavar="S",
                    help="machine time of each pause (M0, M1, M6, M60), default 0")
     p.add_argument("--max-seconds", type=float, metavar="S",
-                   help="machine-time limit (default 2 x the estimate + 10 s)")
+                   help="machine-time limit (default 2 x the estimate / the slowest override, + the holds + 10 s)")
     p.add_argument("--vcd", metavar="FILE", help="waveform file")
     p.add_argument("--plot", metavar="FILE.png", help="PNG of the stepped XY path over the programmed one")
+    p.add_argument("--profile", choices=PROFILES, help="speed profile (default: the machine file's motion.profile)")
+    p.add_argument("--hold-at", action="append", type=float, default=[], metavar="S",
+                   help="feed hold at this machine time in seconds: decelerate to a stop (repeatable)")
+    p.add_argument("--resume-at", action="append", type=float, default=[], metavar="S",
+                   help="release the hold before it at this machine time (repeatable, paired in order)")
+    p.add_argument("--override", action="append", default=[], metavar="PERCENT[@S]",
+                   help="feed override 1..200 %% from the start, or from S seconds on (repeatable)")
+    p.add_argument("--plot-speed", metavar="FILE.png",
+                   help="PNG of the path and axis speeds against time, with the limits")
     p.set_defaults(func=cmd_gcode)
 
 
@@ -303,7 +407,9 @@ def demo(out, sim: str) -> None:
     args = build_parser().parse_args(["gcode", str(src), *DEMO_OPTIONS, "--sim", sim,
                                       "--steps", str(out / "gcode_demo_steps.csv"),
                                       "--events", str(out / "gcode_demo_events.csv"),
-                                      "--vcd", str(out / "gcode_demo.vcd"), "--plot", str(out / "gcode_demo.png")])
+                                      "--vcd", str(out / "gcode_demo.vcd"), "--plot", str(out / "gcode_demo.png"),
+                                      "--plot-speed", str(out / "gcode_demo_speed.png")])
     if args.func(args):
         raise RuntimeError("the G-code demo failed")
-    print(f"gcode demo: {out / 'gcode_demo.png'} {out / 'gcode_demo_steps.csv'} {out / 'gcode_demo.vcd'}")
+    print(f"gcode demo: {out / 'gcode_demo.png'} {out / 'gcode_demo_speed.png'} {out / 'gcode_demo_steps.csv'} "
+          f"{out / 'gcode_demo.vcd'}")

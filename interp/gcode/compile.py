@@ -22,13 +22,21 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
     Arcs whose radius is beyond the core's limit (2^29 steps) or whose plane
     axes have different steps_per_mm (an ellipse in steps) run as chords
     within a quarter step of the true arc, with a warning.
-  * helices: cmd_z = the w travel in steps; cmd_k = the arc's step count
-    (exact from the arc model for short arcs, else the octant estimate).
-  * feed word = round(F x spm / 60 / clock_hz x 2^48), spm the path's length
-    in steps per mm along its direction (the axes' steps_per_mm when they are
-    equal); F is capped so that no axis exceeds its max_rate_mm_min (with a
-    warning), rapids run at that cap.  A word that rounds to 0 is an error; a
-    quantisation error above 0.01 % a warning.
+  * helices: cmd_z = the w travel in steps; cmd_k = the arc's exact step count
+    (interp.gcode.stepcount).
+  * the speed profile (docs/gcode-cli.md, "Speed profile"): every move command
+    is a planner segment (interp.gcode.planner: junction deviation, G61 / G64 P,
+    exact stops before the first move and after dwells and events); the plan
+    becomes the profile fields of each command: cmd_feed = the planned cruise,
+    cmd_limit = the axes' ceiling (for feed override), cmd_exit (quanta),
+    cmd_rate, cmd_cost = the TRUE path length / N with N the exact number of
+    step events (costs="lecture": 0, the lecture's sqrt(axes) costs),
+    cmd_length = N x cost, cmd_budget; and the global speed quantum A,
+    block_shift, jerk_shift (Compiled.settings).  Speeds are path units
+    (2^-48 steps) per clock: v = mm/s x spm x 2^48 / clock_hz, spm the path's
+    steps per mm along the command.  F is capped so that no axis exceeds its
+    max_rate_mm_min (with a warning), rapids run at that cap.  A cruise word
+    that rounds to 0 is an error.
   * dwells: DWELL commands of at most 2^32 - 1 cycles; events: EVENT commands
     with the codes of EVENT_CODES; a pause event is followed by a DWELL of
     pause_seconds.
@@ -40,20 +48,24 @@ from dataclasses import dataclass, field
 
 from ..cores import UsageError
 from ..models.lecture import within_half_step
-from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command, FeedRate, line_steps
+from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command, command_steps, interval_costs
 from .machine import AXES, Machine
 from .moves import EVENTS, PLANES, Arc, Dwell, Event, Line, Program
+from .stepcount import arc_count, helix_count, line_count
 
 EVENT = 5
 W, FRAC, FEED_W = 32, 48, 50                 # the CLI's build of motion_top
+NW, PF, LEN_W, ZW, MW = 40, 24, 82, 108, 12  # its profile widths (quanta, rate fraction, ...)
+BLOCK_SHIFT_MAX = 15                         # block_shift [3:0]
+EXIT_MARGIN = 3                              # quanta kept below the next command's braking reach
 LINE_MAX = (1 << (W - 1)) - 1                # longest line command per axis (-2^31 is refused)
 ARC_LIMIT = 1 << (W - 3)                     # circ_arc: |point - centre| < 2^(W-3) per axis
 DWELL_MAX = (1 << W) - 1                     # cycles of one DWELL command (unsigned)
 FEED_MAX = (1 << FEED_W) - 1
 VALUE_MAX = (1 << (W - 1)) - 1               # event values are signed W bits
-FEED_TOLERANCE = 1e-4                        # 0.01 %: the feed word's quantisation warning
+LEN_MAX, ZW_MAX, NW_MAX = (1 << LEN_W) - 1, (1 << ZW) - 1, (1 << NW) - 1
+COST_MODES = ("true", "lecture")
 PWM_FULL = 65535                             # spindle duty of S = max_s
-EXACT_COUNT_MAX = 256                        # helix step counts up to this come from the arc model
 CHORD_SAGITTA = 0.25                         # chords stay within this many steps of the true arc
 PLANE_CODE = {"XY": 0, "ZX": 1, "YZ": 2}     # cmd_plane
 WARNINGS_PER_KIND = 20                       # then one "... and N more" line per kind
@@ -74,16 +86,39 @@ class CompileError(UsageError):
 
 
 @dataclass
-class Cmd(Command):
-    """A motion_top command with the arc plane (cmd_plane) of the W = 32 build."""
+class Motion:
+    """What the planner needs of one move command (machine mm), and its step events."""
 
-    plane: int = 0
+    length_mm: float
+    start_unit: tuple[float, float, float]
+    end_unit: tuple[float, float, float]
+    feed_mm_s: float                       # requested (F capped by the axes, or the rapid rate)
+    steps: float                           # true path length in steps (Euclidean in step space)
+    events: int                            # N: step events of the command
+    radius_mm: float | None = None
+    plane_axes: tuple[int, int] | None = None
+    stop_before: bool = False
+    tolerance_mm: float | None = None
+
+    @property
+    def spm(self) -> float:
+        """Steps per mm along the path."""
+        return self.steps / self.length_mm
+
+
+@dataclass
+class Cmd(Command):
+    """A motion_top command of the W = 32 build (arc plane and the speed profile's fields are
+    Command's), with what the planner needs of a move."""
+
+    motion: Motion | None = field(default=None, compare=False, repr=False)
 
     def fields(self) -> tuple[int, ...]:
-        """The command file's 10 integers: kind plane feed x y z i j k l (x of a DWELL as
-        signed W bits, the port's bit pattern)."""
+        """The command file's 16 integers: kind plane feed x y z i j k l limit exit rate cost
+        length budget (x of a DWELL as signed W bits, the port's bit pattern)."""
         x = self.x - (1 << W) if self.kind == DWELL and self.x > LINE_MAX else self.x
-        return (self.kind, self.plane, self.feed, x, self.y, self.z, self.i, self.j, self.k, self.l)
+        return (self.kind, self.plane, self.feed, x, self.y, self.z, self.i, self.j, self.k, self.l,
+                self.limit, self.exit, self.rate, self.cost, self.length, self.budget)
 
 
 @dataclass
@@ -98,10 +133,20 @@ class Compiled:
     corrected: int = 0          # arcs whose end needed the short line
     events: list[tuple[str, float, int]] = field(default_factory=list)   # (name, value, line), in order
     command_time: list[float] = field(default_factory=list)             # machine seconds at each command's end
+    # the harness's settings: speed_quantum (A), block_shift, jerk_shift, override
+    settings: dict[str, int] = field(default_factory=dict)
+    plans: list = field(default_factory=list)       # planner.Plan of each move command, in order
+    profile: str = "trapezoid"
+    costs: str = "true"
+
+    @property
+    def step_events(self) -> int:
+        """Step events of the whole program (the sum of every command's N)."""
+        return sum(c.motion.events for c in self.commands if c.motion is not None)
 
 
 def write_commands(path, commands: list[Cmd]) -> None:
-    """The native harness's command file: one command per line, 10 decimal integers."""
+    """The native harness's command file: one command per line, 16 decimal integers."""
     with open(path, "w") as f:
         f.write("".join(" ".join(map(str, c.fields())) + "\n" for c in commands))
 
@@ -110,79 +155,31 @@ def _round(value: float) -> int:
     return math.floor(value + 0.5)
 
 
-# What the speed block charges for a step on 1, 2, 3 axes, in axial steps (rtl/feed_rate.v's
-# costs, rounded as the RTL rounds them): the interval after the step is cost / feed.
-COSTS = {n: FeedRate(FRAC).costs[n] / (1 << FRAC) for n in (1, 2, 3)}
-EXACT_COST_MAX = 4096           # moves up to this many steps are costed step by step (the models)
-
-
-def line_cost(d) -> float:
-    """Sum of the speed block's charges over the steps of a LINE command."""
-    big, m1, m2 = sorted(map(abs, d), reverse=True)
-    if big == 0:
-        return 0.0
-    if big <= EXACT_COST_MAX:
-        return sum(COSTS[sum(map(abs, s))] for s in line_steps(*d))
-    both = m1 * m2 / big                        # steps on all three axes, on average
-    return (big - m1 - m2 + both) + (m1 + m2 - 2 * both) * COSTS[2] + both * COSTS[3]
-
-
-def arc_cost(cmd: Cmd) -> float:
-    """Sum of the speed block's charges over the steps of an ARC command (with its helix)."""
-    ci, cj, x, y, dw = cmd.i, cmd.j, cmd.x, cmd.y, abs(cmd.z)
-    full = (x, y) == (0, 0)
-    a_start, a_end = math.atan2(-cj, -ci), math.atan2(y - cj, x - ci)
-    ccw = cmd.kind == ARC_CCW
-    part = 2 * math.pi if full else _angle(a_end - a_start) if ccw else _angle(a_start - a_end)
-    n, diagonal = arc_counts(math.hypot(ci, cj), a_start, part if ccw else -part)
-    if n <= EXACT_COST_MAX:
-        from ..models.arc import arc_steps
-        from ..models.su1571551 import steps as su_steps
-
-        path = arc_steps(ci, cj, 0, 0, x, y, ccw, full)
-        helix = [s.dy != 0 for s in su_steps(max(cmd.k, 0), dw)] if dw else []
-        axes = [abs(s.dx) + abs(s.dy) + (k < len(helix) and helix[k]) for k, s in enumerate(path)]
-        rest = dw - sum(helix[:len(path)]) if dw else 0
-        return sum(COSTS[a] for a in axes if a) + rest
-    f = min(1.0, dw / n)
-    axial = n - diagonal
-    return (axial * ((1 - f) + f * COSTS[2]) + diagonal * ((1 - f) * COSTS[2] + f * COSTS[3])
-            + max(0, dw - n))
-
-
-def arc_counts(r: float, a0: float, sweep: float) -> tuple[int, int]:
-    """(steps, diagonal steps) of an arc of radius r (steps) from angle a0 through `sweep`:
-    in each octant the major axis moves by one every step, the minor one on the diagonal ones."""
-    major = minor = 0.0
-    a, end, q = a0, a0 + sweep, math.pi / 4
-    up = sweep > 0
-    while (a < end) if up else (a > end):
-        nxt = (math.floor(a / q + 1e-12) + 1) * q if up else (math.ceil(a / q - 1e-12) - 1) * q
-        nxt = min(nxt, end) if up else max(nxt, end)
-        du, dv = abs(math.cos(nxt) - math.cos(a)) * r, abs(math.sin(nxt) - math.sin(a)) * r
-        major, minor = major + max(du, dv), minor + min(du, dv)
-        a = nxt
-    return max(1, _round(major)), _round(minor)
-
-
 def _angle(a: float) -> float:
     return a % (2 * math.pi)
 
 
-def steps_estimate(r: float, a0: float, sweep: float) -> int:
-    """Steps of an arc of radius r (steps) from angle a0 through `sweep` (signed, rad)."""
-    return arc_counts(r, a0, sweep)[0] if sweep else 1
+def _unit(vector) -> tuple[float, float, float]:
+    norm = math.sqrt(sum(c * c for c in vector))
+    return tuple(c / norm for c in vector) if norm else (0.0, 0.0, 0.0)
 
 
 class Compiler:
-    def __init__(self, machine: Machine, pause_seconds: float = 0.0):
+    def __init__(self, machine: Machine, pause_seconds: float = 0.0, profile: str | None = None,
+                 costs: str = "true"):
+        if costs not in COST_MODES:
+            raise ValueError(f"costs must be one of {COST_MODES}")
         self.machine = machine
+        self.profile_name = profile or machine.values["motion"]["profile"]
+        self.costs = costs
         self.spm = machine.steps_per_mm
         self.axes = machine.axes
         self.clock = machine.clock_hz
         self.pause_cycles = _round(pause_seconds * self.clock)
         self.here = [0, 0, 0]
-        self.out = Compiled()
+        self.out = Compiled(profile=self.profile_name, costs=costs)
+        self.stop_next = True           # an exact stop before the next move
+        self.modes: list = []           # the program's path-control modes (line, mode, P, Q)
         self._warnings: dict[str, list[str]] = {}
         self._more: dict[str, int] = {}
 
@@ -206,15 +203,29 @@ class Compiler:
             raise CompileError(f"line {line}: {name} {value:.6g} mm is beyond the {name} travel "
                                f"{a.min_mm:g} .. {a.max_mm:g} mm (machine file)")
 
-    def emit(self, cmd: Cmd, seconds: float = 0.0) -> None:
-        if cmd.kind in (LINE, ARC_CW, ARC_CCW) and seconds > 0:
-            # the speed block charges sqrt(2) / sqrt(3) for a step on 2 / 3 axes: the word that
-            # makes this command last `seconds`, so the path speed is the programmed feed
-            cost = line_cost((cmd.x, cmd.y, cmd.z)) if cmd.kind == LINE else arc_cost(cmd)
-            cmd.feed = self.word(cost * (1 << FRAC) / (seconds * self.clock), cmd.source)
+    def emit(self, cmd: Cmd) -> None:
+        if cmd.motion is None:                      # a dwell or an event: a barrier, a stop after it
+            self.stop_next = True
         self.out.commands.append(cmd)
-        self.out.machine_time_s += seconds
-        self.out.command_time.append(self.out.machine_time_s)
+
+    def emit_move(self, cmd: Cmd, feed_mm_s: float, start_mm, end_mm, steps: float, events: int,
+                  length_mm: float, radius_mm: float | None = None, plane_axes=None) -> None:
+        """A LINE or ARC command with what the planner needs of it."""
+        mode, tolerance = self.path_mode(cmd.source)
+        cmd.motion = Motion(length_mm, _unit(start_mm), _unit(end_mm), feed_mm_s, steps, events, radius_mm,
+                            plane_axes, stop_before=self.stop_next or mode in ("G61", "G61.1"),
+                            tolerance_mm=tolerance)
+        self.stop_next = False
+        self.out.commands.append(cmd)
+
+    def path_mode(self, line: int) -> tuple[str, float | None]:
+        """(G61 | G61.1 | G64, G64's P tolerance in mm or None) in force on `line`."""
+        mode, tolerance = "G64", None
+        for at, name, p, _q in self.modes:
+            if at > line:
+                break
+            mode, tolerance = name, p if name == "G64" else None
+        return mode, tolerance
 
     def feed_cap(self, delta_mm) -> float:
         """The highest path speed (mm/min) along delta_mm at which no axis exceeds its max rate."""
@@ -222,33 +233,18 @@ class Compiler:
         caps = [a.max_rate_mm_min * length / abs(d) for a, d in zip(self.axes, delta_mm) if d]
         return min(caps) if caps else min(a.max_rate_mm_min for a in self.axes)
 
-    def feed_word(self, feed: float | None, cap: float, spm: float, line: int) -> tuple[int, float]:
-        """(word, feed used in mm/min) for a move whose path has `spm` steps per mm."""
+    def feed_used(self, feed: float | None, cap: float, line: int) -> float:
+        """The requested speed in mm/s: F (mm/min) capped by the axes, the cap for a rapid."""
         if feed is None:
-            f = cap
-        elif feed > cap * (1 + 1e-9):
+            return cap / 60
+        if feed > cap * (1 + 1e-9):
             self.warn("feed_cap", line, f"F{feed:g} mm/min is above the axes' max rate along this move; "
                       f"it runs at {cap:.6g} mm/min")
-            f = cap
-        else:
-            f = feed
-        exact = f * spm / 60 / self.clock * (1 << FRAC)
-        if _round(exact) <= 0:
-            slowest = 0.5 / (1 << FRAC) * self.clock * 60 / spm
-            raise CompileError(f"line {line}: feed F{f:g} mm/min is too slow for the controller: its feed "
-                               f"word rounds to 0 (slowest {slowest:.3g} mm/min at {self.clock:g} Hz)")
-        return self.word(exact, line), f
-
-    def word(self, exact: float, line: int) -> int:
-        """The feed word nearest `exact`, with a warning where it is off by more than 0.01 %."""
-        word = max(1, min(_round(exact), FEED_MAX))
-        if abs(word - exact) > FEED_TOLERANCE * exact:
-            self.warn("feed_quantum", line, f"the feed word {word} is off by {abs(word - exact) / exact:.3%} "
-                      f"from the programmed speed; a faster feed or clock is more precise")
-        return word
+            return cap / 60
+        return feed / 60
 
     # ---------------- lines ----------------
-    def line_to(self, target: list[int], word: int, line: int, seconds: float) -> None:
+    def line_to(self, target: list[int], feed_mm_s: float, line: int) -> None:
         """LINE commands from here to target (steps), split into pieces below 2^31 steps."""
         delta = [t - h for t, h in zip(target, self.here)]
         big = max(abs(d) for d in delta)
@@ -259,7 +255,10 @@ class Compiler:
         for p in range(1, pieces + 1):
             part = [(2 * d * p + pieces) // (2 * pieces) for d in delta]         # round(d * p / pieces)
             step = [a - b for a, b in zip(part, done)]
-            self.emit(Cmd(LINE, word, *step, source=line), seconds / pieces)
+            mm = [d / s for d, s in zip(step, self.spm)]
+            self.emit_move(Cmd(LINE, 0, *step, source=line), feed_mm_s, mm, mm,
+                           math.sqrt(sum(d * d for d in step)), line_count(*step),
+                           math.sqrt(sum(d * d for d in mm)))
             done = part
         self.here = list(target)
 
@@ -274,10 +273,7 @@ class Compiler:
         length = math.sqrt(sum(d * d for d in delta))
         if length == 0:             # the rounded start differs from here: a repositioning
             delta = [(t - h) / s for t, h, s in zip(target, self.here, self.spm)]
-            length = math.sqrt(sum(d * d for d in delta))
-        spm = math.sqrt(sum((d * s) ** 2 for d, s in zip(delta, self.spm))) / length
-        word, f = self.feed_word(feed, self.feed_cap(delta), spm, line)
-        self.line_to(target, word, line, length / f * 60)
+        self.line_to(target, self.feed_used(feed, self.feed_cap(delta), line), line)
 
     # ---------------- arcs ----------------
     def arc(self, m: Arc) -> None:
@@ -308,13 +304,11 @@ class Compiler:
         if (r * s_u + 2) >= ARC_LIMIT:
             return self.chords(m, r, a0, turn * sweep, f"its radius is beyond the arc core's limit "
                                f"({ARC_LIMIT} steps)")
-        spm = math.hypot(plane_len * s_u, dw * s_w) / length
         caps = [min(self.axes[iu].max_rate_mm_min, self.axes[iv].max_rate_mm_min) * length / plane_len
                 if plane_len else math.inf]
         if dw:
             caps.append(self.axes[iw].max_rate_mm_min * length / abs(dw))
-        word, f = self.feed_word(m.feed, min(caps), spm, m.line)
-        seconds = length / f * 60
+        feed = self.feed_used(m.feed, min(caps), m.line)
 
         start = list(self.here)
         su_s, sv_s = start[iu], start[iv]
@@ -322,21 +316,17 @@ class Compiler:
         r2 = ci * ci + cj * cj
         end = self.steps(m.end)
         if r2 == 0:                                             # radius under half a step: a line
-            return self.line_to(end, word, m.line, seconds)
+            return self.line_to(end, feed, m.line)
         cu, cv = su_s + ci, sv_s + cj                           # the centre in steps
         w0 = start[iw]
         kind = ARC_CCW if m.ccw else ARC_CW
         plane = PLANE_CODE[m.plane]
-        rs = math.sqrt(r2)
         a_start = math.atan2(-cj, -ci)
         w_prev = w0
         for k in range(1, turns):                               # full circles first
             w_k = _round((m.start[iw] + dw * (2 * math.pi * k / sweep)) * s_w)
-            count = self.count(ci, cj, 0, 0, m.ccw, 2 * math.pi * rs, w_k != w_prev, a_start, turn * 2 * math.pi)
-            self.emit(Cmd(kind, word, 0, 0, w_k - w_prev, ci, cj, count, source=m.line, plane=plane),
-                      seconds * 2 * math.pi / sweep)
+            self.arc_command(kind, plane, ci, cj, 0, 0, w_k - w_prev, 2 * math.pi, feed, m, a_start)
             w_prev = w_k
-        last_seconds = seconds * part / sweep
         # the last part: to the rounded end if the core accepts it, else to the lattice point
         pu, pv = end[iu] - cu, end[iv] - cv
         if not within_half_step(r2, pu * pu + pv * pv):
@@ -350,26 +340,38 @@ class Compiler:
             # arc whose ends round together, or an almost-full one: chords are exact here
             self.here[iw] = w_prev
             if part < math.pi and (pu, pv) == (-ci, -cj):
-                return self.line_to(end, word, m.line, last_seconds)
+                return self.line_to(end, feed, m.line)
             return self.chords(m, r, a0 + turn * 2 * math.pi * (turns - 1), turn * part, None,
                                start_w=m.start[iw] + dw * (sweep - part) / sweep)
-        count = self.count(ci, cj, pu + ci, pv + cj, m.ccw, rs * cmd_part, end[iw] != w_prev,
-                           a_start, turn * cmd_part)
-        self.emit(Cmd(kind, word, pu + ci, pv + cj, end[iw] - w_prev, ci, cj, count, source=m.line,
-                      plane=plane), last_seconds)
+        self.arc_command(kind, plane, ci, cj, pu + ci, pv + cj, end[iw] - w_prev, cmd_part, feed, m, a_start)
         here = [0, 0, 0]
         here[iu], here[iv], here[iw] = cu + pu, cv + pv, end[iw]
         self.here = here
-        self.line_to(end, word, m.line, 0.0)                    # the correction, if any
+        self.line_to(end, feed, m.line)                         # the correction, if any
 
-    def count(self, ci, cj, x, y, ccw, length, helix, a_start, signed_sweep) -> int:
-        """The arc's step count for cmd_k (start 0, centre (ci, cj), end (x, y) relative)."""
-        estimate = steps_estimate(math.hypot(ci, cj), a_start, signed_sweep)
-        if helix and estimate <= EXACT_COUNT_MAX:
-            from ..models.arc import arc_steps
+    def arc_command(self, kind, plane, ci, cj, x, y, travel, sweep, feed, m: Arc, a_start) -> None:
+        """An ARC command (start 0, centre (ci, cj), end (x, y) in the plane, w travel) with
+        the exact step count for cmd_k and the planner's view of it."""
+        iu, iv, iw = PLANES[m.plane]
+        s_u, s_w = self.spm[iu], self.spm[iw]
+        arc_n = arc_count(ci, cj, x, y, kind == ARC_CCW)
+        count = arc_n
+        rs = math.sqrt(ci * ci + cj * cj)
+        r_mm, dw_mm = rs / s_u, travel / s_w
+        length_mm = math.hypot(r_mm * sweep, dw_mm)
+        turn = 1 if kind == ARC_CCW else -1
 
-            return max(1, len(arc_steps(ci, cj, 0, 0, x, y, ccw, (x, y) == (0, 0))))
-        return estimate
+        def tangent(angle: float):
+            out = [0.0, 0.0, 0.0]
+            out[iu] = -turn * math.sin(angle) * r_mm * sweep
+            out[iv] = turn * math.cos(angle) * r_mm * sweep
+            out[iw] = dw_mm
+            return out
+
+        cmd = Cmd(kind, 0, x, y, travel, ci, cj, count, source=m.line, plane=plane)
+        self.emit_move(cmd, feed, tangent(a_start), tangent(a_start + turn * sweep),
+                       math.hypot(rs * sweep, travel), helix_count(arc_n, travel, count), length_mm,
+                       radius_mm=r_mm, plane_axes=(iu, iv))
 
     def lattice_point(self, r2: int, angle: float, exact) -> tuple[int, int]:
         """The lattice point within half a step of the circle u^2 + v^2 = r2 nearest to
@@ -438,7 +440,7 @@ class Compiler:
             self.emit(Cmd(DWELL, 0, 0, source=line))
         while cycles > 0:
             part = min(cycles, DWELL_MAX)
-            self.emit(Cmd(DWELL, 0, part, source=line), part / self.clock)
+            self.emit(Cmd(DWELL, 0, part, source=line))
             cycles -= part
 
     def event(self, m: Event) -> None:
@@ -461,7 +463,118 @@ class Compiler:
         if m.name == "pause":
             self.pause(self.pause_cycles, m.line)
 
+    # ---------------- the speed profile ----------------
+    def shifts(self, accel_mm_s2: float) -> tuple[int, int]:
+        """(block_shift, jerk_shift): 0, 0 for the trapezoid; for the S-curve the smallest
+        window 2^(jerk_shift + block_shift) clocks >= accel / J seconds, jerk_shift <= MW."""
+        if self.profile_name == "trapezoid":
+            return 0, 0
+        jerk = self.machine.values["motion"]["jerk_mm_s3"]
+        cycles = accel_mm_s2 / jerk * self.clock
+        total = max(0, math.ceil(math.log2(cycles) - 1e-12)) if cycles > 1 else 0
+        jerk_shift = min(MW, total)
+        block_shift = total - jerk_shift
+        if block_shift > BLOCK_SHIFT_MAX:
+            raise CompileError(f"the S-curve's window accel / jerk = {accel_mm_s2:g} / {jerk:g} s is "
+                               f"{cycles:.4g} clock cycles, beyond the hardware's 2^{MW + BLOCK_SHIFT_MAX}: "
+                               f"raise motion.jerk_mm_s3 or lower the clock")
+        return block_shift, jerk_shift
+
+    def hardware_exits(self, moves: list[Cmd]) -> None:
+        """Make every exit reachable by the speed generator's discrete braking: the next
+        command, entered at n = cmd_exit quanta, must brake to its own exit within its budget:
+        (n + EXIT_MARGIN)^2 <= Z0 / 2^PF + n_exit^2 (quanta^2).  The plan's junction speeds
+        are exactly feasible for the continuous trapezoid; the generator steps n by whole
+        quanta and needs about 3n more, so the tightest exits come down by a few quanta."""
+        commands = self.out.commands
+        following = {id(c): commands[n + 1] for n, c in enumerate(commands[:-1])}
+        for cmd in reversed(moves):
+            nxt = following.get(id(cmd))
+            if nxt is None or nxt.motion is None or nxt.motion.stop_before:
+                cmd.exit = 0
+                continue
+            reach = math.isqrt((nxt.budget >> PF) + nxt.exit * nxt.exit) - EXIT_MARGIN
+            quantum = self.out.settings["speed_quantum"]
+            cmd.exit = max(0, min(cmd.exit, reach, cmd.feed // quantum, nxt.feed // quantum))
+
+    def profile(self) -> None:
+        """Plan the move commands and fill in their profile fields and the settings."""
+        moves = [c for c in self.out.commands if c.motion is not None]
+        plans = []
+        if moves:
+            from .planner import Segment, limits, plan
+
+            rates = tuple(a.max_rate_mm_min / 60 for a in self.axes)
+            accels = tuple(a.accel_mm_s2 for a in self.axes)
+            motions = [c.motion for c in moves]
+            segments = [Segment(m.length_mm, m.start_unit, m.end_unit, m.feed_mm_s, rates, accels,
+                                radius_mm=m.radius_mm, plane_axes=m.plane_axes, stop_before=m.stop_before,
+                                tolerance_mm=m.tolerance_mm) for m in motions]
+            plans = plan(segments, junction_deviation_mm=self.machine.values["motion"]["junction_deviation_mm"])
+            # the axes' ceiling for feed override > 100 %: the segment's limits without its feed
+            # (one per distinct direction and radius: programs repeat them)
+            ceiling: dict = {}
+            caps = []
+            for m in motions:
+                key = (m.start_unit, m.end_unit, m.radius_mm, m.plane_axes)
+                if key not in ceiling:
+                    ceiling[key] = limits(Segment(m.length_mm, m.start_unit, m.end_unit, math.inf, rates, accels,
+                                                  radius_mm=m.radius_mm, plane_axes=m.plane_axes))[0]
+                caps.append(ceiling[key])
+        self.out.plans = plans
+        clock = self.clock
+        scale = [c.motion.spm * (1 << FRAC) / clock for c in moves]     # path units / clock per mm/s
+        a_pu = [p.accel_mm_s2 * k / clock for p, k in zip(plans, scale)]
+        block_shift, jerk_shift = self.shifts(max((p.accel_mm_s2 for p in plans), default=0.0))
+        quantum = max(1, math.ceil((1 << block_shift) * max(a_pu, default=1.0)))
+        if quantum > FEED_MAX:
+            raise CompileError(f"the speed quantum {quantum} does not fit cmd_feed's {FEED_W} bits")
+        self.out.settings = {"speed_quantum": quantum, "block_shift": block_shift, "jerk_shift": jerk_shift,
+                             "override": 100}
+        costs = interval_costs(FRAC)
+        for n, (cmd, p, k, a) in enumerate(zip(moves, plans, scale, a_pu)):
+            feed = _round(p.cruise_mm_s * k)
+            if feed <= 0:
+                slowest = 0.5 / k * 60
+                raise CompileError(f"line {cmd.source}: feed {p.cruise_mm_s * 60:g} mm/min is too slow for "
+                                   f"the controller: its speed word rounds to 0 (slowest {slowest:.3g} mm/min "
+                                   f"at {clock:g} Hz)")
+            cmd.feed = min(feed, FEED_MAX)
+            cmd.limit = max(cmd.feed, min(FEED_MAX, math.floor(caps[n] * k)))
+            k_next = scale[n + 1] if n + 1 < len(moves) else k
+            cmd.exit = min(NW_MAX, math.floor(p.exit_mm_s * min(k, k_next) / quantum))
+            cmd.rate = max(1, min(1 << PF, math.floor(a * (1 << block_shift) * (1 << PF) / quantum)))
+            events = cmd.motion.events
+            if self.costs == "lecture":
+                steps, _ = command_steps(cmd, W)
+                cmd.cost, cmd.length = 0, sum(costs[sum(map(abs, s))] for s in steps)
+            else:
+                cmd.cost = max(1, _round(cmd.motion.steps * (1 << FRAC) / events))
+                cmd.length = events * cmd.cost
+            cmd.budget = 2 * cmd.rate * cmd.length // (quantum << block_shift)
+            if cmd.length > LEN_MAX or cmd.budget > ZW_MAX:
+                raise CompileError(f"line {cmd.source}: the move is too long for cmd_length / cmd_budget")
+        self.hardware_exits(moves)
+        # machine time: the plan's trapezoids, the dwells; the S-curve's filter adds its window
+        # (2^(jerk_shift + block_shift) clocks) to every run between two stops
+        window = (1 << (block_shift + jerk_shift)) / clock if jerk_shift or block_shift else 0.0
+        plan_of = {id(c): p for c, p in zip(moves, plans)}
+        t = 0.0
+        commands = self.out.commands
+        self.out.command_time = []
+        for n, cmd in enumerate(commands):
+            if cmd.motion is not None:
+                t += plan_of[id(cmd)].time_s
+                following = commands[n + 1] if n + 1 < len(commands) else None
+                if following is None or following.motion is None or following.motion.stop_before:
+                    t += window
+            elif cmd.kind == DWELL:
+                t += (cmd.x & DWELL_MAX) / clock
+            self.out.command_time.append(t)
+        self.out.machine_time_s = t
+
     def run(self, program: Program) -> Compiled:
+        self.modes = sorted(program.path_modes, key=lambda mode: mode[0])
         for m in program.moves:
             if isinstance(m, Line):
                 self.out.moves += 1
@@ -477,6 +590,7 @@ class Compiler:
             else:
                 raise TypeError(f"not a move: {m!r}")
         self.out.end_steps = tuple(self.here)
+        self.profile()
         for kind, seen in self._warnings.items():
             self.out.warnings += seen
             if self._more.get(kind):
@@ -484,6 +598,9 @@ class Compiler:
         return self.out
 
 
-def compile_program(program: Program, machine: Machine, pause_seconds: float = 0.0) -> Compiled:
-    """The program's motion_top commands, end point, time estimate and warnings."""
-    return Compiler(machine, pause_seconds).run(program)
+def compile_program(program: Program, machine: Machine, pause_seconds: float = 0.0, *,
+                    profile: str | None = None, costs: str = "true") -> Compiled:
+    """The program's motion_top commands with their speed profile, the harness settings, end
+    point, time estimate and warnings.  profile: "trapezoid" | "scurve" (default: the machine
+    file's); costs: "true" (cmd_cost = true length / N) or "lecture" (cmd_cost 0, for tests)."""
+    return Compiler(machine, pause_seconds, profile, costs).run(program)

@@ -34,7 +34,7 @@ def _axis():
     return {
         "steps_per_mm": ("float>", 100.0, 0, 1e7, "steps/mm", "steps per millimetre"),
         "max_rate_mm_min": ("float>", 6000.0, 0, 1e7, "mm/min", "fastest speed of the axis (rapids; feeds are capped to it)"),
-        "accel_mm_s2": ("float>", 500.0, 0, 1e9, "mm/s^2", "acceleration (recorded for the planner; this build's RTL has no ramps)"),
+        "accel_mm_s2": ("float>", 500.0, 0, 1e9, "mm/s^2", "acceleration of the axis (the planner's path acceleration of each move)"),
         "min_mm": ("float", -1000.0, -1e7, 1e7, "mm", "soft limit: the lowest machine coordinate"),
         "max_mm": ("float", 1000.0, -1e7, 1e7, "mm", "soft limit: the highest machine coordinate"),
     }
@@ -46,9 +46,9 @@ SCHEMA: dict[str, dict[str, tuple]] = {
     },
     **{f"axis.{a}": _axis() for a in AXES},
     "motion": {
-        "junction_deviation_mm": ("float>", 0.01, 0, 1e3, "mm", "cornering tolerance (recorded for the planner)"),
-        "profile": ("choice", "trapezoid", ("trapezoid", "scurve"), None, "", "speed profile (recorded for the planner)"),
-        "jerk_mm_s3": ("float>", 20000.0, 0, 1e12, "mm/s^3", "jerk of the S-curve profile (recorded for the planner)"),
+        "junction_deviation_mm": ("float>", 0.01, 0, 1e3, "mm", "cornering tolerance (the planner's junction speeds)"),
+        "profile": ("choice", "trapezoid", ("trapezoid", "scurve"), None, "", "speed profile of the hardware (--profile overrides it)"),
+        "jerk_mm_s3": ("float>", 20000.0, 0, 1e12, "mm/s^3", "jerk limit of the S-curve profile (its filter window >= accel / jerk)"),
     },
     "output": {
         "pulse_ns": ("float>", 1000.0, 0, 1e9, "ns", "step pulse width"),

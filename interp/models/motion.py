@@ -12,7 +12,8 @@ Step level, written like the lecture's rules:
     axis w spread by a line (N, travel) over its steps, mapped to (x, y, z).
 Cycle level: `SyncFifo`, `StepSync`, `FeedRate`, `StepDir`, `ArcPlane`,
 `MotionTop` mirror the registers of rtl/sync_fifo.v, step_sync.v, feed_rate.v,
-step_dir.v, arc_plane.v, motion_top.v (line_pair.v inline in MotionTop); their
+step_dir.v, arc_plane.v, motion_top.v (line_pair.v inline in MotionTop; the
+speed-setting block rtl/path_profile.v is interp.models.profile.PathProfile); their
 combinational outputs are properties of the current state and inputs.
 """
 from __future__ import annotations
@@ -311,10 +312,12 @@ class TimingMonitor:
 # ---------------- segment queue (rtl/motion_top.v), step level ----------------
 
 LINE, ARC_CW, ARC_CCW, CURVE, DWELL, EVENT = range(6)
-E_KIND, E_FEED, E_RANGE, E_CORE, E_QUEUE, E_SYNC, E_PLANE = range(1, 8)
+E_KIND, E_FEED, E_RANGE, E_CORE, E_QUEUE, E_SYNC, E_PLANE, E_PROFILE = range(1, 9)
 ERROR_TEXT = {E_KIND: "unknown command kind", E_FEED: "feed 0", E_RANGE: "coordinate out of range",
-              E_CORE: "the core refused the command", E_QUEUE: "queue overflow",
-              E_SYNC: "step buffer overflow", E_PLANE: "arc in plane 3"}
+              E_CORE: "the core refused the command (fault: stopped until reset)", E_QUEUE: "queue overflow",
+              E_SYNC: "step buffer overflow", E_PLANE: "arc in plane 3",
+              E_PROFILE: "bad profile (rate 0 or above 2^PF, length 0, limit below feed)"}
+PROFILE_FIELDS = ("limit", "exit", "rate", "cost", "length", "budget")
 FIELDS = ("x", "y", "z", "i", "j", "k", "l")
 PLANES = {0: "XY", 1: "ZX", 2: "YZ"}
 # plane -> the machine axes (0 x, 1 y, 2 z) of u, v, w
@@ -345,7 +348,8 @@ def helix_steps(arc: list[tuple[int, int]], travel: int, count: int) -> list[tup
 
 @dataclass
 class Command:
-    """One entry of motion_top's queue (the ports cmd_kind, cmd_feed, cmd_x ... cmd_l, cmd_plane)."""
+    """One entry of motion_top's queues (the ports cmd_kind, cmd_feed, cmd_x ... cmd_l, cmd_plane,
+    and the profile cmd_limit, cmd_exit, cmd_rate, cmd_cost, cmd_length, cmd_budget)."""
 
     kind: int
     feed: int = 0
@@ -358,28 +362,49 @@ class Command:
     l: int = 0          # noqa: E741 (the port's name)
     source: int = 0     # G-code line number, for messages
     plane: int = 0      # arcs: 0 XY, 1 ZX, 2 YZ
+    limit: int = 0      # v max for override > 100 % (>= feed)
+    exit: int = 0       # exit speed, quanta
+    rate: int = 0       # acceleration p * 2^PF
+    cost: int = 0       # path units per step event (0: the lecture's costs)
+    length: int = 0     # exact sum of the step costs
+    budget: int = 0     # braking budget Z0
 
     def ports(self) -> dict[str, int]:
         return {"cmd_kind": self.kind, "cmd_plane": self.plane, "cmd_feed": self.feed,
-                **{f"cmd_{f}": getattr(self, f) for f in FIELDS}}
+                **{f"cmd_{f}": getattr(self, f) for f in FIELDS},
+                **{f"cmd_{f}": getattr(self, f) for f in PROFILE_FIELDS}}
+
+    def row(self) -> tuple[int, ...]:
+        """The 16 integers of a native command file line."""
+        return (self.kind, self.plane, self.feed, *(getattr(self, f) for f in FIELDS),
+                *(getattr(self, f) for f in PROFILE_FIELDS))
 
 
-def command_steps(cmd: Command, width: int = 16) -> tuple[list[tuple[int, int, int]], int]:
-    """(steps, error code) of one command by the step-level models of its core."""
+def bad_profile(cmd: Command, pf: int) -> bool:
+    """motion_top's push check of a move's profile (error 8)."""
+    return cmd.kind in (LINE, ARC_CW, ARC_CCW, CURVE) and (
+        not 1 <= cmd.rate <= 1 << pf or cmd.length <= 0 or cmd.limit < cmd.feed)
+
+
+def command_steps(cmd: Command, width: int = 16, pf: int | None = None) -> tuple[list[tuple[int, int, int]], int]:
+    """(steps, error code) of one command by the step-level models of its core; with `pf`
+    the profile is checked too (motion_top's push checks, in their order)."""
     lo = -(1 << (width - 1))
     if cmd.kind > EVENT:
         return [], E_KIND
     if cmd.kind not in (DWELL, EVENT) and cmd.feed == 0:
         return [], E_FEED
+    if cmd.kind == LINE and lo in (cmd.x, cmd.y, cmd.z):
+        return [], E_RANGE
+    if cmd.kind in (ARC_CW, ARC_CCW) and cmd.plane & 3 == 3:
+        return [], E_PLANE
+    if pf is not None and bad_profile(cmd, pf):
+        return [], E_PROFILE
     if cmd.kind == LINE:
-        if lo in (cmd.x, cmd.y, cmd.z):
-            return [], E_RANGE
         return line_steps(cmd.x, cmd.y, cmd.z), 0
     if cmd.kind in (ARC_CW, ARC_CCW):
         from .arc import arc_error, arc_steps     # the arc core's model (rtl/circ_arc.v)
 
-        if cmd.plane & 3 == 3:
-            return [], E_PLANE
         # arc_plane gives circ_arc the start (0, 0), the end (x, y), the centre (i, j) in (u, v)
         if arc_error(cmd.i, cmd.j, 0, 0, cmd.x, cmd.y, width):
             return [], E_CORE
@@ -395,20 +420,23 @@ def command_steps(cmd: Command, width: int = 16) -> tuple[list[tuple[int, int, i
     return [], 0
 
 
-def queue_steps(cmds, width: int = 16) -> tuple[list[tuple[int, int, int]], list[int]]:
-    """Every step the drive must see, in order, and the error codes, for a command list."""
+def queue_steps(cmds, width: int = 16, pf: int | None = None) -> tuple[list[tuple[int, int, int]], list[int]]:
+    """Every step the drive must see, in order, and the error codes, for a command list
+    (a core's refusal, E_CORE, is a fault: nothing after it runs)."""
     out, errors = [], []
     for cmd in cmds:
-        s, err = command_steps(cmd, width)
+        s, err = command_steps(cmd, width, pf)
         out += s
         if err:
             errors.append(err)
+            if err == E_CORE:
+                break
     return out, errors
 
 
 # ---------------- motion_top, cycle level ----------------
 
-S_IDLE, S_LINE, S_ARC, S_CURVE, S_DRAIN, S_DWELL, S_EVENT = range(7)
+S_IDLE, S_LINE, S_ARC, S_CURVE, S_DRAIN, S_DWELL, S_EVENT, S_FAULT = range(8)
 P_IDLE, P_ARC, P_TAIL = range(3)
 
 
@@ -515,30 +543,42 @@ class MotionTop(CycleModel):
     watch = {**{f"step_{a}": False for a in AXES}, **{f"dir_{a}": False for a in AXES},
              **{f"pos_{a}": True for a in AXES}, "busy": False, "done": False, "error": False,
              "error_code": False, "cmd_full": False, "queue_level": False, "event_valid": False,
-             "event_code": False, "event_value": True}
+             "event_code": False, "event_value": True, "speed": False, "stopped": False}
+    SETTINGS = ("speed_quantum", "block_shift", "jerk_shift", "override")
 
-    def __init__(self, w: int = 16, feed_w: int = 16, frac: int = 16, qdepth: int = 4, qlw: int = 3,
+    def __init__(self, w: int = 16, feed_w: int = 16, frac: int = 16, nw: int = 16, pf: int = 12,
+                 len_w: int = 34, zw: int = 48, mw: int = 6, qdepth: int = 4, qlw: int = 3,
                  sdepth: int = 2, tw: int = 8, pos_w: int = 32):
         from .curve import CurveTangent
+        from .profile import PathProfile
         from .su1571551 import Su1571551
 
-        self.w, self.feed_w, self.pos_w = w, feed_w, pos_w
+        self.w, self.feed_w, self.pos_w, self.pf = w, feed_w, pos_w, pf
+        self.widths = {"limit": feed_w, "exit": nw, "rate": pf + 1, "cost": feed_w, "length": len_w,
+                       "budget": zw}
         self.queue = SyncFifo(5 + feed_w + 7 * w, qdepth, qlw)
         self.line_a, self.line_b = Su1571551(w, True), Su1571551(w, True)
         self.arc, self.curve = ArcPlane(w), CurveTangent(w, w + 8, w)
         self.sync = StepSync(3, sdepth, 2, feed_w, 4)
-        self.feed, self.out = FeedRate(frac), StepDir(3, tw)
+        self.profile = PathProfile(feed_w, frac, nw, pf, len_w, zw, mw, qdepth, qlw)
+        self.out = StepDir(3, tw)
         self.reset()
 
-    def reset(self) -> None:
-        for block in (self.queue, self.line_a, self.line_b, self.arc, self.curve, self.sync,
-                      self.feed, self.out):
-            block.reset()
+    def reset(self, jerk_shift: int = 0) -> None:
+        self._flush(jerk_shift)
+        self.out.reset()
         self.state = S_IDLE
-        self.lead_q = self.lead_neg_q = self.feed_q = self.dwell_q = 0
+        self.lead_q = self.lead_neg_q = self.cost_q = self.dwell_q = 0
         self.pos = [0, 0, 0]
         self.step_q = self.busy_q = self.done = self.error = self.error_code = self.sync_overflow_q = 0
         self.event_valid = self.event_code = self.event_value = 0
+        self._speed = self._stopped = self._busy = 0
+
+    def _flush(self, jerk_shift: int = 0) -> None:
+        """What `flush` (rst or a fault) resets: the queues, the step buffer, the speed block, the cores."""
+        for block in (self.queue, self.line_a, self.line_b, self.arc, self.curve, self.sync):
+            block.reset()
+        self.profile.reset(jerk_shift)
 
     # ---- outputs ----
     def _bit(self, vector: int, axis: int) -> int:
@@ -553,17 +593,42 @@ class MotionTop(CycleModel):
     pos_x = property(lambda self: self.pos[0])
     pos_y = property(lambda self: self.pos[1])
     pos_z = property(lambda self: self.pos[2])
-    cmd_full = property(lambda self: self.queue.full)
+    cmd_full = property(lambda self: int(bool(self.queue.full or self.profile.full)))
     queue_level = property(lambda self: self.queue.level)
+
+    def settled(self, i: Mapping[str, int]) -> None:
+        """The combinational outputs (speed, stopped, busy) on the registers after an edge,
+        with the inputs still applied (the bench samples between edges)."""
+        nets = self._profile_nets(i)
+        self._speed, self._stopped = nets["speed"], nets["stopped"]
+        self._busy = self.busy_with(nets["moving"])
+
+    def _profile_nets(self, i, barrier_done: int = 0) -> dict:
+        sync, out = self.sync, self.out
+        return self.profile.nets({
+            "barrier_done": barrier_done, **{k: i.get(k, 0) for k in self.SETTINGS}, "hold": i.get("hold", 0),
+            "step_valid": sync.out_valid, "step_axes": bin(sync.out_step).count("1"),
+            "step_cost": sync.out_data, "drive_ready": out.ready})
+
+    @property
+    def speed(self) -> int:
+        return self._speed
+
+    @property
+    def stopped(self) -> int:
+        return self._stopped
+
+    def busy_with(self, moving: int) -> int:
+        return int((self.state not in (S_IDLE, S_FAULT)) or bool(self.queue.valid) or self.profile.level != 0
+                   or bool(self.sync.out_valid) or not self.out.ready or bool(moving))
 
     @property
     def busy(self) -> int:
-        return int(self.state != S_IDLE or bool(self.queue.valid) or bool(self.sync.out_valid)
-                   or not self.out.ready)
+        return self._busy
 
     def pack(self, inputs) -> int:
         value = (inputs.get("cmd_kind", 0) & 7) << 2 | inputs.get("cmd_plane", 0) & 3
-        value = value << self.feed_w | inputs.get("cmd_feed", 0) & ((1 << self.feed_w) - 1)
+        value = value << self.feed_w | inputs.get("cmd_cost", 0) & ((1 << self.feed_w) - 1)
         for f in FIELDS:
             value = value << self.w | inputs.get(f"cmd_{f}", 0) & ((1 << self.w) - 1)
         return value
@@ -573,30 +638,51 @@ class MotionTop(CycleModel):
         for f in reversed(FIELDS):
             fields[f] = _signed(value, self.w)
             value >>= self.w
-        fields["feed"] = value & ((1 << self.feed_w) - 1)
+        fields["cost"] = value & ((1 << self.feed_w) - 1)
         fields["plane"] = value >> self.feed_w & 3
         fields["kind"] = value >> self.feed_w + 2 & 7
         return fields
 
+    def push_error(self, i) -> int:
+        """The push check's error code for the command inputs `i` (0: none)."""
+        kind = i.get("cmd_kind", 0) & 7
+        feed = i.get("cmd_feed", 0) & ((1 << self.feed_w) - 1)
+        lo = 1 << (self.w - 1)
+        fields = {f: i.get(f"cmd_{f}", 0) & ((1 << self.w) - 1) for f in "xyz"}
+        prof = {f: i.get(f"cmd_{f}", 0) & ((1 << bits) - 1) for f, bits in self.widths.items()}
+        move = kind <= CURVE
+        if kind > EVENT:
+            return E_KIND
+        if move and feed == 0:
+            return E_FEED
+        if kind == LINE and lo in fields.values():
+            return E_RANGE
+        if kind in (ARC_CW, ARC_CCW) and i.get("cmd_plane", 0) & 3 == 3:
+            return E_PLANE
+        if move and (prof["rate"] == 0 or prof["rate"] > 1 << self.pf or prof["length"] == 0
+                     or prof["limit"] < feed):
+            return E_PROFILE
+        return 0
+
     def clock(self, i) -> None:
         if i.get("rst"):
-            self.reset()
+            self.reset(i.get("jerk_shift", 0))
+            self.settled(i)
             return
-        w, lo = self.w, -(1 << (self.w - 1))
+        w = self.w
+        fault = self.state == S_FAULT
         h = self.unpack(self.queue.dout)
         kind = h["kind"]
         idle = self.state == S_IDLE
-        is_move = kind in (LINE, ARC_CW, ARC_CCW, CURVE)
         is_arc = kind in (ARC_CW, ARC_CCW)
-        bad_kind = kind > EVENT
-        bad_feed = is_move and h["feed"] == 0
-        bad_range = kind == LINE and lo in (h["x"], h["y"], h["z"])
-        bad_plane = is_arc and h["plane"] == 3
+        valid = bool(i.get("cmd_valid", 0))
+        bad = self.push_error(i)
+        full = self.cmd_full
+        push = int(valid and not fault and not bad and not full)
         dispatch = idle and bool(self.queue.valid)
-        accept = dispatch and not (bad_kind or bad_feed or bad_range or bad_plane)
-        start_line = int(accept and kind == LINE)
-        start_arc = int(accept and is_arc)
-        start_curve = int(accept and kind == CURVE)
+        start_line = int(dispatch and kind == LINE)
+        start_arc = int(dispatch and is_arc)
+        start_curve = int(dispatch and kind == CURVE)
         mags = [abs(h[a]) & ((1 << w) - 1) for a in AXES]     # -2^(W-1) wraps, as in the RTL
         lead = 0 if mags[0] >= mags[1] and mags[0] >= mags[2] else 1 if mags[1] >= mags[2] else 2
         minor1 = h["y"] if lead == 0 else h["x"]
@@ -625,42 +711,47 @@ class MotionTop(CycleModel):
             S_LINE: (line_step, line_dir)}.get(self.state, (0, 0))
 
         sync, out = self.sync, self.out
-        out_valid, out_step, out_dir, out_feed = sync.out_valid, sync.out_step, sync.out_dir, sync.out_data
-        release_ok = int(self.feed.tick and out.ready and not i.get("hold"))
-        fire = int(release_ok and out_valid)
-        out_axes = bin(out_step).count("1")
+        out_valid, out_step, out_dir = sync.out_valid, sync.out_step, sync.out_dir
+        pre = self._profile_nets(i)                    # moving does not depend on barrier_done
+        drained = not out_valid and out.ready and not pre["moving"]
+        barrier_done = int((self.state == S_DWELL and self.dwell_q == 0) or (self.state == S_EVENT and drained))
+        pnets = self._profile_nets(i, barrier_done)
+        fire = pnets["fire"]
         core_done = ((self.state == S_LINE and a.done) or
                      (self.state == S_ARC and (arc_nets["done"] or arc_nets["error"])) or
                      (self.state == S_CURVE and (self.curve.done or self.curve.error)))
         core_error = (self.state == S_ARC and arc_nets["error"]) or (self.state == S_CURVE and self.curve.error)
-        drained = not out_valid and out.ready
-        q_overflow = i.get("cmd_valid", 0) and self.queue.full and not dispatch
         sync_overflow = sync.overflow
-        busy = self.busy
+        busy = self.busy_with(pnets["moving"])
         drv_step, drv_dir = out.step, out.dir
-
         event_strobe = int(self.state == S_EVENT and drained)
 
         # ---- the edge ----
-        self.queue.clock({"push": i.get("cmd_valid", 0), "pop": int(dispatch), "din": self.pack(i)})
-        lead_len = mags[lead]
-        self.line_a.clock({"rst": arc_nets["helix_abort"], "start": start_line | arc_nets["helix_start"],
-                           "tick": arc_nets["helix_tick"] if self.state == S_ARC else core_tick,
-                           "x": arc_nets["helix_lead"] if is_arc else lead_len, "y": h["z"] if is_arc else minor1})
-        self.line_b.clock({"start": start_line, "tick": core_tick, "x": lead_len, "y": minor2})
-        self.arc.clock(arc_in, arc_nets, helix_step)
-        self.curve.clock({"start": start_curve, "tick": core_tick, "x0": 0, "y0": 0, "p0": h["x"], "q0": h["y"],
-                          "dp_dx": h["i"], "dp_dy": h["j"], "dq_dx": h["k"], "dq_dy": h["l"], "reverse": 0,
-                          "count": h["z"] & ((1 << w) - 1), "end_sel": 0, "end_coord": 0, "improved": 0,
-                          "e_load": 0, "e_init": 0})
-        sync.clock({"in_step": core_step, "in_dir": core_dir, "in_data": self.feed_q, "tick": release_ok})
-        self.feed.clock({"feed": out_feed, "axes": out_axes, "take": fire})
+        if fault:                                      # flush: held in reset
+            self._flush(i.get("jerk_shift", 0))
+        else:
+            self.queue.clock({"push": push, "pop": int(dispatch), "din": self.pack(i)})
+            lead_len = mags[lead]
+            self.line_a.clock({"rst": arc_nets["helix_abort"], "start": start_line | arc_nets["helix_start"],
+                               "tick": arc_nets["helix_tick"] if self.state == S_ARC else core_tick,
+                               "x": arc_nets["helix_lead"] if is_arc else lead_len,
+                               "y": h["z"] if is_arc else minor1})
+            self.line_b.clock({"start": start_line, "tick": core_tick, "x": lead_len, "y": minor2})
+            self.arc.clock(arc_in, arc_nets, helix_step)
+            self.curve.clock({"start": start_curve, "tick": core_tick, "x0": 0, "y0": 0, "p0": h["x"],
+                              "q0": h["y"], "dp_dx": h["i"], "dp_dy": h["j"], "dq_dx": h["k"], "dq_dy": h["l"],
+                              "reverse": 0, "count": h["z"] & ((1 << w) - 1), "end_sel": 0, "end_coord": 0,
+                              "improved": 0, "e_load": 0, "e_init": 0})
+            sync.clock({"in_step": core_step, "in_dir": core_dir, "in_data": self.cost_q, "tick": fire})
+            self.profile.clock({"push": push, "push_barrier": int((i.get("cmd_kind", 0) & 7) > CURVE),
+                                **{f"push_{f}": i.get(f"cmd_{f}", 0) for f in
+                                   ("feed", "limit", "exit", "rate", "length", "budget")}}, pnets)
         out.clock({"pulse_width": i["pulse_width"], "setup": i["setup"], "hold": i["hold_time"],
                    "valid": fire, "step_in": out_step, "dir_in": out_dir})
 
         if self.state == S_IDLE:
-            if accept:
-                self.feed_q = h["feed"]
+            if dispatch:
+                self.cost_q = h["cost"]
                 if kind == LINE:
                     self.state, self.lead_q = S_LINE, lead
                     self.lead_neg_q = int(h[AXES[lead]] < 0)
@@ -673,7 +764,9 @@ class MotionTop(CycleModel):
                 else:
                     self.state = S_ARC
         elif self.state in (S_LINE, S_ARC, S_CURVE):
-            if core_done:
+            if core_error:
+                self.state = S_FAULT
+            elif core_done:
                 self.state = S_IDLE
         elif self.state == S_DRAIN:
             if drained:
@@ -692,12 +785,11 @@ class MotionTop(CycleModel):
         self.step_q = drv_step
         self.event_valid = event_strobe
         self.busy_q, self.done = busy, int(self.busy_q and not busy)
-        code = (E_KIND if dispatch and bad_kind else E_FEED if dispatch and bad_feed
-                else E_RANGE if dispatch and bad_range else E_PLANE if dispatch and bad_plane
-                else E_CORE if core_error
-                else E_QUEUE if q_overflow else E_SYNC if sync_overflow and not self.sync_overflow_q
+        code = (E_CORE if core_error or (valid and fault) else bad if valid and bad
+                else E_QUEUE if valid and full else E_SYNC if sync_overflow and not self.sync_overflow_q
                 else 0)
         self.sync_overflow_q = sync_overflow
         self.error = int(code != 0)
         if code:
             self.error_code = code
+        self.settled(i)

@@ -111,12 +111,15 @@ def core_inputs(core, argv: list[str], width: int | None = None) -> dict:
 
 
 def motion_top_load() -> dict:
-    """motion_top: a 120 x 50 line at the highest feed, kept queued; fastest output timing."""
-    from .motion_build import FEED_MAX
+    """motion_top: a 120 x 50 line at the highest feed (its bench profile: the lecture's costs,
+    acceleration one quantum per clock, stop at the end), kept queued; fastest output timing."""
+    from .motion_build import FEED_MAX, FRAC, QUANTUM
     from ..models.motion import LINE, Command
+    from ..models.profile import profile_for
 
-    return {**Command(LINE, FEED_MAX, 120, 50, 0).ports(), "hold": 0,
-            "pulse_width": 1, "setup": 0, "hold_time": 0}
+    line = profile_for([Command(LINE, FEED_MAX, 120, 50, 0)], quantum=QUANTUM, accel=QUANTUM, frac=FRAC)[0]
+    return {**line.ports(), "hold": 0, "speed_quantum": QUANTUM, "block_shift": 0, "jerk_shift": 0,
+            "override": 100, "pulse_width": 1, "setup": 0, "hold_time": 0}
 
 
 def for_row(row: str, argv: list[str] | None = None, cycles: int = 10_000) -> tuple[str, Path] | None:

@@ -8,15 +8,19 @@ are driven and outputs sampled at the falling edge, the first cycle after
 reset counts 1 (the native harness, interp/simulation/native/motion_main.cpp,
 counts the same way).  Two kinds of job:
 
-- "commands" as rows of 10 integers (kind plane feed x y z i j k l) and a
-  "steps" CSV path (interp.simulation.native.run_cocotb_job): writes the steps
-  CSV ("cycle,dx,dy,dz", one row per cycle with a rising step edge) and, to
-  "out", the native harness's result: cycles, position, errors [[cycle, code]],
-  events [[cycle, code, value]], steps, stopped (max_cycles reached), pushed,
-  dispatched, commands.
+- "commands" as rows of 16 integers (kind plane feed x y z i j k l limit exit
+  rate cost length budget) and a "steps" CSV path
+  (interp.simulation.native.run_cocotb_job): writes the steps CSV
+  ("cycle,dx,dy,dz", one row per cycle with a rising step edge) and, to "out",
+  the native harness's result: cycles, position, errors [[cycle, code]], events
+  [[cycle, code, value]], steps, stopped (max_cycles reached), pushed,
+  dispatched, commands, hold_stops [[cycle_hold, cycle_stopped, steps]].
 - "commands" as port dicts without "steps" (interp gcode): writes to "out"
   the pulses (cycle, step bits, dir bits at each rising edge), the errors, the
   position and the cycle count; max_cycles reached is an error.
+Both: "settings" (speed_quantum, block_shift, jerk_shift, override: port values
+held the whole run) and "controls" [[cycle, "hold" | "resume" | "override",
+value]] applied after the sample of that cycle, as the native harness does.
 """
 import json
 
@@ -26,7 +30,9 @@ from cocotb.triggers import FallingEdge
 from ..testing.tbkit import TB, read
 from .jobs import job_from_env
 
-FIELDS = ("cmd_kind", "cmd_plane", "cmd_feed", "cmd_x", "cmd_y", "cmd_z", "cmd_i", "cmd_j", "cmd_k", "cmd_l")
+FIELDS = ("cmd_kind", "cmd_plane", "cmd_feed", "cmd_x", "cmd_y", "cmd_z", "cmd_i", "cmd_j", "cmd_k", "cmd_l",
+          "cmd_limit", "cmd_exit", "cmd_rate", "cmd_cost", "cmd_length", "cmd_budget")
+SETTINGS = {"speed_quantum": 1, "block_shift": 0, "jerk_shift": 0, "override": 100}
 
 
 def bits(dut, prefix: str) -> int:
@@ -47,17 +53,32 @@ async def run_commands(dut):
             commands.append(dict((name, v) for name, v in zip(FIELDS, c) if name in ports))
         else:
             commands.append(c)
+    settings = {**SETTINGS, **job.get("settings", {})}
+    controls = [tuple(c) for c in job.get("controls", [])]
     tb = TB(dut)
-    await tb.reset({"rst": 0, "cmd_valid": 0, "hold": 0, **{p: 0 for p in ports}, **job["timing"]})
+    await tb.reset({"rst": 0, "cmd_valid": 0, "hold": 0, **{p: 0 for p in ports}, **job["timing"], **settings})
     width = len(dut.cmd_x)
     pending, next_index = commands, 0
-    pulses, rows, errors, events = [], [], [], []
-    prev_step, cycle, stopped = 0, 0, False
+    pulses, rows, errors, events, stops = [], [], [], [], []
+    prev_step, cycle, stopped, next_control, awaiting, hold = 0, 0, False, 0, False, 0
     steps_file = open(job["steps"], "w") if native else None
     if steps_file:
         steps_file.write("cycle,dx,dy,dz\n")
     try:
         while True:
+            while next_control < len(controls) and controls[next_control][0] <= cycle:
+                at, kind, value = controls[next_control]
+                next_control += 1
+                if kind == "override":
+                    tb.drive({"override": value})
+                    continue
+                if kind == "hold" and not hold:
+                    stops.append([at, None, len(rows) if native else len(pulses)])
+                    awaiting = True
+                if kind == "resume":
+                    awaiting = False
+                hold = int(kind == "hold")
+                tb.drive({"hold": hold})
             push = next_index < len(pending) and not int(dut.cmd_full.value)
             if push:
                 tb.drive({**pending[next_index], "cmd_valid": 1})
@@ -79,6 +100,10 @@ async def run_commands(dut):
                     pulses.append((cycle, rise, dirs))
             if int(dut.error.value):
                 errors.append((cycle, int(dut.error_code.value)))
+            if awaiting and int(dut.stopped.value):
+                stops[-1][1] = cycle
+                stops[-1][2] = (len(rows) if native else len(pulses)) - stops[-1][2]
+                awaiting = False
             if has_events and int(dut.event_valid.value):
                 value = int(dut.event_value.value)
                 events.append((cycle, int(dut.event_code.value), value - (value >> (width - 1) << width)))
@@ -97,8 +122,10 @@ async def run_commands(dut):
         dispatched = next_index - int(dut.queue_level.value)
         result = {"cycles": cycle, "position": position, "errors": errors, "events": events,
                   "steps": len(rows), "stopped": stopped, "pushed": next_index, "dispatched": dispatched,
-                  "commands": len(pending), "skipped": 0}
+                  "commands": len(pending), "skipped": 0,
+                  "hold_stops": [s if s[1] is not None else [s[0], None, None] for s in stops]}
     else:
-        result = {"pulses": pulses, "errors": errors, "cycles": cycle, "position": position}
+        result = {"pulses": pulses, "errors": errors, "cycles": cycle, "position": position,
+                  "hold_stops": [s if s[1] is not None else [s[0], None, None] for s in stops]}
     with open(job["out"], "w") as f:
         json.dump(result, f)

@@ -1,13 +1,19 @@
 # SPDX-License-Identifier: Apache-2.0
 """Native Verilator harness for rtl/motion_top.v: whole G-code jobs without cocotb.
 
-  run_native(commands_path, *, steps_path (None: no file), timing, max_cycles, progress=None, vcd=None)
+  run_native(commands_path, *, steps_path (None: no file), timing, max_cycles, progress=None, vcd=None,
+             settings=None, controls=None)
       -> {"cycles", "position": [x, y, z], "errors": [[cycle, code]],
           "events": [[cycle, code, value]], "steps": rows, "stopped", "pushed",
-          "dispatched", "commands", "skipped"}
+          "dispatched", "commands", "skipped", "hold_stops": [[cycle_hold, cycle_stopped, steps_after_hold]]}
 
-The command file has one command per line, 10 decimal integers
-"kind plane feed x y z i j k l" (write_commands writes one).  The harness
+The command file has one command per line, 16 decimal integers
+"kind plane feed x y z i j k l limit exit rate cost length budget" (write_commands
+writes one).  `settings`: {"speed_quantum", "block_shift", "jerk_shift", "override"}
+(defaults 1, 0, 0, 100); `controls`: [(cycle, "hold" | "resume" | "override", value)],
+cycles not decreasing, each applied after the sample of that cycle; hold_stops: for
+each hold, the cycle it came, the first cycle `stopped` was high (None if resumed
+before) and the step rows in between.  The harness
 (motion_main.cpp, built once per parameter set by build.py) pushes the
 commands whenever cmd_full is low, counts cycles as the cocotb driver
 interp/simulation/motion_driver.py does, writes the steps CSV
@@ -29,10 +35,40 @@ from ...cores import UsageError
 from ..runner import RTL
 from .build import CLI_PARAMETERS, executable, full_parameters
 
-__all__ = ["CLI_PARAMETERS", "run_native", "run_cocotb_job", "write_commands", "read_commands",
-           "timing_values", "executable"]
+__all__ = ["CLI_PARAMETERS", "SETTINGS", "run_native", "run_cocotb_job", "write_commands", "read_commands",
+           "timing_values", "settings_values", "control_rows", "executable"]
 
 PROGRESS_LOG2 = 22          # a progress line every 2^22 cycles
+NFIELDS = 16
+FIELDS_TEXT = "kind plane feed x y z i j k l limit exit rate cost length budget"
+SETTINGS = {"speed_quantum": 1, "block_shift": 0, "jerk_shift": 0, "override": 100}
+CONTROLS = ("hold", "resume", "override")
+
+
+def settings_values(settings) -> tuple[int, int, int, int]:
+    """(speed_quantum, block_shift, jerk_shift, override) with the defaults for what is left out."""
+    unknown = set(settings or {}) - set(SETTINGS)
+    if unknown:
+        raise UsageError(f"unknown settings: {', '.join(sorted(unknown))} (know {', '.join(SETTINGS)})")
+    s = {**SETTINGS, **(settings or {})}
+    return tuple(int(s[k]) for k in SETTINGS)
+
+
+def control_rows(controls) -> list[tuple[int, str, int]]:
+    """The controls checked: (cycle, kind, value), cycles not decreasing."""
+    rows, last = [], 0
+    for item in controls or ():
+        cycle, kind, *rest = item
+        value = int(rest[0]) if rest and rest[0] is not None else 0
+        if kind not in CONTROLS:
+            raise UsageError(f"unknown control {kind!r} (hold, resume, override)")
+        if int(cycle) < last:
+            raise UsageError("controls must come in cycle order")
+        if kind == "override" and not 0 <= value <= 255:
+            raise UsageError(f"override {value} is out of 0 .. 255")
+        last = int(cycle)
+        rows.append((int(cycle), kind, value))
+    return rows
 
 
 def timing_values(timing) -> tuple[int, int, int]:
@@ -45,14 +81,15 @@ def timing_values(timing) -> tuple[int, int, int]:
 
 
 def command_row(command) -> tuple[int, ...]:
-    """The 10 fields of a command: a sequence of 10 integers, or an object with ports()."""
+    """The 16 fields of a command: a sequence of 16 integers, or an object with ports()."""
     if hasattr(command, "ports"):
         p = command.ports()
         return (p["cmd_kind"], p.get("cmd_plane", getattr(command, "plane", 0)), p["cmd_feed"],
-                *(p[f"cmd_{f}"] for f in "xyzijkl"))
+                *(p[f"cmd_{f}"] for f in "xyzijkl"),
+                *(p.get(f"cmd_{f}", 0) for f in ("limit", "exit", "rate", "cost", "length", "budget")))
     row = tuple(int(v) for v in command)
-    if len(row) != 10:
-        raise ValueError(f"a command has 10 fields (kind plane feed x y z i j k l), got {len(row)}")
+    if len(row) != NFIELDS:
+        raise ValueError(f"a command has {NFIELDS} fields ({FIELDS_TEXT}), got {len(row)}")
     return row
 
 
@@ -76,8 +113,8 @@ def read_commands(path) -> list[tuple[int, ...]]:
             row = tuple(int(v) for v in line.split())
         except ValueError:
             row = ()
-        if len(row) != 10:
-            raise UsageError(f"{path} line {number}: want 10 integers \"kind plane feed x y z i j k l\", "
+        if len(row) != NFIELDS:
+            raise UsageError(f"{path} line {number}: want {NFIELDS} integers \"{FIELDS_TEXT}\", "
                              f"got \"{line.strip()[:60]}\"")
         rows.append(row)
     return rows
@@ -85,15 +122,18 @@ def read_commands(path) -> list[tuple[int, ...]]:
 
 def run_native(commands_path, *, steps_path, timing, max_cycles: int,
                progress: Callable[[int, int, int], None] | None = None, vcd=None,
-               parameters: dict | None = None, rtl: Path = RTL, exact: bool = False) -> dict:
+               parameters: dict | None = None, rtl: Path = RTL, exact: bool = False,
+               settings: Mapping | None = None, controls=None) -> dict:
     """Run a command file through the native model of motion_top (see the module text).
 
     `timing`: (pulse_width, setup, hold) cycles, or a dict with those keys (hold or hold_time);
     `progress(cycle, steps, dispatched)` is called every 2^22 cycles while it runs;
     `vcd`: a waveform file (a separate build with tracing); `parameters`: motion_top's
     (default the CLI build's); `exact`: simulate every cycle (no quiet-stretch skipping;
-    same results, for cross-checks)."""
+    same results, for cross-checks); `settings`, `controls`: see the module text."""
     pulse_width, setup, hold = timing_values(timing)
+    quantum, block_shift, jerk_shift, override = settings_values(settings)
+    control_list = control_rows(controls)
     if max_cycles < 0:
         raise UsageError("max_cycles must be >= 0")
     if not Path(commands_path).is_file():
@@ -104,7 +144,12 @@ def run_native(commands_path, *, steps_path, timing, max_cycles: int,
         cmd = [str(exe), "--commands", str(commands_path), "--steps", str(steps_path or os.devnull),
                "--result", str(result_path), "--max-cycles", str(int(max_cycles)),
                "--timing", f"{pulse_width},{setup},{hold}", "--progress-log2", str(PROGRESS_LOG2),
-               "--exact", "1" if exact else "0"]
+               "--exact", "1" if exact else "0",
+               "--settings", f"{quantum},{block_shift},{jerk_shift},{override}"]
+        if control_list:
+            controls_path = Path(tmp) / "controls.txt"
+            controls_path.write_text("".join(f"{c} {k} {v}\n" for c, k, v in control_list))
+            cmd += ["--controls", str(controls_path)]
         if vcd is not None:
             cmd += ["--vcd", str(vcd)]
         err_path = Path(tmp) / "stderr"
@@ -124,10 +169,11 @@ def run_native(commands_path, *, steps_path, timing, max_cycles: int,
 
 
 def run_cocotb_job(commands, sim: str, timing, steps_path, max_cycles: int, vcd=None,
-                   parameters: dict | None = None, progress=None) -> dict:
+                   parameters: dict | None = None, progress=None, settings: Mapping | None = None,
+                   controls=None) -> dict:
     """The same job under cocotb (Icarus or Verilator): same files, same result dict.
 
-    `commands`: a command file path, or rows of 10 integers (or objects with ports())."""
+    `commands`: a command file path, or rows of 16 integers (or objects with ports())."""
     from .cocotb_job import run
 
     if isinstance(commands, (str, Path)):
@@ -135,4 +181,5 @@ def run_cocotb_job(commands, sim: str, timing, steps_path, max_cycles: int, vcd=
     else:
         rows = [command_row(c) for c in commands]
     return run(rows, sim, timing_values(timing), steps_path or os.devnull, max_cycles, vcd,
-               full_parameters(parameters if parameters is not None else CLI_PARAMETERS), progress)
+               full_parameters(parameters if parameters is not None else CLI_PARAMETERS), progress,
+               dict(zip(SETTINGS, settings_values(settings))), control_rows(controls))

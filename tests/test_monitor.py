@@ -1,0 +1,143 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The motion monitor (interp.simulation.monitor) on synthetic steps CSVs.
+
+An ideal trapezoid machine (monitor.ideal_rows: every event at the first clock its
+command's trapezoid covers it) must pass every check; the same run made faster, with a
+speed jump, with a lost or an extra step, or a hold that does not brake must fail the
+check that concerns it.
+"""
+import math
+import random
+
+import pytest
+
+from interp.gcode.compile import compile_program
+from interp.gcode.machine import load_machine
+from interp.gcode.moves import Arc, Dwell, Line, Program
+from interp.simulation.monitor import ideal_rows, monitor, read_rows, table, verdict
+
+MACHINE = load_machine(clock_hz=1e6)
+PROGRAM = Program([Line((0, 0, 0), (20, 0, 0), 3000, 1), Line((20, 0, 0), (25, 5, 1), 2400, 2),
+                   Arc((25, 5, 1), (25, 15, 1), (25, 10, 1), "XY", True, 1, 1800, 3), Dwell(0.01, 4),
+                   Line((25, 15, 1), (0, 0, 0), None, 5)])
+
+
+@pytest.fixture(scope="module")
+def run():
+    out = compile_program(PROGRAM, MACHINE)
+    return out, ideal_rows(out.commands, out.settings)
+
+
+def checks(report) -> dict:
+    return {c[0]: c[4] for c in report.checks}
+
+
+def test_ideal_machine_passes(run):
+    out, rows = run
+    report = monitor(rows, out, MACHINE)
+    print(table(report))
+    assert report.ok, report.violations
+    assert report.events == report.expected_events == out.step_events
+    assert set(checks(report)) >= {"events", "path speed", "acceleration", "x speed", "y speed", "z speed"}
+    assert verdict(report).startswith("monitor: ok")
+
+
+def test_csv_file_round_trip(run, tmp_path):
+    out, rows = run
+    path = tmp_path / "s.csv"
+    path.write_text("cycle,dx,dy,dz\n" + "".join(",".join(map(str, r)) + "\n" for r in rows))
+    assert read_rows(path).tolist() == [list(r) for r in rows]
+
+
+def test_faster_run_violates_the_speed(run):
+    out, rows = run
+    fast = [(int(r[0] / 1.2), *r[1:]) for r in rows]             # 20 % fast everywhere
+    report = monitor(fast, out, MACHINE)
+    assert not report.ok and checks(report)["path speed"] == "VIOLATED"
+    assert verdict(report).startswith("monitor: ") and "violations" in verdict(report)
+
+
+def test_speed_jump_violates_the_acceleration(run):
+    out, rows = run
+    n = len(rows) // 5                      # in the first line's cruise: 100 events at twice the speed
+    jump = [(r[0] - (min(k - n, 100) * 100 if k > n else 0), *r[1:]) for k, r in enumerate(rows)]
+    report = monitor(jump, out, MACHINE)
+    assert checks(report)["acceleration"] == "VIOLATED"
+
+
+@pytest.mark.parametrize("change", ["lost", "extra"])
+def test_lost_or_extra_step(run, change):
+    out, rows = run
+    bad = rows[:-1] if change == "lost" else rows + [rows[-1]]
+    report = monitor(bad, out, MACHINE)
+    assert checks(report)["events"] == "VIOLATED" and not report.ok
+
+
+def test_override_raises_the_cap():
+    """At 150 % the ideal machine runs 1.5 x faster (up to the ceiling): fine with the override
+    given to the monitor, a violation without it."""
+    out = compile_program(Program([Line((0, 0, 0), (50, 0, 0), 1200, 1)]), MACHINE)
+    c = out.commands[0]
+    c.feed = c.feed * 3 // 2                # what the hardware does at 150 %
+    rows = ideal_rows(out.commands, out.settings)
+    c.feed = c.feed * 2 // 3
+    assert monitor(rows, out, MACHINE, controls=[(0, "override", 150)]).ok
+    assert checks(monitor(rows, out, MACHINE))["path speed"] == "VIOLATED"
+
+
+def stopped_rows(out, hold_cycle: int, decel: float):
+    """The ideal run with a hold at hold_cycle that brakes at `decel` x the acceleration and
+    resumes (at full speed, at once) a second later."""
+    rows = ideal_rows(out.commands, out.settings)
+    c = out.commands[0]
+    a = c.rate / (1 << 24) * out.settings["speed_quantum"] / (1 << 48) * decel
+    v = c.feed / (1 << 48)
+    cost = c.cost / (1 << 48)
+    k0 = next(k for k, r in enumerate(rows) if r[0] >= hold_cycle)
+    x = 0.0
+    brake, k = [], k0
+    while k < len(rows):
+        x += cost
+        if x >= v * v / (2 * a):
+            break
+        brake.append((hold_cycle + math.ceil((v - math.sqrt(max(v * v - 2 * a * x, 0))) / a), *rows[k][1:]))
+        k += 1
+    resume = hold_cycle + 1_000_000
+    shift = resume - rows[k][0] if k < len(rows) else 0
+    return rows[:k0] + brake + [(r[0] + shift, *r[1:]) for r in rows[k:]], resume
+
+
+def test_hold_distance():
+    out = compile_program(Program([Line((0, 0, 0), (200, 0, 0), 3000, 1)]), MACHINE)
+    hold = 1_000_000                        # 1 s: at cruise
+    good, resume = stopped_rows(out, hold, 1.0)
+    controls = [(hold, "hold", 0), (resume, "resume", 0)]
+    report = monitor(good, out, MACHINE, controls=controls)
+    assert checks(report)["hold 1 distance"] == "ok", table(report)
+    slow, resume = stopped_rows(out, hold, 0.5)     # brakes at half the rate: twice the distance
+    report = monitor(slow, out, MACHINE, controls=[(hold, "hold", 0), (resume, "resume", 0)])
+    assert checks(report)["hold 1 distance"] == "VIOLATED"
+
+
+def test_random_programs_pass_on_the_ideal_machine():
+    seed = random.randrange(1 << 30)
+    print("seed", seed)
+    rng = random.Random(seed)
+    for _ in range(4):
+        here, moves = (0.0, 0.0, 0.0), []
+        for n in range(1, 6):
+            end = tuple(h + rng.uniform(-5, 5) for h in here)
+            moves.append(Line(here, end, rng.choice([None, 600.0, 2400.0]), n))
+            here = end
+        out = compile_program(Program(moves), MACHINE)
+        report = monitor(ideal_rows(out.commands, out.settings), out, MACHINE)
+        assert report.ok, (seed, report.violations)
+
+
+def test_speed_plot(run, tmp_path):
+    from interp.plots.speed import plot_speed
+
+    out, rows = run
+    png = tmp_path / "speed.png"
+    plot_speed(png, monitor(rows, out, MACHINE), title="ideal machine")
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
