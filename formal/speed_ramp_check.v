@@ -13,6 +13,7 @@
 //  - n falls to 0 inside a segment only under hold;
 //  - REST = 1: never `late` (braking to rest is always in time; the last quantum
 //    drops from n = 1 exactly at the clock the segment ends).
+// INVARIANTS_ONLY: the generator's own properties alone (the k-induction task).
 module speed_ramp_check #(
     parameter integer REST = 1      // 1: moves enter at rest only; 0: look-ahead too
 ) (
@@ -76,12 +77,14 @@ module speed_ramp_check #(
             if (late) f_late <= 1'b1;
         end
     end
+`ifndef INVARIANTS_ONLY
     always @(posedge clk) if (f_past_valid && !rst && !$past(rst)) begin
         if (!moving && !next_pop && !f_late)
             assert (f_travel >= f_taken && f_travel < f_taken + {10'd0, speed_quantum});
         if (segment && speed == 6'd0 && $past(speed) != 6'd0) assert ($past(hold) || next_pop);
         if (REST != 0) assert (!late);
     end
+`endif
     wire unused = &{1'b0, up, down, block, stopped};
 `endif
 endmodule

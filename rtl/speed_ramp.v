@@ -296,6 +296,8 @@ module speed_ramp #(
         if (n_next != n) assert (dtick || final_q);
         if (!late_n) assert (n_next == n || n_next == n + ONE_N || n_next + ONE_N == n);
         if (final_q && !late_n) assert (n <= ONE_N);
+        assert (rate <= {1'b1, {PF{1'b0}}});
+        if (!seg) assert (n == {NW{1'b0}});
         assert (q == f_q);
         assert (p == f_p);
         assert (na == f_na);

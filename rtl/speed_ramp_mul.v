@@ -61,5 +61,12 @@ module speed_ramp_mul #(
             end
         end
     end
+`ifdef FORMAL
+    // the count runs BW .. 1 while busy (formal/speed_ramp.sby, k-induction)
+    always @(*) if (!rst) begin
+        assert (count <= BW8);
+        assert (busy == (count != 8'd0));
+    end
+`endif
 endmodule
 `default_nettype wire

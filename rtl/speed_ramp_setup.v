@@ -97,7 +97,10 @@ module speed_ramp_setup #(
 `ifdef FORMAL
     // (formal/speed_ramp.sby, the harness holds the head until it is popped)
     wire [PW-1:0] f_ps = rate1 * {{PF{1'b0}}, n_sh};
-    always @(*) if (!rst && pre == DONE && move_head) assert (p_sh == f_ps);
+    always @(*) if (!rst) begin
+        if (pre != IDLE) assert (move_head);
+        if (pre == DONE) assert (p_sh == f_ps);
+    end
 `endif
 
     wire unused = &{1'b0, mf_busy, mf_done, mp_product[PW], mf_product[QW], gap_full[NW:3]};
