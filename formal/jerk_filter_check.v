@@ -9,6 +9,11 @@
 //     F(t) = v(t) + v(t - B) + ... + v(t - (M - 1) B)
 // over a shadow history of the speed (so the distance is exactly M times the
 // virtual one), and `sum` = F (shift > 0) or v (shift 0).
+// With LATE defined, the last drop of a stop (1 -> 0 quantum) may also come
+// inside a block, once per block: then `sum` is no longer the moving sum
+// clock by clock (the filter keeps the speed to the block's end and pays the
+// extra back later), and the property is the distance: whenever the filter is
+// empty, the sum of `sum` so far is exactly 2^shift times the sum of v.
 module jerk_filter_check #(
     parameter integer FEED_W = 4,
     parameter integer MW     = 2
@@ -45,7 +50,12 @@ module jerk_filter_check #(
     always @(*) if (!f_past_valid) assume (rst);
     always @(*) begin
         assume (jerk_shift <= MW);
+`ifdef LATE
+        if (up) assume (block && !rst);
+        if (down && !block) assume (!rst && n == 2'd1 && !f_late);
+`else
         if (up || down) assume (block && !rst);
+`endif
         if (up) assume (!down && n != 2'd3);
         if (down) assume (n != 2'd0);
     end
@@ -76,11 +86,33 @@ module jerk_filter_check #(
                 golden = golden + {{MW{1'b0}}, hist[(j << block_shift) - 1]};
     end
 
+    // ghost totals: the virtual distance and the filter's, and a late drop in this block
+    reg [15:0] f_virtual, f_filtered;
+    reg        f_late;
+    always @(posedge clk) begin
+        if (rst) begin
+            f_virtual <= 16'd0; f_filtered <= 16'd0; f_late <= 1'b0;
+        end else begin
+            f_virtual  <= f_virtual + {{(16-FEED_W){1'b0}}, speed};
+            f_filtered <= f_filtered + {{(16-SUM_W){1'b0}}, sum};
+            f_late     <= !block && (f_late || down);
+        end
+    end
+
+`ifdef LATE
+    always @(*) if (f_past_valid && !rst) begin
+        assert (shift == jerk_shift);
+        if (jerk_shift == 4'd0) assert (sum == {{MW{1'b0}}, speed});
+        if (empty) assert (f_filtered == f_virtual << jerk_shift);
+    end
+`else
     always @(*) if (f_past_valid && !rst) begin
         assert (shift == jerk_shift);
         assert (sum == (jerk_shift == 4'd0 ? {{MW{1'b0}}, speed} : golden));
         if (empty) assert (golden == 0 && speed == 0);
+        if (empty) assert (f_filtered == f_virtual << jerk_shift);
     end
+`endif
 `endif
 endmodule
 `default_nettype wire

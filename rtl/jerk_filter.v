@@ -36,7 +36,7 @@ module jerk_filter #(
     input  wire              rst,
     input  wire [FEED_W-1:0] speed,          // virtual speed v of this clock
     input  wire              up,             // v rises by one quantum at the end of this clock
-    input  wire              down,           // v falls by one quantum at the end of this clock
+    input  wire              down,           // v falls by one quantum at the end of this clock (or a stop's last drop)
     input  wire              block,          // block tick (the clock where v may change)
     input  wire [FEED_W-1:0] speed_quantum,  // A
     input  wire [3:0]        jerk_shift,     // log2 M, taken while empty
@@ -107,11 +107,16 @@ module jerk_filter #(
     wire [OW-1:0]    accrue = pending && !single ? {{(OW-FEED_W){1'b0}}, speed_quantum} << shift_q
                                                  : {OW{1'b0}};
     wire [OW-1:0]    total_wide = {{(OW-SUM_W){1'b0}}, total};
-    wire [SUM_W-1:0] pay  = single ? {SUM_W{1'b0}} : owed > total_wide ? total : owed[SUM_W-1:0];
+    // pay = min(debt, F): one subtraction gives both the rest of the debt and the
+    // comparison; F - debt is formed beside it
+    wire [OW:0]      rest     = {1'b0, owed} - {1'b0, total_wide};   // debt - F
+    wire             covered  = rest[OW];                             // debt < F
+    wire [SUM_W-1:0] left     = total - owed[SUM_W-1:0];              // F - debt, if covered
+    wire [OW-1:0]    owed_now = single ? owed : covered ? {OW{1'b0}} : rest[OW-1:0];
     wire [3:0] wanted = jerk_shift > DEEPEST ? DEEPEST : jerk_shift;
     assign empty = total == {SUM_W{1'b0}} && delta == {DW{1'b0}} && speed == {FEED_W{1'b0}} &&
                    owed == {OW{1'b0}} && !pending;
-    assign sum   = single ? {{MW{1'b0}}, speed} : total - pay;
+    assign sum   = single ? {{MW{1'b0}}, speed} : covered ? left : {SUM_W{1'b0}};
     assign shift = shift_q;
 
     code_delay #(.AW(MW), .WIDTH(2)) u_line (
@@ -131,7 +136,7 @@ module jerk_filter #(
             owed          <= {OW{1'b0}};
         end else begin
             pending <= ~block & (pending | down);
-            owed    <= owed - {{(OW-SUM_W){1'b0}}, pay} + accrue;
+            owed    <= owed_now + accrue;
             if (block) begin
                 delta         <= delta_next;
                 total         <= total + delta_wide;
