@@ -108,7 +108,7 @@ module motion_top #(
     output reg  [POS_W-1:0]  pos_y,
     output reg  [POS_W-1:0]  pos_z,
     output wire [FEED_W-1:0] speed,         // virtual path speed v, path units per clock
-    output wire              stopped,       // hold has brought the speed to 0
+    output wire              stopped,       // hold has brought the speed to 0 (or nothing moves)
     output wire              busy,          // a command queued or running, or a step not yet out
     output reg               done,          // one-cycle strobe when busy falls
     output reg               error,         // one-cycle strobe: a command was refused
@@ -242,7 +242,7 @@ module motion_top #(
     // ---------------- synchronization buffer, speed, output ----------------
     wire [2:0]        out_step, out_dir;
     wire [FEED_W-1:0] out_cost;
-    wire              out_valid, stop, sync_overflow, drive_ready, fire, moving, late;
+    wire              out_valid, stop, sync_overflow, drive_ready, fire, moving, late, ramp_stopped;
     wire [SLW-1:0]    sync_level;
     step_sync #(.AXES(3), .DEPTH(SDEPTH), .LATENCY(2), .DATA_W(FEED_W), .LW(SLW)) u_sync (
         .clk(clk), .rst(flush), .in_step(core_step), .in_dir(core_dir), .in_data(cost_q),
@@ -254,17 +254,22 @@ module motion_top #(
     wire [1:0] out_axes = {1'b0, out_step[0]} + {1'b0, out_step[1]} + {1'b0, out_step[2]};
     wire       drained  = ~out_valid & drive_ready & ~moving;   // speed 0, every step out
     wire       barrier_done = (state == S_DWELL && dwell_q == {W{1'b0}}) || (state == S_EVENT && drained);
+    // At rest (not busy, no push) the speed block is held in reset: the ramp's overshoot of
+    // the last stop and the pacer's phase left over from it cancel exactly, and a new
+    // jerk_shift or speed_quantum starts from a clean state.
+    wire rest = ~busy & ~cmd_valid;
     wire [QLW-1:0] profile_level;
     path_profile #(.FEED_W(FEED_W), .FRAC(FRAC), .NW(NW), .PF(PF), .LEN_W(LEN_W), .ZW(ZW), .MW(MW),
                    .QDEPTH(QDEPTH), .QLW(QLW)) u_profile (
-        .clk(clk), .rst(flush), .push(push), .push_barrier(~p_move), .push_feed(cmd_feed),
+        .clk(clk), .rst(flush | rest), .push(push), .push_barrier(~p_move), .push_feed(cmd_feed),
         .push_limit(cmd_limit), .push_exit(cmd_exit), .push_rate(cmd_rate), .push_length(cmd_length),
         .push_budget(cmd_budget), .full(prof_full), .level(profile_level), .barrier_done(barrier_done),
         .speed_quantum(speed_quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
         .override(override), .hold(hold), .step_valid(out_valid), .step_axes(out_axes),
         .step_cost(out_cost), .drive_ready(drive_ready), .fire(fire), .speed(speed), .moving(moving),
-        .stopped(stopped), .late(late)
+        .stopped(ramp_stopped), .late(late)
     );
+    assign stopped = ramp_stopped | (hold & ~busy);
 
     wire [2:0] drv_step, drv_dir;
     step_dir #(.AXES(3), .TW(TW)) u_out (

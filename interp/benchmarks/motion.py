@@ -82,10 +82,10 @@ def profile_table(quick: bool):
         first, last = result["pulses"][0][0], result["pulses"][-1][0]
         jerk_time = (1 << jerk_shift) * (1 << block_shift)
         rows.append([block_shift, jerk_shift, f"{a:.3g}", f"{v:.4f}", f"{ideal:.0f}", f"{ideal + jerk_time:.0f}",
-                     result["cycles"], last - first, f"{100 * ((last - first) / (ideal + jerk_time) - 1):+.2f}"])
+                     result["cycles"], last - first, f"{100 * (result['cycles'] / (ideal + jerk_time) - 1):+.2f}"])
     return ("Trapezoid and S-curve: a 300-step line at feed 0.25 step/clock from rest to rest",
             ["block_shift", "jerk_shift", "a, steps/clock^2", "v_c, steps/clock", "ideal time, clocks",
-             "+ the S-curve's 2^J blocks", "cycles (run)", "first to last step", "vs ideal %"], rows)
+             "+ the S-curve's 2^J blocks", "cycles (run)", "first to last step", "run vs ideal + 2^J, %"], rows)
 
 
 def hold_table(quick: bool):

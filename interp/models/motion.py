@@ -600,8 +600,9 @@ class MotionTop(CycleModel):
         """The combinational outputs (speed, stopped, busy) on the registers after an edge,
         with the inputs still applied (the bench samples between edges)."""
         nets = self._profile_nets(i)
-        self._speed, self._stopped = nets["speed"], nets["stopped"]
         self._busy = self.busy_with(nets["moving"])
+        self._speed = nets["speed"]
+        self._stopped = int(bool(nets["stopped"]) or (bool(i.get("hold", 0)) and not self._busy))
 
     def _profile_nets(self, i, barrier_done: int = 0) -> dict:
         sync, out = self.sync, self.out
@@ -743,7 +744,9 @@ class MotionTop(CycleModel):
                               "reverse": 0, "count": h["z"] & ((1 << w) - 1), "end_sel": 0, "end_coord": 0,
                               "improved": 0, "e_load": 0, "e_init": 0})
             sync.clock({"in_step": core_step, "in_dir": core_dir, "in_data": self.cost_q, "tick": fire})
-            self.profile.clock({"push": push, "push_barrier": int((i.get("cmd_kind", 0) & 7) > CURVE),
+            rest = not busy and not valid            # the speed block held in reset at rest
+            self.profile.clock({"rst": int(rest), "jerk_shift": i.get("jerk_shift", 0),
+                                "push": push, "push_barrier": int((i.get("cmd_kind", 0) & 7) > CURVE),
                                 **{f"push_{f}": i.get(f"cmd_{f}", 0) for f in
                                    ("feed", "limit", "exit", "rate", "length", "budget")}}, pnets)
         out.clock({"pulse_width": i["pulse_width"], "setup": i["setup"], "hold": i["hold_time"],

@@ -280,7 +280,7 @@ async def hold_resume_override_fuzz(dut):
     events: 0 lost, 0 duplicated steps, exact end positions."""
     rng = seeded_rng(dut, "hold_resume_override_fuzz")
     tb = await MotionTB(dut).start()
-    for n in range(8):
+    for n in range(6):
         cmds = random_moves(rng, rng.randint(1, 6))
         timing = rng.choice([FAST, {"pulse_width": 2, "setup": 1, "hold_time": 1},
                              {"pulse_width": 3, "setup": 4, "hold_time": 2}])
@@ -354,7 +354,7 @@ async def random_mix(dut):
     """Seeded random queues of lines, arcs in all planes, helices, dwells, events, bad commands."""
     rng = seeded_rng(dut, "random_mix")
     tb = await MotionTB(dut).start()
-    for n in range(6):
+    for n in range(5):
         cmds = []
         for _ in range(rng.randint(1, 7)):
             r = rng.random()
@@ -409,7 +409,7 @@ async def reset_at_random_cycles(dut):
     no further step, positions 0; then a job runs exactly."""
     rng = seeded_rng(dut, "reset_at_random_cycles")
     tb = await MotionTB(dut).start()
-    for n in range(4):
+    for n in range(3):
         cmds = tb.profiled([random_line(rng, 15) for _ in range(tb.qdepth + 1)])
         when = rng.randint(1, 600)
         for k in range(when):
