@@ -46,7 +46,11 @@
 //   > 2^PF, length 0, limit < feed).
 // At run time: 4 the arc or curve core refused its command (e.g. an inconsistent
 // centre): a FAULT, both queues are flushed, the speed block stops, and every later
-// push is refused with 4 until rst; 6 step buffer overflow (never happens; a monitor).
+// push is refused with 4 until rst; 6 step buffer overflow (never happens; a monitor);
+// 9 a segment ended above its target speed (`late`): its successor's set-up was not
+// ready in time (a segment shorter than about NW + 3 clocks) or the queue ran dry
+// after a segment too short to stop in; the speed dropped at once (the host's
+// plan must avoid it: the G-code compiler keeps every segment that long).
 // `hold` (feed hold) decelerates the path to speed 0 (`stopped`) and resumes on
 // release; no step is lost.  pos_x/y/z count the pulses at the drive (rising edges
 // of step_*).
@@ -135,7 +139,8 @@ module motion_top #(
     localparam [2:0] K_LINE = 3'd0, K_ARC_CW = 3'd1, K_ARC_CCW = 3'd2, K_CURVE = 3'd3, K_DWELL = 3'd4,
                      K_EVENT = 3'd5;
     localparam [3:0] E_KIND = 4'd1, E_FEED = 4'd2, E_RANGE = 4'd3, E_CORE = 4'd4,
-                     E_QUEUE = 4'd5, E_SYNC = 4'd6, E_PLANE = 4'd7, E_PROFILE = 4'd8;
+                     E_QUEUE = 4'd5, E_SYNC = 4'd6, E_PLANE = 4'd7, E_PROFILE = 4'd8,
+                     E_LATE = 4'd9;
     localparam [2:0] S_IDLE = 3'd0, S_LINE = 3'd1, S_ARC = 3'd2, S_CURVE = 3'd3,
                      S_DRAIN = 3'd4, S_DWELL = 3'd5, S_EVENT = 3'd6, S_FAULT = 3'd7;
     localparam integer CMD_W = 5 + FEED_W + 7 * W;
@@ -364,10 +369,11 @@ module motion_top #(
             else if (cmd_valid & bad_profile)           error_code <= E_PROFILE;
             else if (cmd_valid & cmd_full)              error_code <= E_QUEUE;
             else if (sync_overflow & ~sync_overflow_q)  error_code <= E_SYNC;
+            else if (late)                              error_code <= E_LATE;
             else                                        error <= 1'b0;
         end
     end
 
-    wire unused = &{1'b0, arc_busy, cv_busy, sync_level, unused_overflow, late};
+    wire unused = &{1'b0, arc_busy, cv_busy, sync_level, unused_overflow};
 endmodule
 `default_nettype wire

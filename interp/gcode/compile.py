@@ -64,6 +64,11 @@ DWELL_MAX = (1 << W) - 1                     # cycles of one DWELL command (unsi
 FEED_MAX = (1 << FEED_W) - 1
 VALUE_MAX = (1 << (W - 1)) - 1               # event values are signed W bits
 LEN_MAX, ZW_MAX, NW_MAX = (1 << LEN_W) - 1, (1 << ZW) - 1, (1 << NW) - 1
+# Every move lasts at least this many clocks, at any override: speed_ramp sets up the
+# successor of a segment while the segment runs (about NW + 3 clocks); a shorter segment
+# would end before it and stop at once (motion_top error 9).  Binding only at low clocks
+# (a one-step move at 200 kHz: <= 23 mm/s at 100 steps/mm; at 50 MHz: <= 5.8 m/s).
+SEGMENT_CLOCKS = 2 * (NW + 3)
 COST_MODES = ("true", "lecture")
 PWM_FULL = 65535                             # spindle duty of S = max_s
 CHORD_SAGITTA = 0.25                         # chords stay within this many steps of the true arc
@@ -507,9 +512,10 @@ class Compiler:
             rates = tuple(a.max_rate_mm_min / 60 for a in self.axes)
             accels = tuple(a.accel_mm_s2 for a in self.axes)
             motions = [c.motion for c in moves]
-            segments = [Segment(m.length_mm, m.start_unit, m.end_unit, m.feed_mm_s, rates, accels,
+            shortest = [m.length_mm * self.clock / SEGMENT_CLOCKS for m in motions]
+            segments = [Segment(m.length_mm, m.start_unit, m.end_unit, min(m.feed_mm_s, brief), rates, accels,
                                 radius_mm=m.radius_mm, plane_axes=m.plane_axes, stop_before=m.stop_before,
-                                tolerance_mm=m.tolerance_mm) for m in motions]
+                                tolerance_mm=m.tolerance_mm) for m, brief in zip(motions, shortest)]
             plans = plan(segments, junction_deviation_mm=self.machine.values["motion"]["junction_deviation_mm"])
             # the axes' ceiling for feed override > 100 %: the segment's limits without its feed
             # (one per distinct direction and radius: programs repeat them)
@@ -520,7 +526,7 @@ class Compiler:
                 if key not in ceiling:
                     ceiling[key] = limits(Segment(m.length_mm, m.start_unit, m.end_unit, math.inf, rates, accels,
                                                   radius_mm=m.radius_mm, plane_axes=m.plane_axes))[0]
-                caps.append(ceiling[key])
+                caps.append(min(ceiling[key], m.length_mm * self.clock / SEGMENT_CLOCKS))
         self.out.plans = plans
         clock = self.clock
         scale = [c.motion.spm * (1 << FRAC) / clock for c in moves]     # path units / clock per mm/s
