@@ -4,8 +4,7 @@
 Each program runs through `interp gcode FILE --steps S.csv --events E.csv` at a 200 kHz
 controller clock (the default machine's 50 MHz would only multiply the cycles of these
 10..55 s programs; steps and events do not depend on the clock, the speed profile only
-through its quantum).  The motion monitor's verdict must be ok (speeds, accelerations),
-except for the runs named in MONITOR_KNOWN (expected failures, with the reason).  The steps in the CSV must
+through its quantum).  The motion monitor's verdict must be ok (speeds, accelerations).  The steps in the CSV must
 add up to the end in steps that --check reports, which must be the tests' own reading of the
 program (interp.testing.gcode_reference) in machine mm times the machine's steps/mm, and the
 events CSV must hold the events the program asks for, in order, at non-decreasing cycles.
@@ -25,18 +24,10 @@ SELECTION = {
     "lcnc_3dtest.ngc": "LinuxCNC sample: inch, full circles in G17, G18 and G19",
     "ugs_spiral.gcode": "helix: full circles and helical full circles (G3 ... Z20 I20)",
     "lcnc_hole-circle.ngc": "G81 drilling cycle repeated by L6 with a polar ^60 increment, inch",
-    "ugs_arc_rword_test.gcode": "at 200 kHz a one-step command (an arc's closing line) lasts about 47 "
-                                "clocks, less than the look-ahead's set-up: the arc after it starts "
-                                "without its successor known and the speed dips (clean at 1 MHz)",
+    "ugs_arc_rword_test.gcode": "one-step commands (arcs' closing lines) at 200 kHz: each must still "
+                                "outlast the look-ahead's set-up (the compiler slows them)",
 }
 
-# Runs whose steps and events are right but whose speeds the motion monitor questions (a
-# hardware matter, named here until it is fixed; the test fails if the verdict becomes ok).
-MONITOR_KNOWN = {
-    "ugs_arc_rword_test.gcode": "the speed dips at an arc that follows a one-step correction line (the "
-                                "look-ahead's set-up outlasts the short segment) and the steps fall "
-                                "behind the generator faster than the arc's acceleration",
-}
 
 
 def missing() -> str | None:
@@ -66,9 +57,7 @@ def test_corpus_program_on_rtl(name, tmp_path):
     steps_csv, events_csv = tmp_path / "steps.csv", tmp_path / "events.csv"
     status, out, err = interp_gcode([str(path), "--clock-hz", CLOCK_HZ, "--steps", str(steps_csv),
                                    "--events", str(events_csv)])
-    failures = [line for line in err.splitlines() if line.startswith("interp: error:")]
-    monitor_only = status == 1 and len(failures) == 1 and "the motion monitor found" in failures[0]
-    assert status == 0 or monitor_only, err
+    assert status == 0, err
     with open(steps_csv, newline="") as f:
         rows = list(csv.DictReader(f))
     assert [sum(int(r[k]) for r in rows) for k in ("dx", "dy", "dz")] == end_steps
@@ -80,9 +69,4 @@ def test_corpus_program_on_rtl(name, tmp_path):
     cycles = [int(e["cycle"]) for e in events]
     assert cycles == sorted(cycles)
     verdict = next(line for line in out.splitlines() if line.startswith("monitor: "))
-    if verdict.startswith("monitor: ok"):
-        assert name not in MONITOR_KNOWN, "the monitor is content now: take the program out of MONITOR_KNOWN"
-    else:
-        if name in MONITOR_KNOWN:
-            pytest.xfail(f"{MONITOR_KNOWN[name]}: {verdict}")
-        pytest.fail(verdict)
+    assert verdict.startswith("monitor: ok"), verdict
