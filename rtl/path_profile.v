@@ -23,9 +23,9 @@
 // at a block end (every one but the last drop of a stop) is thus passed on in the
 // next clock: the step domain runs one clock behind the virtual domain.  The last drop
 // of a stop comes at the clock the segment ends, inside a block when block_shift > 0:
-// speed_f follows at the next block tick, so the step domain gets at most one block of
-// one quantum more travel than the ramp, never less (the pacer's phase keeps it; no
-// step is early or lost), and the filter empties.
+// speed_f follows it in the next clock too, and the filter books the rest of that
+// block's travel as a debt it pays back before it empties, so the step domain's
+// distance equals the ramp's at every stop (nothing accumulates over many stops).
 module path_profile #(
     parameter integer FEED_W = 16,  // speed word width: path units per clock (>= 2)
     parameter integer FRAC   = 16,  // fraction bits: an axial step is 2^FRAC path units (1 .. 64)
@@ -117,7 +117,7 @@ module path_profile #(
     reg  [FEED_W-1:0] speed_f;      // the filter's speed: follows `speed`, a quantum per block
     reg               block_q;      // the ramp's block a clock late
     wire              rise = block_q && speed > speed_f;
-    wire              fall = block_q && speed < speed_f;
+    wire              fall = speed < speed_f;   // a stop's last drop: at once, inside a block
     always @(posedge clk) begin
         if (rst) begin
             speed_f <= {FEED_W{1'b0}};

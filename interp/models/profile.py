@@ -94,11 +94,12 @@ class PathProfile(CycleModel):
         """The combinational outputs for inputs `i` (barrier_done, the settings, hold,
         step_valid, step_axes, step_cost, drive_ready) on the registers before the edge.
         The ramp's outputs are registers; the filter gets its own copy of the speed, which
-        follows the ramp's one quantum per block tick (the ramp's block a clock late)."""
+        follows the ramp's one quantum per block tick (the ramp's block a clock late), and a
+        stop's last drop inside a block in the next clock."""
         ramp = self.ramp
         ramp_in = self._ramp_inputs(i)
         rise = int(bool(self.block_q) and ramp.speed > self.speed_f)
-        fall = int(bool(self.block_q) and ramp.speed < self.speed_f)
+        fall = int(ramp.speed < self.speed_f)        # a stop's last drop: at once, inside a block
         jerk_in = {"speed": self.speed_f, "up": rise, "down": fall, "block": self.block_q,
                    "speed_quantum": i["speed_quantum"], "jerk_shift": i["jerk_shift"]}
         self.jerk.set_inputs(jerk_in)
