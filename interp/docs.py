@@ -30,7 +30,7 @@ RESOURCES_CSV = DOCS / "resources.csv"
 
 # One datasheet per module, in the order of the index.
 MODULES = ["su1571551", "lin_exact", "circ_su1665343", "lin_std", "lin_accel", "circ_quadrant",
-           "circ_arc", "curve_tangent", "motion_top", "feed_rate", "step_sync", "step_dir", "sync_fifo"]
+           "circ_arc", "curve_tangent", "motion_top", "step_pacer", "step_sync", "step_dir", "sync_fifo"]
 
 PORTS_BEGIN, PORTS_END = "<!-- ports:begin -->", "<!-- ports:end -->"
 RES_BEGIN, RES_END = "<!-- resources:begin -->", "<!-- resources:end -->"
@@ -151,7 +151,24 @@ def width_value(width: str, parameters: dict[str, int]) -> int:
 
 
 def default_parameters(module: str, rtl: Path = RTL) -> dict[str, int]:
-    return {p.name: int(p.default) for p in rtl_parameters(module, rtl)}
+    """Each parameter's default; a default may be an expression of the ones before it
+    (names, digits, + - * ( ), comparisons and one `c ? a : b`)."""
+    values: dict[str, int] = {}
+    for p in rtl_parameters(module, rtl):
+        values[p.name] = _default_value(p.default, values)
+    return values
+
+
+def _default_value(text: str, known: dict[str, int]) -> int:
+    if "?" in text:
+        condition, rest = text.split("?", 1)
+        if_true, if_false = rest.split(":", 1)
+        chosen = if_true if _default_value(condition, known) else if_false
+        return _default_value(chosen, known)
+    expr = re.sub(r"[A-Za-z_]\w*", lambda m: str(known[m.group(0)]), text)
+    if not re.fullmatch(r"[\d+\-*()<>= ]+", expr):
+        raise ValueError(f"parameter default {text!r}")
+    return int(eval(expr))      # digits, + - * ( ) and comparisons only
 
 
 def _cells(line: str) -> list[str]:
@@ -351,7 +368,7 @@ def read_vcd(path: Path, wanted: set[str], clock: str) -> dict[str, list[str]]:
             t = tok[0]
             if t.startswith("#"):
                 flush()
-                time = int(t[1:])
+                pass                     # a new time: the samples before it are complete
             elif t[0] in "bBrR":
                 pending.append((tok[1], t[1:]))
             elif t[0] in "01xXzZ":
@@ -520,9 +537,11 @@ _QUAD = [("start", "bit"), ("tick", "bit"), ("x0", "s8"), ("y0", "s8"), ("x1", "
          ("dir_y", "bit"), ("done", "bit"), ("error", "bit")]
 _MT = "motion_top"
 # The G-code build (W 32, FRAC 48) on a machine slowed down for the eye: a 1 kHz clock and
-# 1 step/mm, so F12000 mm/min is 0.2 step per clock; pulse 2 cycles, set-up 1, hold 1.
-_MACHINE = [f"axis.{a}.{k}={v}" for a in "xyz" for k, v in (("steps_per_mm", 1), ("max_rate_mm_min", 60000))]
-_GCODE = ["gcode", "G21 G91\nG01 X3 Y-2 F12000\nG01 X-1\n", "--clock-hz", "1000", "--sim", "icarus",
+# 1 step/mm, so F12000 mm/min is 0.2 step per clock, reached in 2 clocks (an acceleration of
+# 100 m/s^2); pulse 2 cycles, set-up 1, hold 1.
+_MACHINE = [f"axis.{a}.{k}={v}" for a in "xyz"
+            for k, v in (("steps_per_mm", 1), ("max_rate_mm_min", 60000), ("accel_mm_s2", 100000))]
+_GCODE = ["gcode", "G21 G91\nG01 X30 Y-20 F12000\nG01 X-10\n", "--clock-hz", "1000", "--sim", "icarus",
           *[w for kv in _MACHINE + ["output.pulse_ns=2000000", "output.dir_setup_ns=1000000",
                                     "output.dir_hold_ns=1000000"] for w in ("--set", kv)]]
 
@@ -574,12 +593,12 @@ def diagrams() -> dict[str, Diagram]:
                                         ("dir_y", "bit"), ("done", "bit"), ("error", "bit")]),
                 [("start", 2, 10)], "curve_tangent.clk",
                 ["run", "curve_tangent", {}, "curve", "--curve", "circle", "--a", "4"]),
-        Diagram("motion_top", "motion_top, W 32: G91 G01 X3 Y-2, G01 X-1 (feed 0.2 step/clock; pulse 2, setup 1, hold 1)",
+        Diagram("motion_top", "motion_top, W 32: G91 G01 X30 Y-20, G01 X-10 (feed 0.2 step/clock; pulse 2, setup 1, hold 1)",
                 _core(_MT, [("cmd_valid", "bit"), ("cmd_kind", "u"), ("cmd_x", "s32"), ("cmd_y", "s32"),
                             ("cmd_feed", "u"), ("queue_level", "u"), ("busy", "bit"), ("step_x", "bit"),
                             ("dir_x", "bit"), ("step_y", "bit"), ("dir_y", "bit"), ("pos_x", "s32"),
                             ("pos_y", "s32"), ("done", "bit"), ("error", "bit")]),
-                [("start", 1, 40)], f"{_MT}.clk", _GCODE),
+                [("start", 1, 40), ("step_x", 2, 30)], f"{_MT}.clk", _GCODE),
         Diagram("sync_fifo", "sync_fifo inside motion_top (WIDTH = the command word, DEPTH 4): two commands queued",
                 _core("sync_fifo", [("push", "bit"), ("pop", "bit"), ("valid", "bit"), ("full", "bit"),
                                     ("level", "u"), ("overflow", "bit")], f"{_MT}.u_queue"),
@@ -589,10 +608,13 @@ def diagrams() -> dict[str, Diagram]:
                                     ("out_valid", "bit"), ("out_step", "b3"), ("out_dir", "b3"), ("level", "u"),
                                     ("overflow", "bit")], f"{_MT}.u_sync"),
                 [("start", 1, 24)], f"{_MT}.clk", _GCODE, "axis bits ZYX (bit 0 = X)"),
-        Diagram("feed_rate", "feed_rate inside motion_top (FEED_W 50, FRAC 48): path speed 0.2 step/clock",
-                _core("feed_rate", [("feed", "u"), ("axes", "u"), ("take", "bit"), ("tick", "bit")], f"{_MT}.u_feed"),
-                [("start", 1, 24)], f"{_MT}.clk", _GCODE, "feed 0.2124 · 2^48 on the first line (charges 1 + 2√2 over √13 steps of path), 0.2 · 2^48 on the second; "
-                "a diagonal step (axes 2) costs √2"),
+        Diagram("step_pacer", "step_pacer inside motion_top (FEED_W 50, FRAC 48): the speed ramps up to 0.2 step/clock",
+                _core("step_pacer", [("sum", "u"), ("jerk_shift", "u"), ("step_valid", "bit"), ("step_axes", "u"),
+                                     ("step_cost", "u"), ("drive_ready", "bit"), ("due", "bit"), ("fire", "bit")],
+                      f"{_MT}.u_profile.u_pacer"),
+                [("start", 1, 4), ("fire", 4, 30)], f"{_MT}.clk", _GCODE, "sum: the filtered speed (path units per clock, "
+                "2^48 = one axial step); a step leaves when the phase covers its cost (the true length of "
+                "one step of the segment) and the output stage is ready"),
         Diagram("step_dir", "step_dir inside motion_top (AXES 3): pulse width 2, setup 1, hold 1",
                 _core("step_dir", [("pulse_width", "u"), ("setup", "u"), ("hold", "u"), ("valid", "bit"),
                                    ("step_in", "b3"), ("dir_in", "b3"), ("ready", "bit"), ("step", "b3"), ("dir", "b3")],

@@ -2,7 +2,6 @@
 """The path-speed profile generator's cycle model (interp.models.speed_ramp) on its
 own: exact distance, the acceleration bound, braking to rest exactly at the end with a
 short crawl, hold, override, underrun, the braking bound R(n, u) itself."""
-import math
 import os
 import random
 

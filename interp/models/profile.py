@@ -23,7 +23,7 @@ from dataclasses import replace
 from typing import Mapping
 
 from .base import CycleModel
-from .motion import (ARC_CCW, ARC_CW, CURVE, DWELL, EVENT, LINE, Command, SyncFifo, command_steps,
+from .motion import (ARC_CCW, ARC_CW, CURVE, LINE, Command, SyncFifo, command_steps,
                      interval_costs)
 
 
