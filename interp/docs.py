@@ -326,7 +326,7 @@ def read_vcd(path: Path, wanted: set[str], clock: str) -> dict[str, list[str]]:
     scope: list[str] = []
     cur: dict[str, str] = {}
     samples: dict[str, list[str]] = {n: [] for n in wanted}
-    clk_val, time = "x", 0
+    clk_val = "x"
     clk_id = None
     pending: list[tuple[str, str]] = []
 
@@ -368,7 +368,6 @@ def read_vcd(path: Path, wanted: set[str], clock: str) -> dict[str, list[str]]:
             t = tok[0]
             if t.startswith("#"):
                 flush()
-                pass                     # a new time: the samples before it are complete
             elif t[0] in "bBrR":
                 pending.append((tok[1], t[1:]))
             elif t[0] in "01xXzZ":

@@ -143,7 +143,7 @@ async def drop_inside_a_block(dut):
 async def full_speed_and_quantum(dut):
     """The widest words: speed near 2^FEED_W - 1 at the deepest shift (no overflow of F)."""
     rng = seeded_rng(dut, "full_speed_and_quantum")
-    tb = await FilterTB(dut).start(tb_shift := 0)
+    tb = await FilterTB(dut).start(0)
     mw = tb.mw
     quantum = ((1 << tb.feed_w) - 1) // 7
     inputs = ramp(rng, quantum, mw, 0, 0, top=7, lead=2, plan=trapezoid(7, (1 << mw) + 3))
