@@ -183,6 +183,7 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
         _record(report, "jerk", np.abs(jerk), j_cap, np.abs(jerk) - (j_cap + dj), g[2:], clock, "steps/clock^3")
     # per axis
     axis_speed = []
+    jumps = _junction_jumps(moves, [a.steps_per_mm for a in machine.axes], quantum)
     for k, a in enumerate(machine.axes):
         xa = np.cumsum(np.abs(rows[:, 1 + k]).astype(float))
         xag = np.interp(g, np.concatenate(([start], t)), np.concatenate(([0.0], xa)))
@@ -192,6 +193,20 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
         _record(report, f"{'xyz'[k]} speed", va, np.full_like(va, cap_a), va - (cap_a + dva), g, clock,
                 "steps/clock")
         axis_speed.append(va * clock / a.steps_per_mm)
+        # axis acceleration: the axis's accel_mm_s2, + at a junction the planned corner's jump of
+        # this axis's velocity (a corner turns the velocity at once) spread over the grid
+        acc_a = np.diff(va) / grid
+        a_axis = a.accel_mm_s2 * a.steps_per_mm / clock ** 2
+        jump = np.zeros(len(acc_a))
+        for j in range(len(acc_a)):
+            first, last = int(c_lo[j]), int(c_hi[j + 1])
+            if last > first:
+                jump[j] = jumps[first:last, k].max() / grid
+        cap_acc = a_axis + jump
+        da_a = 2 * dva / grid + quantum / grid
+        _record(report, f"{'xyz'[k]} acceleration", np.abs(acc_a), cap_acc, np.abs(acc_a) - (cap_acc + da_a),
+                g[1:], clock, "steps/clock^2")
+    _exits(report, moves, t, x, owner, counts, accel, quantum, window, q, clock)
     _holds(report, controls, t, x, g, v, feed, limit, accel, owner, counts, dx, dv, grid, window, c_max, q, overrides,
            quantum)
     report.checks.insert(0, ("events", report.events, report.expected_events, "", _ok(report.events ==
@@ -204,6 +219,49 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
                      "accel": accel_max * clock * clock / spm[c_lo]}
     report.ok = not report.violations
     return report
+
+
+def _junction_jumps(moves, steps_per_mm, quantum: float) -> np.ndarray:
+    """(len(moves), 3): per junction k (between moves k and k + 1) the jump of each axis's
+    velocity, steps/clock, at the planned corner speed (the exit field's speed + a quantum)."""
+    out = np.zeros((len(moves), 3))
+    for k in range(len(moves) - 1):
+        m0, m1 = moves[k].motion, moves[k + 1].motion
+        v_mm = (moves[k].exit + 1) * quantum / m0.spm          # mm / clock along the path
+        for axis in range(3):
+            out[k, axis] = abs(m1.start_unit[axis] - m0.end_unit[axis]) * v_mm * steps_per_mm[axis]
+    return out
+
+
+def _exits(report, moves, t, x, owner, counts, accel, quantum: float, window: int, q: int, clock: float) -> None:
+    """The speed at the end of each command is at most its planned exit (cmd_exit quanta):
+    the mean speed of the last LOCAL_EVENTS events before the command's end (their distance
+    over their time + 2q, a lower bound of the true mean) <= v_exit + one quantum + the
+    acceleration x (the events' time + the S-curve's window); the program's last command
+    (exit 0) must end from a decelerating profile."""
+    ends = np.cumsum(counts)
+    bad = []
+    worst = (0.0, 0.0)
+    for c, end in enumerate(ends):
+        k = int(end) - 1
+        k0 = k - LOCAL_EVENTS
+        if k0 < 0 or k >= len(t):
+            continue
+        span = float(t[k] - t[k0]) + 2 * q
+        mean = float(x[k] - x[k0]) / span
+        a = float(accel[owner[k0:k + 1]].max())
+        exit_speed = moves[c].exit * quantum
+        bound = exit_speed + quantum + a * (span + 1.5 * window + 2 * q)
+        if mean / max(bound, 1e-300) > worst[0] / max(worst[1], 1e-300):
+            worst = (mean, bound)
+        if mean > bound:
+            what = "the program's end" if c == len(moves) - 1 else f"the end of command {c + 1}"
+            source = getattr(moves[c], "source", None)
+            line = f" (line {source})" if source else ""
+            bad.append(f"speed {mean:.6g} steps/clock at {what}{line}, cycle {int(t[k])} "
+                       f"({t[k] / clock:.6g} s), above its planned exit {exit_speed:.6g} + quantisation = {bound:.6g}")
+    report.checks.append(("exit speeds", worst[0], worst[1], "steps/clock", _ok(not bad)))
+    report.violations.extend(bad)
 
 
 def _range_max(values: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
