@@ -415,3 +415,19 @@ def test_short_command_corner_is_caught_by_the_monitor(tmp_path, capsys):
     out = capsys.readouterr().out
     # the monitor must not pass this run until the hardware fix: today it says "monitor: ok"
     assert code == 0 and "monitor: ok" in out, out
+
+
+SQUARE = "G21 G90\nG1 X10 F3000\nG1 X10 Y10\nG1 X0 Y10\nG1 X0 Y0\nM2\n"
+
+
+@real
+def test_scurve_corners_within_their_junction_limit(tmp_path, capsys):
+    """The S-curve's moving average spreads the speed around a corner: planned for the
+    unfiltered speed, the corners ran at about 1.8 x their junction limit (the monitor's
+    "junction speeds" check); the planner lowers each junction by a W / 2."""
+    src = tmp_path / "square.nc"
+    src.write_text(SQUARE)
+    sets = [a for axis in "xyz" for a in ("--set", f"axis.{axis}.steps_per_mm=1000")]
+    code = main(["gcode", str(src), *sets, "--clock-hz", "5e6", "--profile", "scurve"])
+    out = capsys.readouterr().out
+    assert code == 0 and "monitor: ok" in out, out

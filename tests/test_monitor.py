@@ -156,7 +156,7 @@ def _with_exits(out, change):
 def test_new_checks_are_in_the_table(run):
     out, rows = run
     names = set(checks(monitor(rows, out, MACHINE)))
-    assert {"x acceleration", "y acceleration", "z acceleration", "exit speeds"} <= names
+    assert {"x acceleration", "y acceleration", "z acceleration", "exit speeds", "junction speeds"} <= names
 
 
 def test_corner_faster_than_its_exit_fails(run):
@@ -169,6 +169,7 @@ def test_corner_faster_than_its_exit_fails(run):
     report = monitor(_with_exits(out, fast_corner), out, MACHINE)
     assert checks(report)["exit speeds"] == "VIOLATED"
     assert any("the end of command 1" in v for v in report.violations), report.violations
+    assert checks(report)["junction speeds"] == "VIOLATED"
 
 
 def test_program_ending_at_speed_fails(run):
