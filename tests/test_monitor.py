@@ -9,6 +9,7 @@ check that concerns it.
 import math
 import random
 
+import numpy as np
 import pytest
 
 from interp.gcode.compile import compile_program
@@ -201,3 +202,38 @@ def test_every_violation_is_printed(run):
     lines = verdict(report).splitlines()
     assert len(report.violations) > 1 and len(lines) == len(report.violations) + 1
     assert "more)" not in verdict(report)
+
+
+def test_speed_plot_cap_in_force_and_controls(run, tmp_path, monkeypatch):
+    """The cap line is the cruise x the override at that moment (a step at the change), and
+    the holds, resumes and override changes are vertical lines with legend entries."""
+    import matplotlib.pyplot as plt
+
+    from interp.plots import speed
+
+    out, rows = run
+    change = rows[len(rows) // 4][0]
+    controls = [(change, "override", 50), (rows[len(rows) // 2][0], "hold", 0),
+                (rows[len(rows) // 2][0] + 50000, "resume", 0)]
+    report = monitor(rows, out, MACHINE, controls=controls)
+    s = report.series
+    before, after = s["t"] < change / 1e6 - 0.05, s["t"] > change / 1e6 + 0.05
+    first = s["cruise"] == s["cruise"][0]
+    assert np.allclose(s["cap"][before & first], np.minimum(s["cruise"], s["limit"])[before & first])
+    assert np.allclose(s["cap"][after], np.minimum(s["cruise"] / 2, s["limit"])[after])
+    seen = {}
+    real_close = plt.close
+
+    def keep(fig):
+        seen["labels"] = [line.get_label() for line in fig.axes[0].get_lines()]
+        seen["title"] = fig.axes[0].get_title()
+        real_close(fig)
+
+    monkeypatch.setattr(speed.plt, "close", keep)
+    speed.plot_speed(tmp_path / "s.png", report, title="t")
+    assert {"feed hold", "resume", "override change"} <= set(seen["labels"])
+    assert "jerk" not in seen["title"]
+    scurve = compile_program(PROGRAM, MACHINE, profile="scurve")
+    speed.plot_speed(tmp_path / "c.png", monitor(ideal_rows(scurve.commands, scurve.settings), scurve, MACHINE),
+                     title="t")
+    assert "jerk limit" in seen["title"]

@@ -213,9 +213,16 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
     report.checks.insert(0, ("events", report.events, report.expected_events, "", _ok(report.events ==
                                                                                       report.expected_events)))
     mid = (g[:-1] + g[1:]) / 2
+    # the cap actually in force: the cruise x the override at that moment (a step at each
+    # override change), at most the ceiling
+    ov_now = ov_values[np.maximum(np.searchsorted(ov_times, mid, side="right") - 1, 0)]
+    cap_now = np.minimum(feed_max * ov_now / 100, limit_max)
     report.series = {"t": mid / clock, "path": v * clock / spm[c_lo], "axes": axis_speed,
                      "cruise": feed_max * clock / spm[c_lo], "limit": limit_max * clock / spm[c_lo],
-                     "cap": caps * clock / spm[c_lo],
+                     "cap": cap_now * clock / spm[c_lo],
+                     "controls": [(float(c) / clock, kind, value) for c, kind, value in controls],
+                     "jerk_mm_s3": machine.values["motion"]["jerk_mm_s3"] if (js or bs) else None,
+                     "window_s": window / clock,
                      "axis_max": [a.max_rate_mm_min / 60 for a in machine.axes],
                      "accel": accel_max * clock * clock / spm[c_lo]}
     report.ok = not report.violations
