@@ -364,10 +364,8 @@ def test_negative_g64_tolerance_is_one_line(tmp_path, capsys, letter):
     src = tmp_path / "p.nc"
     word = "P-1" if letter == "P" else "P0.1 Q-1"
     src.write_text(f"G21 G64 {word}\nG1 X10 F100\nG1 Y10\n")
-    one_line_error(capsys, 2, ["gcode", str(src), "--check"], f"line 1, column ")
-    src.write_text(f"G21 G64 {word}\nG1 X10 F100\nG1 Y10\n")
-    assert main(["gcode", str(src), "--check"]) == 2
-    assert f"{letter}-1: the G64 tolerance cannot be negative" in capsys.readouterr().err
+    one_line_error(capsys, 2, ["gcode", str(src), "--check"],
+                   f"line 1, column {9 if letter == 'P' else 14}: {letter}-1: the G64 tolerance cannot be negative")
 
 
 def test_hold_lines_follow_the_steps_csv():

@@ -173,9 +173,7 @@ def test_corner_faster_than_its_exit_fails(run):
     assert checks(report)["junction speeds"] == "VIOLATED"
 
 
-def test_program_ending_at_speed_fails(run):
-    out, rows = run
-    quantum = out.settings["speed_quantum"]
+def test_program_ending_at_speed_fails():
     end = Program([Line((0, 0, 0), (20, 0, 0), 3000, 1)])
     single = compile_program(end, MACHINE)
 

@@ -428,7 +428,8 @@ def verdict(report: Report) -> str:
     if report.ok:
         checked = sum(1 for c in report.checks if c[4] == "ok")
         if not report.grid:
-            return f"monitor: ok, {report.events} step events, {checked} checks passed (too few steps to measure speeds)"
+            return (f"monitor: ok, {report.events} step events, {checked} checks passed "
+                    "(too few steps to measure speeds)")
         return (f"monitor: ok, {report.events} step events, {checked} checks passed "
                 f"(speed / acceleration over {report.grid}-clock windows)")
     return "\n".join([f"monitor: {len(report.violations)} violations:"] +
