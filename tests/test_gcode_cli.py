@@ -186,14 +186,14 @@ def test_event_codes_in_the_commands(fakes, nc, tmp_path):
     (["gcode", "{nc}", "--hold-at", "1", "--resume-at", "3", "--hold-at", "2", "--resume-at", "4"],
      "--hold-at 2 overlaps the hold from 1 s (resumed at 3 s)"),
     (["gcode", "{nc}", "--hold-at", "1", "--hold-at", "2"], "--hold-at 2 overlaps the hold from 1 s (never resumed)"),
-    (["gcode", "{nc}", "--hold-at", "-1"], "--hold-at needs a time in seconds >= 0"),
-    (["gcode", "{nc}", "--hold-at", "nan"], "--hold-at needs a time in seconds >= 0"),
+    (["gcode", "{nc}", "--hold-at", "-1"], "--hold-at needs a finite time in seconds >= 0"),
+    (["gcode", "{nc}", "--hold-at", "nan"], "--hold-at needs a finite time in seconds >= 0"),
     (["gcode", "{nc}", "--hold-at", "soon"], "invalid float value"),
-    (["gcode", "{nc}", "--override", "0"], "--override 0: the percentage must be 1 .. 200"),
-    (["gcode", "{nc}", "--override", "201@1"], "the percentage must be 1 .. 200"),
+    (["gcode", "{nc}", "--override", "0"], "--override 0: the percentage must be a whole number 1 .. 200"),
+    (["gcode", "{nc}", "--override", "201@1"], "the percentage must be a whole number 1 .. 200"),
     (["gcode", "{nc}", "--override", "fast"], "--override fast: give PERCENT or PERCENT@SECONDS"),
     (["gcode", "{nc}", "--override", "50@x"], "give PERCENT or PERCENT@SECONDS"),
-    (["gcode", "{nc}", "--override", "50@-2"], "--override @ needs a time in seconds >= 0"),
+    (["gcode", "{nc}", "--override", "50@-2"], "--override 50@-2: the time after @ must be"),
     (["gcode", "{nc}", "--check", "--override", "50"], "go with a simulation, not --check"),
     (["gcode", "{nc}", "--plot-speed", "/nonexistent/dir/s.png"], "cannot write /nonexistent/dir/s.png"),
 ])
@@ -335,3 +335,98 @@ def test_icarus_and_verilator_give_the_same_steps(tmp_path, capsys):
         files[sim] = (steps.read_text(), events.read_text())
     assert files["verilator"] == files["icarus"]
     assert files["verilator"][1].count("spindle") == 2
+
+
+@pytest.mark.parametrize("argv,text", [
+    (["gcode", "{nc}", "--plot-speed", "{tmp}/x.txt"], "--plot-speed {tmp}/x.txt: '.txt' is not a plot format"),
+    (["gcode", "{nc}", "--plot", "{tmp}/x.txt"], "--plot {tmp}/x.txt: '.txt' is not a plot format"),
+    (["gcode", "{nc}", "--plot", "{tmp}/x"], "no extension is not a plot format"),
+    (["gcode", "{nc}", "--hold-at", "0.3", "--resume-at", "0.4", "--hold-at", "0.4", "--resume-at", "0.5"],
+     "--hold-at 0.4 must come after the previous --resume-at 0.4"),
+    (["gcode", "{nc}", "--clock-hz", "100000", "--hold-at", "0.3", "--resume-at", "0.4", "--hold-at", "0.400004"],
+     "--hold-at 0.400004 must come after the previous --resume-at 0.4 (at 100000 Hz both are clock cycle 40000"),
+    (["gcode", "{nc}", "--override", "50@-1"], "--override 50@-1: the time after @"),
+    (["gcode", "{nc}", "--override", "50@inf"], "--override 50@inf: the time after @ must be a finite"),
+    (["gcode", "{nc}", "--override", "50.5"], "--override 50.5: the percentage must be a whole number"),
+    (["gcode", "{nc}", "--hold-at", "inf"], "--hold-at needs a finite time in seconds >= 0 (got inf)"),
+])
+def test_review_option_errors_one_line_before_the_run(fakes, nc, tmp_path, capsys, argv, text):
+    def harness(*a, **k):
+        raise AssertionError("the simulation must not start")
+
+    fakes.setattr(gcode, "run_simulation", harness)
+    argv = [a.format(nc=nc, tmp=tmp_path) for a in argv]
+    one_line_error(capsys, 2, argv, text.format(tmp=tmp_path))
+
+
+@pytest.mark.parametrize("letter", ["P", "Q"])
+def test_negative_g64_tolerance_is_one_line(tmp_path, capsys, letter):
+    src = tmp_path / "p.nc"
+    word = "P-1" if letter == "P" else "P0.1 Q-1"
+    src.write_text(f"G21 G64 {word}\nG1 X10 F100\nG1 Y10\n")
+    one_line_error(capsys, 2, ["gcode", str(src), "--check"],
+                   f"line 1, column {9 if letter == 'P' else 14}: {letter}-1: the G64 tolerance cannot be negative")
+
+
+def test_hold_lines_follow_the_steps_csv():
+    # the harness says the speed was 0 at 1200, but steps left until 1500 (an S-curve's tail)
+    controls = [(1000, "hold", 0), (3000, "resume", 0), (5000, "hold", 0), (6000, "resume", 0),
+                (90000, "hold", 0)]
+    holds = [(1.0, 3.0), (5.0, 6.0), (90.0, None)]
+    stops = [[1000, 1200, 3], [5000, None, None]]
+    steps = [900, 1100, 1300, 1500, 3100, 5100, 5500, 5900, 6100]
+    import io
+    from contextlib import redirect_stderr
+
+    err = io.StringIO()
+    with redirect_stderr(err):
+        lines = gcode.hold_lines(holds, stops, controls, steps, 10000, 1000.0)
+    assert lines == ["hold at 1 s: stopped 0.5 s later, 3 steps after it",
+                     "hold at 5 s: did not stop before its resume, 3 steps after it"]
+    assert "None" not in "".join(lines)
+    assert err.getvalue().count("\n") == 1 and "--hold-at 90: after the program's end" in err.getvalue()
+
+
+def test_empty_program_no_numpy_warning(fakes, nc, tmp_path, capsys):
+    import warnings
+
+    fakes.setattr(gcode, "interpret_program", lambda text, machine: Program(
+        moves=[], warnings=[], end_work=(0.0, 0.0, 0.0), units="mm", end_machine=(0.0, 0.0, 0.0)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert main(["gcode", str(nc)]) == 0
+    out = capsys.readouterr().out
+    assert "0-clock" not in out and "monitor: ok" in out
+
+
+SHORT_COMMAND = "G21 G90\nG1 X10 F6000\nG1 X10.001\nG1 X20\nG1 X20 Y10\nM2\n"
+
+
+@real
+def test_one_step_command_keeps_the_profile(tmp_path, capsys):
+    """A one-step move lasting fewer clocks than speed_ramp's look-ahead set-up used to end
+    the profile early (the next corner at 34 mm/s against a planned 4.1, the program ending at
+    speed); the compiler now keeps every move 2 (NW + 3) clocks long, and the monitor's corner,
+    exit and end checks pass."""
+    src = tmp_path / "short.nc"
+    src.write_text(SHORT_COMMAND)
+    sets = [a for axis in "xyz" for a in ("--set", f"axis.{axis}.steps_per_mm=1000")]
+    code = main(["gcode", str(src), *sets, "--clock-hz", "5e6"])
+    out = capsys.readouterr().out
+    assert code == 0 and "monitor: ok" in out, out
+
+
+SQUARE = "G21 G90\nG1 X10 F3000\nG1 X10 Y10\nG1 X0 Y10\nG1 X0 Y0\nM2\n"
+
+
+@real
+def test_scurve_corners_within_their_junction_limit(tmp_path, capsys):
+    """The S-curve's moving average spreads the speed around a corner: planned for the
+    unfiltered speed, the corners ran at about 1.8 x their junction limit (the monitor's
+    "junction speeds" check); the planner lowers each junction by a W / 2."""
+    src = tmp_path / "square.nc"
+    src.write_text(SQUARE)
+    sets = [a for axis in "xyz" for a in ("--set", f"axis.{axis}.steps_per_mm=1000")]
+    code = main(["gcode", str(src), *sets, "--clock-hz", "5e6", "--profile", "scurve"])
+    out = capsys.readouterr().out
+    assert code == 0 and "monitor: ok" in out, out

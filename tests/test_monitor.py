@@ -9,6 +9,7 @@ check that concerns it.
 import math
 import random
 
+import numpy as np
 import pytest
 
 from interp.gcode.compile import compile_program
@@ -141,3 +142,96 @@ def test_speed_plot(run, tmp_path):
     png = tmp_path / "speed.png"
     plot_speed(png, monitor(rows, out, MACHINE), title="ideal machine")
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def _with_exits(out, change):
+    """The ideal machine's rows of the commands with some exits changed (a corner or an end taken fast)."""
+    import copy
+
+    commands = copy.deepcopy(out.commands)
+    moves = [c for c in commands if c.motion is not None]
+    change(moves)
+    return ideal_rows(commands, out.settings)
+
+
+def test_new_checks_are_in_the_table(run):
+    out, rows = run
+    names = set(checks(monitor(rows, out, MACHINE)))
+    assert {"x acceleration", "y acceleration", "z acceleration", "exit speeds", "junction speeds"} <= names
+
+
+def test_corner_faster_than_its_exit_fails(run):
+    out, rows = run
+    quantum = out.settings["speed_quantum"]
+
+    def fast_corner(moves):
+        moves[0].exit = moves[0].feed // quantum               # line 1 -> 2 taken at full speed
+
+    report = monitor(_with_exits(out, fast_corner), out, MACHINE)
+    assert checks(report)["exit speeds"] == "VIOLATED"
+    assert any("the end of command 1" in v for v in report.violations), report.violations
+    assert checks(report)["junction speeds"] == "VIOLATED"
+
+
+def test_program_ending_at_speed_fails():
+    end = Program([Line((0, 0, 0), (20, 0, 0), 3000, 1)])
+    single = compile_program(end, MACHINE)
+
+    def no_stop(moves):
+        moves[-1].exit = moves[-1].feed // quantum
+
+    quantum = single.settings["speed_quantum"]
+    report = monitor(_with_exits(single, no_stop), single, MACHINE)
+    assert checks(report)["exit speeds"] == "VIOLATED"
+    assert any("the program's end" in v for v in report.violations), report.violations
+
+
+def test_axis_acceleration_above_the_axis_limit_fails(run):
+    out, rows = run
+    slow_x = load_machine(sets=["axis.x.accel_mm_s2=50"], clock_hz=1e6)
+    report = monitor(rows, out, slow_x)
+    assert checks(report)["x acceleration"] == "VIOLATED" and checks(report)["y acceleration"] == "ok"
+
+
+def test_every_violation_is_printed(run):
+    out, rows = run
+    fast = [(int(r[0] / 1.5), *r[1:]) for r in rows]
+    report = monitor(fast, out, MACHINE)
+    lines = verdict(report).splitlines()
+    assert len(report.violations) > 1 and len(lines) == len(report.violations) + 1
+    assert "more)" not in verdict(report)
+
+
+def test_speed_plot_cap_in_force_and_controls(run, tmp_path, monkeypatch):
+    """The cap line is the cruise x the override at that moment (a step at the change), and
+    the holds, resumes and override changes are vertical lines with legend entries."""
+    import matplotlib.pyplot as plt
+
+    from interp.plots import speed
+
+    out, rows = run
+    change = rows[len(rows) // 4][0]
+    controls = [(change, "override", 50), (rows[len(rows) // 2][0], "hold", 0),
+                (rows[len(rows) // 2][0] + 50000, "resume", 0)]
+    report = monitor(rows, out, MACHINE, controls=controls)
+    s = report.series
+    before, after = s["t"] < change / 1e6 - 0.05, s["t"] > change / 1e6 + 0.05
+    first = s["cruise"] == s["cruise"][0]
+    assert np.allclose(s["cap"][before & first], np.minimum(s["cruise"], s["limit"])[before & first])
+    assert np.allclose(s["cap"][after], np.minimum(s["cruise"] / 2, s["limit"])[after])
+    seen = {}
+    real_close = plt.close
+
+    def keep(fig):
+        seen["labels"] = [line.get_label() for line in fig.axes[0].get_lines()]
+        seen["title"] = fig.axes[0].get_title()
+        real_close(fig)
+
+    monkeypatch.setattr(speed.plt, "close", keep)
+    speed.plot_speed(tmp_path / "s.png", report, title="t")
+    assert {"feed hold", "resume", "override change"} <= set(seen["labels"])
+    assert "jerk" not in seen["title"]
+    scurve = compile_program(PROGRAM, MACHINE, profile="scurve")
+    speed.plot_speed(tmp_path / "c.png", monitor(ideal_rows(scurve.commands, scurve.settings), scurve, MACHINE),
+                     title="t")
+    assert "jerk limit" in seen["title"]

@@ -330,3 +330,19 @@ def test_bad_segments():
     with pytest.raises(ValueError):
         limits(Segment(1.0, (1, 0, 0), (0, 1, 0), 10, RATE, ACCEL, radius_mm=1.0, plane_axes=(0, 0)))
     assert plan([], junction_deviation_mm=0.01) == []
+
+
+def test_scurve_smoothing_lowers_each_junction_by_a_w_over_2():
+    segments = [line((1, 0, 0), 20.0), line((0, 1, 0), 20.0), line((-1, 0, 0), 20.0)]
+    plain = plan(segments, junction_deviation_mm=0.05)
+    window = 0.004
+    smooth = plan(segments, junction_deviation_mm=0.05, smoothing_s=window)
+    for k in range(len(segments) - 1):
+        a = max(plain[k].accel_mm_s2, plain[k + 1].accel_mm_s2)
+        assert plain[k].exit_mm_s > a * window / 2
+        assert smooth[k].exit_mm_s == pytest.approx(plain[k].exit_mm_s - a * window / 2)
+        assert smooth[k + 1].entry_mm_s == smooth[k].exit_mm_s
+    # a junction slower than a W / 2 becomes a stop, never negative
+    assert plan(segments, junction_deviation_mm=0.05, smoothing_s=10.0)[0].exit_mm_s == 0.0
+    with pytest.raises(ValueError, match="smoothing window"):
+        plan(segments, junction_deviation_mm=0.05, smoothing_s=-1.0)

@@ -210,8 +210,22 @@ class Progress:
 
 def _seconds(value: float, flag: str) -> float:
     if not (math.isfinite(value) and value >= 0):
-        raise UsageError(f"{flag} needs a time in seconds >= 0 (got {value:g})")
+        raise UsageError(f"{flag} needs a finite time in seconds >= 0 (got {value:g})")
     return value
+
+
+def check_plot_format(path: str | None, flag: str) -> None:
+    """Refuse, before anything runs, a plot file whose extension matplotlib cannot write."""
+    if path is None:
+        return
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    formats = FigureCanvasBase.get_supported_filetypes()
+    suffix = Path(path).suffix.lower().lstrip(".")
+    if suffix not in formats:
+        got = f"'.{suffix}'" if suffix else "no extension"
+        raise UsageError(f"{flag} {path}: {got} is not a plot format; use one of "
+                         f"{', '.join('.' + f for f in sorted(formats))}")
 
 
 def parse_override(text: str) -> tuple[int, float | None]:
@@ -219,13 +233,20 @@ def parse_override(text: str) -> tuple[int, float | None]:
     percent, at, seconds = text.partition("@")
     try:
         value = int(percent)
+    except ValueError:
+        try:
+            float(percent)
+        except ValueError:
+            raise UsageError(f"--override {text}: give PERCENT or PERCENT@SECONDS, e.g. 150@2.5") from None
+        raise UsageError(f"--override {text}: the percentage must be a whole number 1 .. 200") from None
+    try:
         when = float(seconds) if at else None
     except ValueError:
         raise UsageError(f"--override {text}: give PERCENT or PERCENT@SECONDS, e.g. 150@2.5") from None
     if not 1 <= value <= 200:
-        raise UsageError(f"--override {text}: the percentage must be 1 .. 200")
-    if when is not None:
-        _seconds(when, "--override @")
+        raise UsageError(f"--override {text}: the percentage must be a whole number 1 .. 200")
+    if when is not None and not (math.isfinite(when) and when >= 0):
+        raise UsageError(f"--override {text}: the time after @ must be a finite number of seconds >= 0")
     return value, when
 
 
@@ -243,6 +264,12 @@ def controls_of(args, clock_hz: float) -> tuple[int, list[tuple[int, str, int]],
         if k + 1 < len(pairs) and (r is None or pairs[k + 1][0] < r):
             raise UsageError(f"--hold-at {pairs[k + 1][0]:g} overlaps the hold from {h:g} s "
                              f"({'never resumed' if r is None else f'resumed at {r:g} s'})")
+    for k in range(1, len(pairs)):
+        previous, hold = pairs[k - 1][1], pairs[k][0]
+        if _round_cycle(hold, clock_hz) <= _round_cycle(previous, clock_hz):
+            raise UsageError(f"--hold-at {hold:g} must come after the previous --resume-at {previous:g} "
+                             f"(at {clock_hz:g} Hz both are clock cycle {_round_cycle(previous, clock_hz)} "
+                             "or the hold is earlier)")
     initial, schedule = 100, []
     for text in args.override:
         percent, when = parse_override(text)
@@ -263,6 +290,34 @@ def _round_cycle(seconds: float, clock_hz: float) -> int:
     return math.floor(seconds * clock_hz + 0.5)
 
 
+def hold_lines(holds, stops, controls, step_cycles, cycles: int, clock: float) -> list[str]:
+    """One line per hold: when the steps stopped after it (the last step of the steps CSV
+    before its resume, so an S-curve's filter tail counts) and how many steps left after it;
+    a warning for a hold after the program's end."""
+    hold_cycles = [c for c, kind, _ in controls if kind == "hold"]
+    resume_cycles = [c for c, kind, _ in controls if kind == "resume"]
+    out = []
+    for k, (h, r) in enumerate(holds):
+        h_cycle = hold_cycles[k] if k < len(hold_cycles) else _round_cycle(h, clock)
+        r_cycle = resume_cycles[k] if k < len(resume_cycles) else None
+        if h_cycle >= cycles:
+            print(f"interp: warning: --hold-at {h:g}: after the program's end ({cycles / clock:.6g} s), "
+                  "it had no effect", file=sys.stderr)
+            continue
+        after = [c for c in step_cycles if c >= h_cycle and (r_cycle is None or c < r_cycle)]
+        stop = stops[k] if k < len(stops) else None
+        stopped = stop is not None and stop[1] is not None
+        if stopped:
+            last = max([stop[1]] + after)
+            when = f"stopped {(last - h_cycle) / clock:.6g} s later"
+        elif r_cycle is not None:
+            when = "did not stop before its resume"
+        else:
+            when = "did not stop before the run's end"
+        out.append(f"hold at {h:g} s: {when}, {len(after)} steps after it")
+    return out
+
+
 # ---------------- the command ----------------
 
 def cmd_gcode(args) -> int:
@@ -276,6 +331,8 @@ def cmd_gcode(args) -> int:
     override, controls, holds = controls_of(args, machine.clock_hz)
     if args.check and (controls or args.plot_speed or override != 100):
         raise UsageError("--hold-at, --resume-at, --override and --plot-speed go with a simulation, not --check")
+    check_plot_format(args.plot, "--plot")
+    check_plot_format(args.plot_speed, "--plot-speed")
     if not args.check:
         check_outputs(args.steps, args.events, args.vcd, args.plot, args.plot_speed)
     program, compiled = compile_text(read_program(args.file), machine, args.pause_seconds, args.profile)
@@ -323,6 +380,7 @@ def simulate_program(args, program, compiled: Compiled, machine: Machine, contro
             progress.close()
         worst = None
         rows = read_rows(steps_path)
+        step_cycles = rows[:, 0].tolist()
         if args.plot:
             worst = plot_program(args.plot, program, [tuple(r) for r in rows.tolist()], machine,
                                  Path(args.file).name)
@@ -353,10 +411,8 @@ def simulate_program(args, program, compiled: Compiled, machine: Machine, contro
     deviation = f", max deviation {worst:.3f} steps (XY)" if worst is not None else ""
     print(f"{result['steps']} step cycles, end {end}, {cycles} clock cycles, "
           f"{cycles / clock:.6g} s machine time at {clock:g} Hz, {len(result['events'])} events{deviation}")
-    for (h, _r), stop in zip(holds, result.get("hold_stops", [])):
-        when = "did not stop before its resume" if stop[1] is None else \
-            f"stopped {(stop[1] - stop[0]) / clock:.6g} s later"
-        print(f"hold at {h:g} s: {when}, {stop[2]} steps after it")
+    for line in hold_lines(holds, result.get("hold_stops", []), controls, step_cycles, cycles, clock):
+        print(line)
     print(verdict(report))
     if not report.ok and not failures:
         failures.append(f"the motion monitor found {len(report.violations)} violations (see above)")

@@ -516,7 +516,14 @@ class Compiler:
             segments = [Segment(m.length_mm, m.start_unit, m.end_unit, min(m.feed_mm_s, brief), rates, accels,
                                 radius_mm=m.radius_mm, plane_axes=m.plane_axes, stop_before=m.stop_before,
                                 tolerance_mm=m.tolerance_mm) for m, brief in zip(motions, shortest)]
-            plans = plan(segments, junction_deviation_mm=self.machine.values["motion"]["junction_deviation_mm"])
+            deviation = self.machine.values["motion"]["junction_deviation_mm"]
+            plans = plan(segments, junction_deviation_mm=deviation)
+            if self.profile_name != "trapezoid":
+                # the S-curve's moving average spreads the speed around a corner: plan the
+                # junctions for the filtered speed (the window W = 2^(block + jerk shift) clocks;
+                # the accelerations, and so the window, do not depend on the junction speeds)
+                shift = sum(self.shifts(max(p.accel_mm_s2 for p in plans)))
+                plans = plan(segments, junction_deviation_mm=deviation, smoothing_s=(1 << shift) / self.clock)
             # the axes' ceiling for feed override > 100 %: the segment's limits without its feed
             # (one per distinct direction and radius: programs repeat them)
             ceiling: dict = {}

@@ -363,6 +363,9 @@ class _Machine:
             if code == 640:
                 p = words.get("P")
                 q = words.get("Q")
+                for letter, value in (("P", p), ("Q", q)):
+                    if value is not None and not value >= 0:
+                        self._fail(words.word(letter), "the G64 tolerance cannot be negative")
                 p = None if p is None else p * self.scale
                 q = None if q is None else q * self.scale
             self.program.path_modes.append((line, {610: "G61", 611: "G61.1", 640: "G64"}[code],

@@ -346,13 +346,18 @@ def _window_entry(caps: list[float], reach: list[float], whole: list[float], fir
 
 
 def plan(segments: list[Segment], *, junction_deviation_mm: float,
-         window: int | None = None) -> list[Plan]:
+         window: int | None = None, smoothing_s: float = 0.0) -> list[Plan]:
     """The plan of every segment (module docstring).  window=None plans the whole program;
     window=k fixes each segment's exit speed from the k segments that follow it, the last of
     them ending at 0, as a streaming host with a k-deep buffer would (never faster than the
-    whole-program plan)."""
+    whole-program plan).  smoothing_s = W > 0 (the S-curve's moving-average window, seconds):
+    every junction's speed is lowered by a W / 2 (a the larger acceleration of its two
+    segments, at least 0), so that the FILTERED speed at the junction stays within the
+    junction's limit (docs/planner.md)."""
     if not junction_deviation_mm >= 0.0:
         raise ValueError(f"the junction deviation must be >= 0 (got {junction_deviation_mm!r})")
+    if not (math.isfinite(smoothing_s) and smoothing_s >= 0.0):
+        raise ValueError(f"the smoothing window must be >= 0 seconds (got {smoothing_s!r})")
     if window is not None and (not isinstance(window, int) or window < 1):
         raise ValueError(f"the look-ahead window must be a whole number >= 1 (got {window!r})")
     count = len(segments)
@@ -363,6 +368,12 @@ def plan(segments: list[Segment], *, junction_deviation_mm: float,
     accel = [a for _, a in bounds]
     reach = [2.0 * a * s.length_mm for a, s in zip(accel, segments)]
     caps = _junction_limits(segments, cruise, junction_deviation_mm)
+    if smoothing_s > 0.0:
+        # the filtered speed is the mean of the planned speed over the last W seconds; the
+        # steps pass the junction at a time whose window holds the virtual passage, and the
+        # planned speed moves at most a per second: the mean is at most v_j + a W / 2
+        caps = [max(0.0, cap - max(accel[i - 1] if i else 0.0, accel[i]) * smoothing_s / 2.0)
+                for i, cap in enumerate(caps)]
     whole = _backward(caps, reach, 0, count - 1) + [0.0]         # entry speeds, then the end
     entry = [0.0] * (count + 1)
     for index in range(count):

@@ -81,7 +81,11 @@ def _costs(frac: int) -> dict[int, float]:
 
 def read_rows(path) -> np.ndarray:
     """The steps CSV as an (n, 4) integer array."""
-    data = np.loadtxt(path, delimiter=",", skiprows=1, dtype=np.int64, ndmin=2)
+    import warnings
+
+    with warnings.catch_warnings():         # an empty run: no rows is an answer, not a warning
+        warnings.filterwarnings("ignore", message=".*input contained no data.*", category=UserWarning)
+        data = np.loadtxt(path, delimiter=",", skiprows=1, dtype=np.int64, ndmin=2)
     return data.reshape(-1, 4)
 
 
@@ -179,6 +183,8 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
         _record(report, "jerk", np.abs(jerk), j_cap, np.abs(jerk) - (j_cap + dj), g[2:], clock, "steps/clock^3")
     # per axis
     axis_speed = []
+    junctions = _junction_caps(moves, machine)
+    jumps = _junction_jumps(moves, [a.steps_per_mm for a in machine.axes], quantum, junctions)
     for k, a in enumerate(machine.axes):
         xa = np.cumsum(np.abs(rows[:, 1 + k]).astype(float))
         xag = np.interp(g, np.concatenate(([start], t)), np.concatenate(([0.0], xa)))
@@ -188,18 +194,126 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
         _record(report, f"{'xyz'[k]} speed", va, np.full_like(va, cap_a), va - (cap_a + dva), g, clock,
                 "steps/clock")
         axis_speed.append(va * clock / a.steps_per_mm)
+        # axis acceleration: the axis's accel_mm_s2, + at a junction the planned corner's jump of
+        # this axis's velocity (a corner turns the velocity at once) spread over the grid
+        acc_a = np.diff(va) / grid
+        a_axis = a.accel_mm_s2 * a.steps_per_mm / clock ** 2
+        jump = np.zeros(len(acc_a))
+        for j in range(len(acc_a)):
+            first, last = int(c_lo[j]), int(c_hi[j + 1])
+            if last > first:
+                jump[j] = jumps[first:last, k].max() / grid
+        cap_acc = a_axis + jump
+        da_a = 2 * dva / grid + quantum / grid
+        _record(report, f"{'xyz'[k]} acceleration", np.abs(acc_a), cap_acc, np.abs(acc_a) - (cap_acc + da_a),
+                g[1:], clock, "steps/clock^2")
+    _exits(report, moves, t, x, owner, counts, accel, quantum, window, q, clock, junctions)
     _holds(report, controls, t, x, g, v, feed, limit, accel, owner, counts, dx, dv, grid, window, c_max, q, overrides,
            quantum)
     report.checks.insert(0, ("events", report.events, report.expected_events, "", _ok(report.events ==
                                                                                       report.expected_events)))
     mid = (g[:-1] + g[1:]) / 2
+    # the cap actually in force: the cruise x the override at that moment (a step at each
+    # override change), at most the ceiling
+    ov_now = ov_values[np.maximum(np.searchsorted(ov_times, mid, side="right") - 1, 0)]
+    cap_now = np.minimum(feed_max * ov_now / 100, limit_max)
     report.series = {"t": mid / clock, "path": v * clock / spm[c_lo], "axes": axis_speed,
                      "cruise": feed_max * clock / spm[c_lo], "limit": limit_max * clock / spm[c_lo],
-                     "cap": caps * clock / spm[c_lo],
+                     "cap": cap_now * clock / spm[c_lo],
+                     "controls": [(float(c) / clock, kind, value) for c, kind, value in controls],
+                     "jerk_mm_s3": machine.values["motion"]["jerk_mm_s3"] if (js or bs) else None,
+                     "window_s": window / clock,
                      "axis_max": [a.max_rate_mm_min / 60 for a in machine.axes],
                      "accel": accel_max * clock * clock / spm[c_lo]}
     report.ok = not report.violations
     return report
+
+
+def _junction_jumps(moves, steps_per_mm, quantum: float, junctions: list[float]) -> np.ndarray:
+    """(len(moves), 3): per junction k (between moves k and k + 1) the jump of each axis's
+    velocity, steps/clock, at the corner speed allowed (the junction's limit, or the exit
+    field's speed if higher, + a quantum; the S-curve's filtered speed is within the limit)."""
+    out = np.zeros((len(moves), 3))
+    for k in range(len(moves) - 1):
+        m0, m1 = moves[k].motion, moves[k + 1].motion
+        v_mm = (max(junctions[k], moves[k].exit * quantum) + quantum) / m0.spm   # mm / clock along the path
+        for axis in range(3):
+            out[k, axis] = abs(m1.start_unit[axis] - m0.end_unit[axis]) * v_mm * steps_per_mm[axis]
+    return out
+
+
+def _junction_caps(moves, machine) -> list[float]:
+    """The junction limit (Grbl's junction deviation, G64 P, exact stops; at most the two
+    cruises) at the end of each move, steps/clock; the last move's end is a stop (0)."""
+    from ..gcode.planner import Segment, _junction_limits, limits
+
+    rates = tuple(a.max_rate_mm_min / 60 for a in machine.axes)
+    accels = tuple(a.accel_mm_s2 for a in machine.axes)
+    segments = [Segment(m.length_mm, m.start_unit, m.end_unit, m.feed_mm_s, rates, accels, radius_mm=m.radius_mm,
+                        plane_axes=m.plane_axes, stop_before=m.stop_before, tolerance_mm=m.tolerance_mm)
+                for m in (c.motion for c in moves)]
+    if not segments:
+        return []
+    cruise = [limits(s)[0] for s in segments]
+    caps = _junction_limits(segments, cruise, machine.values["motion"]["junction_deviation_mm"])
+    clock = machine.clock_hz
+    return [caps[k + 1] * moves[k].motion.spm / clock for k in range(len(moves) - 1)] + [0.0]
+
+
+def _exits(report, moves, t, x, owner, counts, accel, quantum: float, window: int, q: int, clock: float,
+           junctions: list[float]) -> None:
+    """The speed at the end of each command is at most its planned exit (cmd_exit quanta):
+    the mean speed of the last LOCAL_EVENTS events before the command's end (their distance
+    over their time + 2q, a lower bound of the true mean) <= v_exit + one quantum + the
+    acceleration x (the events' time + half the S-curve's window: the filtered speed at a
+    junction is at most the virtual exit + a W / 2, which the planner keeps within the
+    junction's limit); the program's last command
+    (exit 0) must end from a decelerating profile."""
+    ends = np.cumsum(counts)
+    bad = []
+    worst = (0.0, 0.0)
+    for c, end in enumerate(ends):
+        k = int(end) - 1
+        k0 = k - LOCAL_EVENTS
+        if k0 < 0 or k >= len(t):
+            continue
+        span = float(t[k] - t[k0]) + 2 * q
+        mean = float(x[k] - x[k0]) / span
+        a = float(accel[owner[k0:k + 1]].max())
+        exit_speed = moves[c].exit * quantum
+        bound = exit_speed + quantum + a * (span + window / 2 + 2 * q)
+        if mean / max(bound, 1e-300) > worst[0] / max(worst[1], 1e-300):
+            worst = (mean, bound)
+        if mean > bound:
+            what = "the program's end" if c == len(moves) - 1 else f"the end of command {c + 1}"
+            source = getattr(moves[c], "source", None)
+            line = f" (line {source})" if source else ""
+            bad.append(f"speed {mean:.6g} steps/clock at {what}{line}, cycle {int(t[k])} "
+                       f"({t[k] / clock:.6g} s), above its planned exit {exit_speed:.6g} + quantisation = {bound:.6g}")
+    report.checks.append(("exit speeds", worst[0], worst[1], "steps/clock", _ok(not bad)))
+    report.violations.extend(bad)
+    # the junction limits themselves (the S-curve's FILTERED speed included): at most the
+    # junction's limit + a quantum + the acceleration x the events' time
+    bad, worst = [], (0.0, 0.0)
+    for c, end in enumerate(ends[:-1]):
+        k = int(end) - 1
+        k0 = k - LOCAL_EVENTS
+        if k0 < 0 or k >= len(t):
+            continue
+        span = float(t[k] - t[k0]) + 2 * q
+        mean = float(x[k] - x[k0]) / span
+        a = float(accel[owner[k0:k + 1]].max())
+        bound = junctions[c] + quantum + a * (span + 2 * q)
+        if mean / max(bound, 1e-300) > worst[0] / max(worst[1], 1e-300):
+            worst = (mean, bound)
+        if mean > bound:
+            source = getattr(moves[c], "source", None)
+            line = f" (line {source})" if source else ""
+            bad.append(f"speed {mean:.6g} steps/clock at the junction after command {c + 1}{line}, cycle "
+                       f"{int(t[k])} ({t[k] / clock:.6g} s), above its junction limit {junctions[c]:.6g} + "
+                       f"quantisation = {bound:.6g}")
+    report.checks.append(("junction speeds", worst[0], worst[1], "steps/clock", _ok(not bad)))
+    report.violations.extend(bad)
 
 
 def _range_max(values: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
@@ -222,6 +336,9 @@ def _record(report: Report, name: str, measured, cap, excess, times, clock, unit
     for k in bad[:3]:
         report.violations.append(f"{name} {measured[k]:.6g} {unit} above {cap[k]:.6g} at cycle {int(times[k])} "
                                  f"({times[k] / clock:.6g} s)")
+    if len(bad) > 3:
+        report.violations.append(f"{name}: {len(bad) - 3} more intervals above the limit, the last at cycle "
+                                 f"{int(times[bad[-1]])}")
 
 
 LOCAL_EVENTS = 8        # events of the local speed at a hold and a resume
@@ -310,10 +427,13 @@ def verdict(report: Report) -> str:
     """One line: the monitor's verdict."""
     if report.ok:
         checked = sum(1 for c in report.checks if c[4] == "ok")
+        if not report.grid:
+            return (f"monitor: ok, {report.events} step events, {checked} checks passed "
+                    "(too few steps to measure speeds)")
         return (f"monitor: ok, {report.events} step events, {checked} checks passed "
                 f"(speed / acceleration over {report.grid}-clock windows)")
-    more = f" (+{len(report.violations) - 1} more)" if len(report.violations) > 1 else ""
-    return f"monitor: {len(report.violations)} violations: {report.violations[0]}{more}"
+    return "\n".join([f"monitor: {len(report.violations)} violations:"] +
+                      [f"  {violation}" for violation in report.violations])
 
 
 def table(report: Report) -> str:
