@@ -272,14 +272,7 @@ def _exits(report, moves, t, x, owner, counts, accel, quantum: float, window: in
     ends = np.cumsum(counts)
     bad = []
     worst = (0.0, 0.0)
-    for c, end in enumerate(ends):
-        k = int(end) - 1
-        k0 = k - LOCAL_EVENTS
-        if k0 < 0 or k >= len(t):
-            continue
-        span = float(t[k] - t[k0]) + 2 * q
-        mean = float(x[k] - x[k0]) / span
-        a = float(accel[owner[k0:k + 1]].max())
+    for c, k, span, mean, a in _command_ends(ends, t, x, owner, accel, q):
         exit_speed = moves[c].exit * quantum
         bound = exit_speed + quantum + a * (span + window / 2 + 2 * q)
         if mean / max(bound, 1e-300) > worst[0] / max(worst[1], 1e-300):
@@ -295,14 +288,7 @@ def _exits(report, moves, t, x, owner, counts, accel, quantum: float, window: in
     # the junction limits themselves (the S-curve's FILTERED speed included): at most the
     # junction's limit + a quantum + the acceleration x the events' time
     bad, worst = [], (0.0, 0.0)
-    for c, end in enumerate(ends[:-1]):
-        k = int(end) - 1
-        k0 = k - LOCAL_EVENTS
-        if k0 < 0 or k >= len(t):
-            continue
-        span = float(t[k] - t[k0]) + 2 * q
-        mean = float(x[k] - x[k0]) / span
-        a = float(accel[owner[k0:k + 1]].max())
+    for c, k, span, mean, a in _command_ends(ends[:-1], t, x, owner, accel, q):
         bound = junctions[c] + quantum + a * (span + 2 * q)
         if mean / max(bound, 1e-300) > worst[0] / max(worst[1], 1e-300):
             worst = (mean, bound)
@@ -314,6 +300,19 @@ def _exits(report, moves, t, x, owner, counts, accel, quantum: float, window: in
                        f"quantisation = {bound:.6g}")
     report.checks.append(("junction speeds", worst[0], worst[1], "steps/clock", _ok(not bad)))
     report.violations.extend(bad)
+
+
+def _command_ends(ends, t, x, owner, accel, q: int):
+    """(command, last event k, span, mean speed, largest acceleration) over the LOCAL_EVENTS
+    events before each command's end: their distance over their time + 2q (a lower bound
+    of the true mean), the largest acceleration allowed on them."""
+    for c, end in enumerate(ends):
+        k = int(end) - 1
+        k0 = k - LOCAL_EVENTS
+        if k0 < 0 or k >= len(t):
+            continue
+        span = float(t[k] - t[k0]) + 2 * q
+        yield c, k, span, float(x[k] - x[k0]) / span, float(accel[owner[k0:k + 1]].max())
 
 
 def _range_max(values: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
