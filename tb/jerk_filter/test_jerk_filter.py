@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """jerk_filter: RTL vs cycle model every cycle; the output is the moving sum of the
-block speeds over 2^jerk_shift blocks and preserves the distance exactly."""
+block speeds over 2^jerk_shift blocks and preserves the distance exactly.  The delay
+line it holds, code_delay (the block-RAM of 2-bit codes), is verified through it: the
+moving sum is wrong if any code comes back late, early or changed."""
 import cocotb
 
 from interp.models.pacing import JerkFilter, moving_sum

@@ -1,7 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
 """speed_ramp: RTL vs the cycle model (interp.models.speed_ramp) in every cycle, on
 planned trapezoid programs, random programs (seed printed), hold, override, barriers,
-look-ahead underruns and resets; the profile's own rules checked on the samples."""
+look-ahead underruns and resets; the profile's own rules checked on the samples.  Its
+submodules are verified through it: speed_ramp_setup (the successor's p' n, f (f + 1) and
+feed x override) and speed_ramp_mul (the shift-add multiplier they use) — the model
+computes those products exactly, so any wrong product shows as a different speed."""
 import cocotb
 import pytest
 
