@@ -10,6 +10,7 @@ Skipped while the native harness does not take the profile settings and controls
 import csv
 import importlib.util
 import inspect
+import os
 import random
 
 import pytest
@@ -91,7 +92,7 @@ def fuzz(tmp_path, capsys, sim: str, profile: str, programs: int, moves: tuple[i
         pytest.skip(reason)
     if sim == "icarus" and importlib.util.find_spec("cocotb") is None:
         pytest.skip("needs cocotb")
-    seed = random.randrange(1 << 30)
+    seed = int(os.environ.get("SEED", random.randrange(1 << 30)))     # SEED=... repeats a run
     print("seed", seed)
     rng = random.Random(seed)
     for n in range(programs):

@@ -289,7 +289,9 @@ def _exits(report, moves, t, x, owner, counts, accel, quantum: float, window: in
     # junction's limit + a quantum + the acceleration x the events' time
     bad, worst = [], (0.0, 0.0)
     for c, k, span, mean, a in _command_ends(ends[:-1], t, x, owner, accel, q):
-        bound = junctions[c] + quantum + a * (span + 2 * q)
+        # S-curve: a junction whose limit is below a W / 2 is planned as a stop, and the
+        # filtered speed there still reaches up to a W / 2 (docs/planner.md)
+        bound = max(junctions[c], a * window / 2) + quantum + a * (span + 2 * q)
         if mean / max(bound, 1e-300) > worst[0] / max(worst[1], 1e-300):
             worst = (mean, bound)
         if mean > bound:
