@@ -69,7 +69,7 @@ class Snapshot:
 class Driver:
     def __init__(self, transport, *, baud: int = 115200, window: int = 16, lmax: int = p.LMAX,
                  min_payload: int = 8, margin: float | None = None, dead_seconds: float = 2.0,
-                 poll_seconds: float = 0.05, grow_after: int = 8, log=None):
+                 poll_seconds: float = 0.05, grow_after: int = 2, log=None):
         self.transport = transport
         self.clock = getattr(transport, "now", time.monotonic)
         if margin is None:          # reply latency beyond the bytes' time: a USB serial port's, or none (simulators)
@@ -156,7 +156,7 @@ class Driver:
             self.progress_time = self.clock()
             self.streak += d
             if self.streak >= self.grow_after and self.payload < self.lmax:
-                self.payload = min(self.lmax, self.payload * 3 // 2)
+                self.payload = min(self.lmax, self.payload + max(2, self.payload // 4))
                 self.streak = 0
         return True
 
@@ -267,7 +267,7 @@ class Driver:
         """Go back N: wait until the line is quiet, learn E with HELLO, re-cut what is not
         acknowledged into smaller frames."""
         self.recoveries += 1
-        self.payload = max(self.min_payload, self.payload * 2 // 3)
+        self.payload = max(self.min_payload, self.payload * 3 // 4)
         self.streak = 0
         quiet = max(self.clock(), self.line_free) + 40 * self.byte_time + self.margin
         while self.clock() < quiet:
