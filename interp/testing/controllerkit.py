@@ -136,7 +136,7 @@ class ControllerBench:
             last = now
 
     async def _watch_pushes(self):
-        dut, motion = self.dut, self.dut.u_motion
+        motion = self.dut.u_motion
         while True:
             await RisingEdge(motion.cmd_valid)
             await ReadOnly()
@@ -207,3 +207,14 @@ class ControllerBench:
     async def clocks(self, n: int) -> None:
         for _ in range(n):
             await FallingEdge(self.dut.clk)
+
+
+def icarus_in_make_test(sim: str) -> None:
+    """The controller's benches run on Icarus in `make test`, on Verilator too in `make
+    test-all` (INTERP_TEST_ALL=1): a Verilator build of the controller costs about 40 s of CPU."""
+    import os
+
+    import pytest
+
+    if sim != "icarus" and not os.environ.get("INTERP_TEST_ALL"):
+        pytest.skip("Verilator build of the controller benches: run with `make test-all`")
