@@ -20,7 +20,7 @@ async def synchronizer_and_gate(dut):
     rng = seeded_rng(dut, "synchronizer_and_gate")
     tb = TB(dut)
     await tb.reset(IDLE)
-    pins, meta, synced, previous = [0] * 3, 0, 0, 0
+    meta, synced, previous = 0, 0, 0
     invert = 0
     gated = 0
     for cycle in range(3000):
