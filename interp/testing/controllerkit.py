@@ -4,8 +4,8 @@ record encoder, the register addresses, a Wishbone master on the controller's `w
 (cocotbext-wishbone), the record byte stream and monitors of the step pins and of the
 commands pushed into motion_top.
 
-The record encoder follows the record format (docs/controller.md, "Records") and is used
-when the host's interp.link.records is not there.
+Records are made by the host's encoder (interp.link.records); the local one (the record
+format of docs/controller.md, "Records") is checked against it and stands in without it.
 """
 from __future__ import annotations
 
@@ -47,6 +47,16 @@ def record_bytes(build: dict) -> int:
 
 
 def encode(cmd: Command, build: dict) -> bytes:
+    """One command -> its record: the host's encoder (interp.link.records) when it is there,
+    else local_encode."""
+    try:
+        from ..link import records
+    except ImportError:
+        return local_encode(cmd, build)
+    return records.encode(cmd, build)
+
+
+def local_encode(cmd: Command, build: dict) -> bytes:
     """One command -> its record (fields little-endian, signed ones sign-extended)."""
     out = bytearray([cmd.kind | cmd.plane << 4])
     for name, bits in layout(build):

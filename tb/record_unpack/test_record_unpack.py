@@ -2,14 +2,15 @@
 """record_unpack: seeded random records (every field random at full width, kinds 0 .. 7) as
 a byte stream with random gaps, against random cmd_full back-pressure: each record of kind
 0 .. 5 is pushed once with exactly its fields, only while cmd_full is low, none dropped; kinds
-6, 7 strobe record_error and are not pushed; a flush mid-record drops the partial record."""
+6, 7 strobe record_error and are not pushed; a flush mid-record drops the partial record.
+The records come from the host's encoder (interp.link.records), checked against the local one."""
 import cocotb
 from cocotb.triggers import FallingEdge, ReadOnly
 
 from interp.models.motion import Command
 from interp.simulation import motion_build
 from interp.simulation.runner import run_cocotb
-from interp.testing.controllerkit import BUILD_PARAMETERS, encode, icarus_in_make_test, pushed_fields
+from interp.testing.controllerkit import BUILD_PARAMETERS, encode, icarus_in_make_test, local_encode, pushed_fields
 from interp.testing.tbkit import TB, seeded_rng
 
 NAMES = ("feed", "x", "y", "z", "i", "j", "k", "l", "limit", "exit", "rate", "cost", "length", "budget")
@@ -32,6 +33,7 @@ async def random_records(dut):
     tb = TB(dut)
     await tb.reset({"flush": 0, "in_valid": 0, "in_data": 0, "cmd_full": 0})
     cmds = [random_command(rng, b) for _ in range(40)]
+    assert all(encode(c, b) == local_encode(c, b) for c in cmds), "the host's encoder and the local one differ"
     cut = rng.randrange(1, 20)                       # a partial record, flushed, before record 10
     stream = [(byte, n) for n, c in enumerate(cmds) for byte in encode(c, b)]
     stream = stream[:10 * len(encode(cmds[0], b))] + [(0xEE, -1)] * cut + stream[10 * len(encode(cmds[0], b)):]
