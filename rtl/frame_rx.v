@@ -30,6 +30,7 @@ module frame_rx #(
     output wire [7:0]  cmd_data,
     input  wire        cmd_ready,
     output wire [7:0]  expected,        // E: the next sequence number expected
+    output wire [7:0]  pending,         // bytes of an accepted DATA payload not yet released
     output wire        rsp_valid,       // one clock: answer the frame just ended
     output wire [2:0]  rsp_reason,      // 0 ACK, 1 bad CRC/LEN/truncated, 2 gap, 3 no credit, 4 bad TYPE/LEN
     output wire        read_req,        // one clock: READ of req_addr (answer with a REPLY, SEQ req_seq)
@@ -75,6 +76,7 @@ module frame_rx #(
     wire byte_in    = in_frame && in_valid;
     wire timed_out  = in_frame && !in_valid && idle_q == TIMEOUT_CLOCKS[TW-1:0] - 1'b1;
     wire draining   = remaining_q != 8'd0;
+    assign pending  = remaining_q;
     wire take       = cmd_valid && cmd_ready;
     wire [AW-1:0] rd_next = take ? rd_ptr_q + 1'b1 : rd_ptr_q;
 

@@ -60,6 +60,11 @@ module uart_link #(
     reg [7:0]   seq_q;
     reg [15:0]  frames_q, duplicates_q, errors_q, gaps_q;
 
+    // The credit an answer reports: the queue's free bytes less an accepted payload still
+    // on its way into the queue (released at one byte per clock after the frame's CRC).
+    wire [7:0]  pending;
+    wire [15:0] credit = queue_free > {8'd0, pending} ? queue_free - {8'd0, pending} : 16'd0;
+
     uart_rx #(.CLKS_PER_BIT(CLKS_PER_BIT)) u_rx (
         .clk(clk), .rst(rst), .rx(rx), .data(rx_data), .valid(rx_valid), .frame_error(rx_error)
     );
@@ -67,7 +72,7 @@ module uart_link #(
     frame_rx #(.LMAX(LMAX), .TIMEOUT_CLOCKS(TIMEOUT_CLOCKS)) u_frame_rx (
         .clk(clk), .rst(rst), .in_valid(rx_valid), .in_data(rx_data), .in_error(rx_error),
         .queue_free(queue_free), .wb_busy(cyc_q),
-        .cmd_valid(cmd_valid), .cmd_data(cmd_data), .cmd_ready(cmd_ready), .expected(expected),
+        .cmd_valid(cmd_valid), .cmd_data(cmd_data), .cmd_ready(cmd_ready), .expected(expected), .pending(pending),
         .rsp_valid(rsp_valid), .rsp_reason(rsp_reason), .read_req(read_req), .write_req(write_req),
         .req_addr(req_addr), .req_value(req_value), .req_seq(req_seq),
         .ev_executed(ev_executed), .ev_duplicate(ev_duplicate), .ev_error(ev_error), .ev_gap(ev_gap)
@@ -76,7 +81,7 @@ module uart_link #(
     frame_tx u_frame_tx (
         .clk(clk), .rst(rst), .ans_valid(rsp_valid), .ans_reason(rsp_reason),
         .reply_valid(reply_valid), .reply_addr(addr_q), .reply_value(reply_value), .reply_seq(seq_q),
-        .expected(expected), .queue_free(queue_free), .status_state(status_state),
+        .expected(expected), .queue_free(credit), .status_state(status_state),
         .status_error(status_error), .out_valid(tx_valid), .out_data(tx_data), .out_ready(tx_ready)
     );
 
