@@ -7,7 +7,7 @@ PY      := $(VENV)/bin/python
 INTERP  := $(VENV)/bin/interp
 JOBS    ?= auto
 
-.PHONY: all deps test test-all demo docs-demo wave lint bench clean fpga-deps synth bitstream test-synth formal docs
+.PHONY: all deps test test-all demo docs-demo wave lint bench clean fpga-deps synth bitstream test-synth formal docs regs
 all: test
 
 # Debian packages only if missing (CI machines have them), then the venv.
@@ -82,6 +82,11 @@ docs: deps
 	@if [ -n "$(DOCS_WAVES)" ]; then $(PY) -m interp.docs waves; fi
 	$(PY) -m interp.docs svg
 	$(PY) -m interp.docs resources
+
+# The register map: regs/controller.rdl -> rtl/controller_regs.vh, interp/link/registers.py,
+# sw/interp_controller.h, docs/registers.md (committed; tests/test_registers.py checks them).
+regs: deps
+	$(PY) -m interp.regs
 
 clean:
 	rm -rf sim_build out .pytest_cache
