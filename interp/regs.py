@@ -134,8 +134,10 @@ def model(top) -> list[Register]:
     if len(set(names)) != len(names) or len({r.address for r in registers}) != len(registers):
         raise RegsError("register names and addresses must be unique")
     for r in registers:
-        if r.address % 4 or r.address > 0xFF:
-            raise RegsError(f"{r.name}: address 0x{r.address:X} is not 32-bit aligned within the 8-bit address bus")
+        if r.address % 4:
+            raise RegsError(f"{r.name}: address 0x{r.address:X} is not a multiple of 4")
+        if r.address > 0xFC:
+            raise RegsError(f"{r.name}: address 0x{r.address:X} is beyond the 8-bit address bus")
     return registers
 
 
@@ -244,10 +246,11 @@ def _bits(f: Field) -> str:
     return f"{f.lsb}" if f.width == 1 else f"{f.lsb + f.width - 1}:{f.lsb}"
 
 
-def _reset(value: int | None, width: int) -> str:
+def _reset(value: int | None, width: int | None = None) -> str:
+    """A register's reset in hex (width None), a field's in decimal; "—" if it follows the hardware."""
     if value is None:
         return "—"
-    return str(value) if value < 10 else f"0x{value:0{(width + 3) // 4}X}"
+    return str(value) if width else f"0x{value:08X}"
 
 
 def render_md(registers: list[Register], intro: str) -> str:
@@ -255,7 +258,7 @@ def render_md(registers: list[Register], intro: str) -> str:
            "## Register map", "", "| Address | Name | Access | Reset | Description |", "|---|---|---|---|---|"]
     for r in registers:
         out.append(f"| 0x{r.address:02X} | [{r.name}](#{r.name.lower()}) | {r.access.upper()} | "
-                   f"{_reset(r.reset, 32)} | {_cell(r.title)} |")
+                   f"{_reset(r.reset)} | {_cell(r.title)} |")
     out.append("")
     for r in registers:
         out += [f"### {r.name}", "", f"0x{r.address:02X}, {r.access.upper()}: {_cell(r.desc)}", "",

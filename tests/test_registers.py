@@ -1,0 +1,227 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The register map: regs/controller.rdl and the files generated from it (make regs).
+
+The committed outputs are what the generator writes, `--check` catches a stale or
+missing one, the C header compiles, addresses are unique and aligned, and the
+Python constants equal the Verilog include's.  Plus the contract's addresses
+and fixed values, describe(), and one-line errors for a bad .rdl.
+"""
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+from interp import regs
+from interp.link import registers
+
+pytest.importorskip("systemrdl", reason="systemrdl-compiler missing (the `test` extra)")
+pytest.importorskip("peakrdl_cheader", reason="peakrdl-cheader missing (the `test` extra)")
+
+# COMMON25 section 3 and 7: the contract between the controller and the host.
+CONTRACT = {"ID": 0x00, "VERSION": 0x04, "BUILD0": 0x08, "BUILD1": 0x0C, "CLOCK_HZ": 0x10, "QUEUE_SIZE": 0x14,
+            "STATUS": 0x18, "ERROR": 0x1C, "QUEUE_FREE": 0x20, "POS_X": 0x24, "POS_Y": 0x28, "POS_Z": 0x2C,
+            "PROBE_X": 0x30, "PROBE_Y": 0x34, "PROBE_Z": 0x38, "INPUTS": 0x3C, "CONTROL": 0x40, "OVERRIDE": 0x44,
+            "PULSE_WIDTH": 0x48, "DIR_SETUP": 0x4C, "DIR_HOLD": 0x50, "QUANTUM_LO": 0x54, "QUANTUM_HI": 0x58,
+            "MOTION": 0x5C, "INPUT_INVERT": 0x60, "SPINDLE_PERIOD": 0x64, "OUTPUTS": 0x68, "LINK_FRAMES": 0x6C,
+            "LINK_ERRORS": 0x70, "CMD_DATA": 0x74, "EXECUTED": 0x78}
+WRITABLE = {"CONTROL", "OVERRIDE", "PULSE_WIDTH", "DIR_SETUP", "DIR_HOLD", "QUANTUM_LO", "QUANTUM_HI", "MOTION",
+            "INPUT_INVERT", "SPINDLE_PERIOD"}
+
+
+@pytest.fixture(scope="module")
+def outputs():
+    return regs.generate()
+
+
+def test_outputs_are_up_to_date(outputs, tmp_path):
+    """The committed files equal a fresh run of the generator into tmp."""
+    assert regs.main(["--root", str(tmp_path)]) == 0
+    for rel in regs.OUTPUTS:
+        fresh = (tmp_path / rel).read_text()
+        assert fresh == outputs[rel], f"{rel}: two runs differ"
+        assert (regs.ROOT / rel).read_text() == fresh, f"{rel} is stale: run make regs"
+    assert regs.main(["--check"]) == 0
+
+
+@pytest.mark.parametrize("rel", regs.OUTPUTS)
+def test_check_catches_a_stale_file(outputs, tmp_path, capsys, rel):
+    for name, text in outputs.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    assert regs.main(["--check", "--root", str(tmp_path)]) == 0
+    (tmp_path / rel).write_text(outputs[rel].replace("0x", "0y", 1) + "\n")
+    capsys.readouterr()
+    assert regs.main(["--check", "--root", str(tmp_path)]) == 1
+    assert capsys.readouterr().err.strip() == f"regs: stale: {rel} (run make regs)"
+    (tmp_path / rel).unlink()
+    assert regs.main(["--check", "--root", str(tmp_path)]) == 1
+
+
+def test_check_from_the_command_line(tmp_path):
+    """`python -m interp.regs --check`: exit 1 and one line per missing output."""
+    done = subprocess.run([sys.executable, "-m", "interp.regs", "--check", "--root", str(tmp_path)],
+                          capture_output=True, text=True, cwd=regs.ROOT, timeout=120)
+    assert done.returncode == 1
+    assert done.stderr.splitlines() == [f"regs: stale: {rel} (run make regs)" for rel in regs.OUTPUTS]
+
+
+def test_c_header_compiles(tmp_path):
+    gcc = shutil.which("gcc")
+    if gcc is None:
+        pytest.skip("gcc missing")
+    source = tmp_path / "use.c"
+    source.write_text('#include "interp_controller.h"\n#include <stddef.h>\n'
+                      f'_Static_assert(offsetof(controller_t, EXECUTED) == {CONTRACT["EXECUTED"]}, "EXECUTED");\n'
+                      f'_Static_assert(CONTROLLER__STATUS__RECORDS_bp == 8, "records");\n'
+                      "int controller_status_offset(void) { return (int)offsetof(controller_t, STATUS); }\n")
+    for command in ([gcc, "-Wall", "-Werror", "-c", str(regs.ROOT / "sw" / "interp_controller.h"),
+                     "-o", str(tmp_path / "h.gch")],
+                    [gcc, "-std=c11", "-Wall", "-Wextra", "-Werror", "-I", str(regs.ROOT / "sw"), "-c", str(source),
+                     "-o", str(tmp_path / "use.o")]):
+        done = subprocess.run(command, capture_output=True, text=True, timeout=60)
+        assert done.returncode == 0, done.stderr
+
+
+def test_addresses_unique_aligned_and_as_agreed():
+    addresses = list(registers.REGISTERS.values())
+    assert len(set(addresses)) == len(addresses)
+    assert all(a % 4 == 0 and 0 <= a <= 0xFC for a in addresses)
+    assert registers.REGISTERS == CONTRACT
+
+
+def test_fields_fit_and_do_not_overlap():
+    used = {}
+    for key, (lsb, width, access) in registers.FIELDS.items():
+        name = key.split(".")[0]
+        assert name in registers.REGISTERS, key
+        assert width >= 1 and lsb + width <= 32, key
+        assert access in ("ro", "rw", "wo", "w1p"), key
+        bits = ((1 << width) - 1) << lsb
+        assert not used.get(name, 0) & bits, f"{key} overlaps"
+        used[name] = used.get(name, 0) | bits
+
+
+def test_access_as_agreed():
+    assert {n for n, a in registers.ACCESS.items() if a == "rw"} == WRITABLE
+    assert {n for n, a in registers.ACCESS.items() if a == "wo"} == {"CMD_DATA"}
+    pulses = {k for k, (_, _, a) in registers.FIELDS.items() if a == "w1p"}
+    assert pulses == {"CONTROL.abort", "CONTROL.clear", "CONTROL.probe_arm"}
+    assert registers.FIELDS["CONTROL.hold"] == (0, 1, "rw")
+    assert registers.FIELDS["CONTROL.enable"] == (4, 1, "rw")
+
+
+def test_fixed_values_at_the_default_build():
+    r = registers.RESETS
+    assert r["ID"] == 0x494E5450 and bytes.fromhex(f"{r['ID']:08X}") == b"INTP"
+    assert r["VERSION"] == 1 | 84 << 8 | 32 << 16 | 32 << 24
+    assert r["BUILD0"] == 50 | 48 << 8 | 40 << 16 | 24 << 24
+    assert r["BUILD1"] == 82 | 108 << 8 | 12 << 16 | 16 << 24
+    assert r["CLOCK_HZ"] == 50_000_000
+    assert r["QUEUE_SIZE"] == 4096 | 12 << 16 | 1 << 24
+    assert r["OVERRIDE"] == 100 and r["QUANTUM_LO"] == 1 and r["QUANTUM_HI"] == 0
+    assert r["PULSE_WIDTH"] == r["DIR_SETUP"] == r["DIR_HOLD"] == 25          # 0.5 us at 50 MHz
+    assert r["SPINDLE_PERIOD"] == 50_000_000 // 20_000
+    assert r["CONTROL"] == r["MOTION"] == r["INPUT_INVERT"] == 0
+    assert registers.FIELDS["QUANTUM_HI.value"][1] == 50 - 32               # FEED_W - 32
+
+
+def _vh_constants() -> dict[str, int]:
+    text = (regs.ROOT / "rtl" / "controller_regs.vh").read_text()
+    out = {}
+    for name, value in re.findall(r"^localparam\s+(?:\[7:0\]|integer)\s+(\w+)\s*=\s*([^;]+);", text, re.M):
+        sized = re.fullmatch(r"8'h([0-9A-Fa-f]+)", value.strip())
+        out[name] = int(sized.group(1), 16) if sized else int(value)
+    return out
+
+
+def test_python_constants_equal_the_verilog_include():
+    vh = _vh_constants()
+    python = {f"REG_{n}": a for n, a in registers.REGISTERS.items()}
+    for key, (lsb, width, _) in registers.FIELDS.items():
+        stem = key.replace(".", "_").upper()
+        python[f"{stem}_LSB"] = lsb
+        python[f"{stem}_WIDTH"] = width
+    assert vh == python
+    assert all(getattr(registers, f"REG_{n}") == a for n, a in registers.REGISTERS.items())
+
+
+def test_verilog_include_lints_clean(tmp_path):
+    """The include inside a module: Verilator -Wall and Icarus -g2005 are silent."""
+    from interp.simulation.runner import verilator_bin
+
+    top = tmp_path / "regs_include.v"
+    top.write_text("`default_nettype none\nmodule regs_include (input wire [7:2] adr, output wire hit);\n"
+                   '`include "controller_regs.vh"\n'
+                   "    assign hit = adr[7:2] == REG_STATUS[7:2] && STATUS_RECORDS_LSB == 8;\n"
+                   "endmodule\n`default_nettype wire\n")
+    verilator = verilator_bin()
+    verilator = verilator / "verilator" if verilator.is_dir() else verilator
+    done = subprocess.run([str(verilator), "--lint-only", "-Wall", f"-I{regs.ROOT / 'rtl'}", str(top)],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0 and "%Warning" not in done.stderr, done.stderr
+    if shutil.which("iverilog"):
+        done = subprocess.run(["iverilog", "-g2005", f"-I{regs.ROOT / 'rtl'}", "-o", str(tmp_path / "a.out"), str(top)],
+                              capture_output=True, text=True, timeout=60)
+        assert done.returncode == 0 and not done.stderr, done.stderr
+
+
+@pytest.mark.parametrize("name, value, expected", [
+    ("STATUS", 0x0000_0301, "STATUS 0x00000301: state=RUN busy=0 stopped=0 probe_valid=0 enabled=0 records=3"),
+    ("STATUS", 0x0000_FF7C, "STATUS 0x0000FF7C: state=ALARM busy=1 stopped=1 probe_valid=1 enabled=1 records=255"),
+    ("STATUS", 0x0000_0007, "STATUS 0x00000007: state=7 busy=0 stopped=0 probe_valid=0 enabled=0 records=0"),
+    ("ERROR", 0x0000_0511, "ERROR 0x00000511: code=LIMIT_SWITCH limits=5"),
+    ("ERROR", 0x0000_0010, "ERROR 0x00000010: code=ESTOP limits=0"),
+    ("ERROR", 0x0000_0063, "ERROR 0x00000063: code=99 limits=0"),
+    ("POS_X", 0xFFFF_FFF4, "POS_X -12"),
+    ("PROBE_Z", 0x7FFF_FFFF, "PROBE_Z 2147483647 (0x7FFFFFFF)"),
+    ("CLOCK_HZ", 50_000_000, "CLOCK_HZ 50000000 (0x02FAF080)"),
+    ("QUEUE_FREE", 0x0030_1000, "QUEUE_FREE 0x00301000: bytes=4096 records=48"),
+    ("OUTPUTS", 0x8000_0035, "OUTPUTS 0x80000035: spindle_on=1 spindle_ccw=0 mist=1 flood=0 digital=3 spindle_duty=32768"),
+])
+def test_describe(name, value, expected):
+    assert registers.describe(name, value) == expected
+
+
+@pytest.mark.parametrize("name, value, message", [
+    ("NOPE", 0, "unknown register 'NOPE'"),
+    ("STATUS", -1, "STATUS: value -1 is not a 32-bit register value"),
+    ("STATUS", 1 << 32, "STATUS: value 4294967296 is not a 32-bit register value"),
+])
+def test_describe_refuses_bad_input(name, value, message):
+    with pytest.raises(ValueError, match=re.escape(message)):
+        registers.describe(name, value)
+
+
+def test_every_register_is_described():
+    for name in registers.REGISTERS:
+        line = registers.describe(name, 0)
+        assert line.startswith(name + " ") and "\n" not in line
+
+
+@pytest.mark.parametrize("bad, where", [
+    ("reg { field { sw = rw; } a[3:0] = 4'd0; } X @ 0x02;\n", "overlaps with 'ID'"),
+    ("reg { field { sw = rw; } a[3:0] = 4'd0; } X @ 0x82;\n", "X: address 0x82 is not a multiple of 4"),
+    ("reg { field { sw = rw; } a[3:0] = 4'd0; } X @ 0x100;\n", "X: address 0x100 is beyond the 8-bit address bus"),
+    ("reg { field { sw = rw; } a[3:0] = 4'd0; } STATUS @ 0x80;\n", "Multiple declarations of instance 'STATUS'"),
+    ("reg { field { sw = rw; } a[3:0] = 4'd0 } Y @ 0x80;\n", "error: missing ';'"),
+])
+def test_bad_rdl_is_one_line(tmp_path, bad, where):
+    """A broken .rdl: exit status 1, one line naming the file, no traceback."""
+    text = regs.RDL.read_text()
+    rdl = tmp_path / "broken.rdl"
+    rdl.write_text(text.replace("} EXECUTED @ 0x78;\n", "} EXECUTED @ 0x78;\n" + bad))
+    done = subprocess.run([sys.executable, "-m", "interp.regs", "--check", "--rdl", str(rdl)],
+                          capture_output=True, text=True, cwd=regs.ROOT, timeout=120)
+    assert done.returncode == 1
+    lines = done.stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("regs: ") and where in lines[0], done.stderr
+    assert "Traceback" not in done.stderr
+
+
+def test_missing_rdl_is_one_line(tmp_path, capsys):
+    assert regs.main(["--check", "--rdl", str(tmp_path / "none.rdl")]) == 1
+    assert capsys.readouterr().err.strip() == f"regs: {tmp_path / 'none.rdl'}: no such file"
