@@ -3,8 +3,8 @@
 // UART transmitter, 8N1, LSB first: a byte offered on `data` with `valid`
 // is taken when `ready` is high and sent as a start bit (0), eight data bits
 // and a stop bit (1), each CLKS_PER_BIT clocks long.  `ready` is high while
-// the line is idle; the next byte may be taken right after a stop bit, so
-// bytes offered back to back leave without a gap.
+// the line is idle and in the stop bit's last clock, so bytes offered back to
+// back leave without a gap.
 module uart_tx #(
     parameter integer CLKS_PER_BIT = 104     // clocks per bit = CLK_HZ / BAUD (>= 4)
 ) (
@@ -28,7 +28,8 @@ module uart_tx #(
     reg [CW-1:0] count_q;
     reg          tx_q;
 
-    assign ready = bits_q == 4'd0;
+    wire   last  = bits_q == 4'd1 && count_q == {CW{1'b0}};   // the stop bit's last clock
+    assign ready = bits_q == 4'd0 || last;
     assign tx    = tx_q;
 
     always @(posedge clk) begin
@@ -37,13 +38,13 @@ module uart_tx #(
             bits_q  <= 4'd0;
             count_q <= {CW{1'b0}};
             tx_q    <= 1'b1;
+        end else if (ready && valid) begin
+            tx_q    <= 1'b0;                        // start bit
+            shift_q <= {1'b1, data};
+            bits_q  <= 4'd10;
+            count_q <= FULL;
         end else if (bits_q == 4'd0) begin
-            if (valid) begin
-                tx_q    <= 1'b0;                    // start bit
-                shift_q <= {1'b1, data};
-                bits_q  <= 4'd10;
-                count_q <= FULL;
-            end
+            tx_q <= 1'b1;
         end else if (count_q != {CW{1'b0}}) begin
             count_q <= count_q - 1'b1;
         end else begin
