@@ -1,0 +1,245 @@
+# SPDX-License-Identifier: Apache-2.0
+"""`interp send FILE`: a G-code program to the board controller over its UART link
+(docs/host-driver.md).
+
+  interp send FILE.nc --port DEVICE [--baud B] [--machine FILE.toml]
+  interp send FILE.nc --sim [--steps FILE] [--line-noise P] [--seed S] [--machine FILE.toml]
+
+The program is compiled as `interp gcode` compiles it (interp.commands.gcode.compile_text),
+encoded into records (interp.link.records) and streamed by the driver (interp.link.driver).
+--port takes a device or a pyserial URL (loop://, socket://HOST:PORT); --sim runs the
+Verilator model of rtl/uart_controller.v (interp.link.simlink).  Keys while it runs
+(stdin a terminal): '!' feed hold, '~' resume, Ctrl-X abort.  Exit status: 0 done,
+1 machine or link error (or an abort), 2 usage or G-code error.
+"""
+from __future__ import annotations
+
+import math
+import sys
+
+from ..cores import UsageError
+from ..gcode import compile as gc
+from ..gcode.machine import Machine, load_machine
+from ..link import protocol as p
+from ..link.driver import Driver, LinkError, MachineError, MismatchError, check_controller, configure, run_program
+from ..link.records import Build, encode_program
+from .gcode import compile_text, read_program
+
+DEFAULT_BAUD = 115200
+CURVE = 3
+ABORT_KEY = "\x18"          # Ctrl-X
+KEYS_HELP = "keys: ! hold, ~ resume, Ctrl-X abort"
+
+
+def compile_build() -> Build:
+    """The build the compiler's commands are for (interp/gcode/compile.py's constants)."""
+    return Build(W=gc.W, FEED_W=gc.FEED_W, FRAC=gc.FRAC, NW=gc.NW, PF=gc.PF, LEN_W=gc.LEN_W, ZW=gc.ZW, MW=gc.MW)
+
+
+# ---------------- the transports (tests replace open_transport) ----------------
+
+def open_transport(args, machine: Machine):
+    """(transport, baud) for --port, --sim or the hidden --sim-model."""
+    if args.port:
+        try:
+            import serial
+        except ImportError:
+            raise RuntimeError("pyserial is not installed (pip install pyserial)") from None
+        try:
+            return serial.serial_for_url(args.port, baudrate=args.baud, timeout=0.01), args.baud
+        except (serial.SerialException, ValueError) as err:
+            raise LinkError(f"cannot open {args.port}: {err}") from None
+    if getattr(args, "sim_model", False):
+        from ..link.devicemodel import DeviceModel
+
+        baud = args.baud or DEFAULT_BAUD
+        return DeviceModel(clock_hz=round(machine.clock_hz), baud=baud, line_noise=args.line_noise or 0.0,
+                           seed=args.seed, records_per_second=args.sim_model_rate,
+                           fail_at=args.sim_model_fail), baud
+    try:
+        from ..link.simlink import SimLink
+    except ImportError:
+        raise LinkError("interp send --sim: the simulator is not built (interp.link.simlink is missing)") from None
+    kwargs = {"baud": args.baud} if args.baud else {}
+    link = SimLink(steps=getattr(args, "steps", None), line_noise=getattr(args, "line_noise", None) or 0.0,
+                   seed=args.seed, machine=machine, **kwargs)
+    return link, link.baud
+
+
+def check_link_args(args) -> None:
+    chosen = [name for name, on in (("--port", args.port), ("--sim", args.sim),
+                                    ("--sim-model", getattr(args, "sim_model", False))) if on]
+    if len(chosen) != 1:
+        raise UsageError("give one of --port DEVICE or --sim" + (f" (got {' and '.join(chosen)})" if chosen else ""))
+    if args.baud is not None and args.baud <= 0:
+        raise UsageError(f"--baud {args.baud}: give a positive number of bits per second")
+    if args.port:
+        if args.baud is None:
+            args.baud = DEFAULT_BAUD
+        for flag, value in (("--steps", getattr(args, "steps", None)), ("--line-noise", getattr(args, "line_noise", None))):
+            if value is not None:
+                raise UsageError(f"{flag} goes with --sim, not --port")
+    noise = getattr(args, "line_noise", None)
+    if noise is not None and not (math.isfinite(noise) and 0.0 <= noise <= 1.0):
+        raise UsageError(f"--line-noise {noise:g}: give a bit-flip probability 0 .. 1")
+
+
+# ---------------- the keyboard ----------------
+
+class Keyboard:
+    """Single keys from a terminal's stdin (cbreak mode, no echo) without blocking."""
+
+    def __init__(self, enabled: bool):
+        self.saved = None
+        if enabled:
+            import termios
+            import tty
+
+            self.fd = sys.stdin.fileno()
+            self.saved = termios.tcgetattr(self.fd)
+            tty.setcbreak(self.fd)
+
+    def __call__(self) -> str:
+        if self.saved is None:
+            return ""
+        import os
+        import select
+
+        out = ""
+        while select.select([self.fd], [], [], 0)[0]:
+            chunk = os.read(self.fd, 64)
+            if not chunk:
+                break
+            out += chunk.decode("latin-1")
+        return out
+
+    def close(self) -> None:
+        if self.saved is not None:
+            import termios
+
+            termios.tcsetattr(self.fd, termios.TCSADRAIN, self.saved)
+            self.saved = None
+
+
+# ---------------- progress ----------------
+
+class Progress:
+    """tqdm bar over the records (stderr, only on a terminal): line, position (mm), queue, state."""
+
+    def __init__(self, compiled, machine: Machine, show: bool):
+        self.compiled, self.machine, self.bar = compiled, machine, None
+        if show:
+            from tqdm import tqdm
+
+            self.bar = tqdm(total=max(1, len(compiled.commands)), unit="rec", file=sys.stderr, mininterval=0.25,
+                            dynamic_ncols=True, leave=False, desc="send")
+
+    def __call__(self, snap) -> None:
+        if self.bar is None:
+            return
+        mm = " ".join(f"{a}{v / s:.3f}" for a, v, s in zip("XYZ", snap.position, self.machine.steps_per_mm))
+        self.bar.set_postfix_str(f"line {line_of(self.compiled, snap.executed)} {mm} mm, queue {snap.queue_records}, "
+                                 f"{p.STATE_NAMES.get(snap.state, '?')}", refresh=False)
+        self.bar.update(min(snap.executed, self.bar.total) - self.bar.n)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def line_of(compiled, executed: int) -> int:
+    """The G-code line of the record running when EXECUTED = executed (1-based count)."""
+    cmds = compiled.commands
+    return cmds[min(max(executed, 1), len(cmds)) - 1].source if cmds else 0
+
+
+def limit_names(limits: int) -> str:
+    return ", ".join(f"{a} limit" for n, a in enumerate("xyz") if limits >> n & 1)
+
+
+# ---------------- the command ----------------
+
+def cmd_send(args) -> int:
+    check_link_args(args)
+    machine = load_machine(args.machine, [], None)
+    program, compiled = compile_text(read_program(args.file), machine)
+    for message in program.messages:
+        print(f"interp: message: {message}", file=sys.stderr)
+    for warning in program.warnings + compiled.warnings:
+        print(f"interp: warning: {warning}", file=sys.stderr)
+    build = compile_build()
+    stream = encode_program(compiled.commands, build)
+    records = len(compiled.commands)
+    transport, baud = open_transport(args, machine)
+    keyboard = progress = None
+    result = None
+    try:
+        driver = Driver(transport, baud=baud)
+        driver.connect()
+        check_controller(driver, build, machine.clock_hz, curves=any(c.kind == CURVE for c in compiled.commands))
+        configure(driver, machine.timing(), compiled.settings)
+        interactive = sys.stdin.isatty() and sys.stderr.isatty()
+        keyboard = Keyboard(interactive)
+        if interactive:
+            print(f"interp send: {records} records, {len(stream)} bytes; {KEYS_HELP}", file=sys.stderr)
+        progress = Progress(compiled, machine, sys.stderr.isatty())
+        try:
+            outcome = run_program(driver, stream, records, progress=progress, keys=keyboard)
+        except KeyboardInterrupt:
+            driver.drop_stream()
+            driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_ENABLE)
+            raise LinkError("interrupted: the controller was told to abort") from None
+    except MismatchError as err:
+        raise UsageError(str(err)) from None
+    except LinkError as err:
+        print(f"interp: error: link: {err}", file=sys.stderr)
+        return 1
+    finally:
+        if progress is not None:
+            progress.close()
+        if keyboard is not None:
+            keyboard.close()
+        result = transport.close()
+    stats = (f"{driver.frames_sent} frames, {driver.recoveries} retransmissions")
+    where = f"record {outcome.executed} of {records}, line {line_of(compiled, outcome.executed)}"
+    if outcome.status == "error":
+        error = MachineError(outcome.error, outcome.limits, outcome.executed, "")
+        extra = f", {limit_names(error.limits)}" if error.limits else ""
+        print(f"interp: error: controller error {error.code} ({p.error_text(error.code)}{extra}) at {where}",
+              file=sys.stderr)
+        return 1
+    if outcome.status == "aborted":
+        print(f"interp: aborted at {where}", file=sys.stderr)
+        return 1
+    if outcome.status != "done":
+        print(f"interp: error: the run did not end ({where})", file=sys.stderr)
+        return 1
+    position = result.get("position") if isinstance(result, dict) else None
+    end = f", end {tuple(position)} steps" if position is not None else ""
+    print(f"sent {records} records ({len(stream)} bytes) in {outcome.seconds:.3f} s link time at {baud} baud, "
+          f"{stats}{end}")
+    return 0
+
+
+def add_link_options(p_, sim_help: str) -> None:
+    import argparse
+
+    p_.add_argument("--port", metavar="DEVICE", help="serial device or pyserial URL (loop://, socket://HOST:PORT)")
+    p_.add_argument("--baud", type=int, metavar="B", help=f"bits per second (default {DEFAULT_BAUD}; --sim: the "
+                    "simulator's)")
+    p_.add_argument("--sim", action="store_true", help=sim_help)
+    p_.add_argument("--machine", metavar="FILE.toml", help="machine file (default: the shipped default machine)")
+    p_.add_argument("--seed", type=int, default=1, help="--sim: the line noise's seed (default 1)")
+    # the Python model of the controller's link (interp.link.devicemodel), for tests
+    p_.add_argument("--sim-model", action="store_true", help=argparse.SUPPRESS)
+    p_.add_argument("--sim-model-rate", type=float, default=2000.0, help=argparse.SUPPRESS)
+    p_.add_argument("--sim-model-fail", type=int, help=argparse.SUPPRESS)
+
+
+def add_parser(sub) -> None:
+    p_ = sub.add_parser("send", help="send a G-code program to the board controller (UART link)")
+    p_.add_argument("file", help="G-code file (RS274NGC, as `interp gcode` reads it)")
+    add_link_options(p_, "the Verilator model of the controller instead of a port")
+    p_.add_argument("--steps", metavar="FILE", help="--sim: CSV of the steps (cycle,dx,dy,dz)")
+    p_.add_argument("--line-noise", type=float, metavar="P", help="--sim: bit-flip probability per bit, both ways")
+    p_.set_defaults(func=cmd_send)

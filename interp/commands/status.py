@@ -1,0 +1,39 @@
+# SPDX-License-Identifier: Apache-2.0
+"""`interp status --port DEVICE` (or --sim): every register of the board controller with
+its decoded fields (docs/host-driver.md, docs/registers.md)."""
+from __future__ import annotations
+
+import sys
+
+from ..gcode.machine import load_machine
+from ..link import registers
+from ..link.driver import Driver, LinkError
+from .send import add_link_options, check_link_args, open_transport
+
+
+def cmd_status(args) -> int:
+    args.steps = args.line_noise = None
+    check_link_args(args)
+    machine = load_machine(args.machine, [], None)
+    transport, baud = open_transport(args, machine)
+    try:
+        driver = Driver(transport, baud=baud)
+        driver.connect()
+        lines = []
+        for name, address in registers.REGISTERS.items():
+            if registers.ACCESS.get(name) == "wo":
+                continue
+            lines.append(registers.describe(name, driver.read_register(address)))
+    except LinkError as err:
+        print(f"interp: error: link: {err}", file=sys.stderr)
+        return 1
+    finally:
+        transport.close()
+    print("\n".join(lines))
+    return 0
+
+
+def add_parser(sub) -> None:
+    p_ = sub.add_parser("status", help="read the board controller's registers (UART link)")
+    add_link_options(p_, "the Verilator model of the controller instead of a port")
+    p_.set_defaults(func=cmd_status)

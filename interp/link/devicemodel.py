@@ -1,0 +1,340 @@
+# SPDX-License-Identifier: Apache-2.0
+"""A Python model of the controller as the link sees it, for the driver's tests: the
+frame layer (sequence numbers, credits, coalesced replies, frame timeout), the register
+file, the segment queue and a fake executor that takes one whole record every
+1 / records_per_second seconds.  The same transport API as interp.link.simlink.SimLink:
+write(bytes), read(size) honouring .timeout, in_waiting, now() (SIMULATED seconds:
+time moves only while the host waits in read), close() -> dict.
+
+Line noise: each bit of the 10-bit UART character (start, 8 data, stop) flips with
+probability line_noise, both directions, seeded: a flipped stop bit loses the byte
+(framing error), a flipped start bit loses it or, if a data bit reads as a start bit,
+delivers a shifted byte.
+"""
+from __future__ import annotations
+
+import math
+import random
+from collections import deque
+
+from . import protocol as p
+from .records import DEFAULT_BUILD, Build, decode, record_bytes
+
+
+class DeviceModel:
+    def __init__(self, *, build: Build = DEFAULT_BUILD, clock_hz: int = 50_000_000, baud: int = 115200,
+                 line_noise: float = 0.0, seed: int = 1, queue_aw: int = 12, curves: bool = True,
+                 records_per_second: float = 1000.0, frame_timeout: int = p.FRAME_TIMEOUT_BYTES,
+                 fail_at: int | None = None, fail_code: int = 17, hold_seconds: float = 0.002):
+        self.build, self.clock_hz, self.baud = build, int(clock_hz), baud
+        self.byte_time = 10.0 / baud
+        self.noise, self.rng = float(line_noise), random.Random(seed)
+        self.queue_size, self.queue_aw, self.curves = 1 << queue_aw, queue_aw, curves
+        self.record_time = 1.0 / records_per_second
+        self.frame_timeout = frame_timeout * self.byte_time
+        self.fail_at, self.fail_code, self.hold_seconds = fail_at, fail_code, hold_seconds
+        self.record_len = record_bytes(build)
+        self.timeout: float | None = None           # pyserial's attribute, seconds
+        self.t = 0.0
+        # host -> device: (arrival time, byte or None); device -> host likewise
+        self.down: deque = deque()
+        self.down_free = 0.0
+        self.up: deque = deque()
+        self.up_free = 0.0
+        self.host_rx = bytearray()
+        self._flip_in = self._next_flip()
+        # frame layer
+        self.parser = p.FrameParser()
+        self.last_rx = 0.0
+        self.expected = 0
+        self.pending_ack: tuple | None = None       # ("ACK",) or ("NAK", reason)
+        self.pending_reply: tuple | None = None     # (seq, address)
+        self.frames = self.duplicates = self.errors = self.gaps = 0
+        # controller
+        self.queue = bytearray()
+        self.executed: list[dict] = []              # every record the executor took, in order
+        self.running_until = 0.0
+        self.busy = False
+        self.error = 0
+        self.limits = 0
+        self.position = [0, 0, 0]
+        self.hold = False
+        self.hold_since = 0.0
+        self.enabled = False
+        self.regs = {"OVERRIDE": 100, "PULSE_WIDTH": 25, "DIR_SETUP": 25, "DIR_HOLD": 25, "QUANTUM_LO": 1,
+                     "QUANTUM_HI": 0, "MOTION": 0, "INPUT_INVERT": 0, "SPINDLE_PERIOD": clock_hz // 20000}
+        self.writes: list[tuple[str, int]] = []     # register writes executed, in order
+
+    # ---------------- transport API ----------------
+
+    def now(self) -> float:
+        return self.t
+
+    @property
+    def in_waiting(self) -> int:
+        self._deliver()
+        return len(self.host_rx)
+
+    def write(self, data: bytes) -> int:
+        for byte in bytes(data):
+            start = max(self.t, self.down_free)
+            self.down_free = start + self.byte_time
+            self.down.append((self.down_free, self._noisy(byte)))
+        return len(data)
+
+    def read(self, size: int = 1) -> bytes:
+        deadline = math.inf if self.timeout is None else self.t + self.timeout
+        while True:
+            self._deliver()
+            if len(self.host_rx) >= size:
+                break
+            step = self._next_event()
+            if step is None or step > deadline:
+                if deadline != math.inf:
+                    self._run(deadline)
+                    self.t = deadline
+                self._deliver()
+                break
+            self._run(step)
+            self.t = step
+        out = bytes(self.host_rx[:size])
+        del self.host_rx[:size]
+        return out
+
+    def reset_input_buffer(self) -> None:
+        self._deliver()
+        self.host_rx.clear()
+
+    def close(self) -> dict:
+        return {"seconds": self.t, "records": len(self.executed), "position": tuple(self.position),
+                "frames": self.frames, "duplicates": self.duplicates, "errors": self.errors, "gaps": self.gaps}
+
+    # ---------------- the line ----------------
+
+    def _next_flip(self) -> int:
+        if self.noise <= 0:
+            return 1 << 62
+        if self.noise >= 1:
+            return 0
+        return int(math.log(1.0 - self.rng.random()) / math.log(1.0 - self.noise))
+
+    def _noisy(self, byte: int) -> int | None:
+        """One character through the noisy line: the byte received, or None (lost)."""
+        if self._flip_in >= 10:
+            self._flip_in -= 10
+            return byte
+        bits = [0] + [(byte >> n) & 1 for n in range(8)] + [1]
+        while self._flip_in < 10:
+            bits[self._flip_in] ^= 1
+            self._flip_in += 1 + self._next_flip()
+        self._flip_in -= 10
+        if bits[0] == 1:                                  # no start bit here: a later 0 starts a byte
+            try:
+                at = bits.index(0, 1)
+            except ValueError:
+                return None
+            bits = bits[at:] + [1] * 10
+        if bits[9] != 1:                                  # framing error: the byte is dropped
+            return None
+        return sum(b << n for n, b in enumerate(bits[1:9]))
+
+    def _deliver(self) -> None:
+        while self.up and self.up[0][0] <= self.t:
+            _, byte = self.up.popleft()
+            if byte is not None:
+                self.host_rx.append(byte)
+
+    def _next_event(self) -> float | None:
+        times = []
+        if self.down:
+            times.append(self.down[0][0])
+        if self.up:
+            times.append(self.up[0][0])
+        if self.parser.pending():
+            times.append(self.last_rx + self.frame_timeout)
+        if self._can_execute():
+            times.append(max(self.running_until, self.t))
+        elif self.busy:
+            times.append(self.running_until)
+        if self.hold and self.state() == p.HOLDING:
+            times.append(self.hold_since + self.hold_seconds)
+        times = [max(t, self.t) for t in times]
+        return min(times) if times else None
+
+    def _run(self, until: float) -> None:
+        """Everything that happens up to `until` (in time order)."""
+        while True:
+            step = self._next_event()
+            if step is None or step > until:
+                return
+            self.t = step
+            if self.down and self.down[0][0] <= step:
+                when, byte = self.down.popleft()
+                if self.parser.pending() and when - self.last_rx > self.frame_timeout:
+                    self._frames(self.parser.expire(), truncated=True)
+                self.last_rx = when
+                if byte is not None:
+                    self._frames(self.parser.feed(bytes([byte])))
+            elif self.parser.pending() and step >= self.last_rx + self.frame_timeout:
+                self._frames(self.parser.expire(), truncated=True)
+            self._execute()
+            self._transmit()
+            self._deliver()
+            if not self.down and not self.parser.pending() and step >= until:
+                return
+
+    # ---------------- the frame layer ----------------
+
+    def _frames(self, frames, truncated: bool = False) -> None:
+        bad = self.parser.bad_crc + self.parser.bad_len + self.parser.truncated
+        if bad != getattr(self, "_bad_seen", 0):
+            self._bad_seen = bad
+            self.errors += 1
+            self.pending_ack = ("NAK", p.NAK_CRC)
+        for frame in frames:
+            self._frame(frame)
+        self._transmit()
+
+    def _frame(self, f: p.Frame) -> None:
+        if f.type == p.HELLO:
+            self.pending_ack = ("ACK",) if not f.payload else ("NAK", p.NAK_TYPE)
+        elif f.type == p.READ:
+            if len(f.payload) != 2:
+                self.pending_ack = ("NAK", p.NAK_TYPE)
+            else:
+                self.pending_reply = (f.seq, int.from_bytes(f.payload, "little") & 0xFC)
+        elif f.type in p.SEQUENCED:
+            if (f.type == p.WRITE and len(f.payload) != 6) or (f.type == p.DATA and len(f.payload) > p.LMAX):
+                self.pending_ack = ("NAK", p.NAK_TYPE)
+                return
+            d = (f.seq - self.expected) % 256
+            if d >= 128:
+                self.duplicates += 1
+                self.pending_ack = ("ACK",)
+            elif d:
+                self.gaps += 1
+                self.pending_ack = ("NAK", p.NAK_GAP)
+            elif f.type == p.DATA and len(f.payload) > self.queue_size - len(self.queue):
+                self.gaps += 1
+                self.pending_ack = ("NAK", p.NAK_CREDIT)
+            else:
+                self.expected = (self.expected + 1) % 256
+                self.frames += 1
+                if f.type == p.DATA:
+                    self.queue += f.payload
+                    self._execute()
+                else:
+                    address, value = int.from_bytes(f.payload[:2], "little"), int.from_bytes(f.payload[2:], "little")
+                    self.write_register(address & 0xFC, value)
+                self.pending_ack = ("ACK",)
+        else:
+            self.pending_ack = ("NAK", p.NAK_TYPE)
+
+    def _transmit(self) -> None:
+        """Send the pending replies (REPLY first, then the ACK / NAK) when the line is free."""
+        while self.up_free <= self.t and (self.pending_reply or self.pending_ack):
+            if self.pending_reply:
+                seq, address = self.pending_reply
+                self.pending_reply = None
+                frame = p.encode_frame(p.REPLY, seq, p.reply_payload(address, self.read_register(address)))
+            else:
+                kind = self.pending_ack
+                self.pending_ack = None
+                free = self.queue_size - len(self.queue)
+                if kind[0] == "ACK":
+                    frame = p.encode_frame(p.ACK, self.expected, p.ack_payload(free, self.state(), self.error))
+                else:
+                    frame = p.encode_frame(p.NAK, self.expected, p.nak_payload(kind[1], free))
+            start = max(self.t, self.up_free)
+            for n, byte in enumerate(frame):
+                self.up.append((start + (n + 1) * self.byte_time, self._noisy(byte)))
+            self.up_free = start + len(frame) * self.byte_time
+
+    # ---------------- the controller ----------------
+
+    def state(self) -> int:
+        if self.error:
+            return p.ALARM
+        if self.hold:
+            return p.HELD if self.t >= self.hold_since + self.hold_seconds or not self.busy else p.HOLDING
+        return p.RUN if self.busy or len(self.queue) >= self.record_len else p.IDLE
+
+    def _can_execute(self) -> bool:
+        return (not self.error and not self.hold and len(self.queue) >= self.record_len
+                and not (self.busy and self.running_until > self.t))
+
+    def _execute(self) -> None:
+        if self.busy and self.running_until <= self.t:
+            self.busy = False
+        while self._can_execute():
+            raw = bytes(self.queue[:self.record_len])
+            del self.queue[:self.record_len]
+            try:
+                record = decode(raw, self.build)
+            except ValueError:
+                record = {"kind": 7}
+            self.executed.append(record)
+            n = len(self.executed)
+            if record["kind"] >= 6:
+                self.error = 18
+            elif record["kind"] == 3 and not self.curves:
+                self.error = 1
+            elif self.fail_at is not None and n == self.fail_at:
+                self.error = self.fail_code
+                if self.fail_code == 17:
+                    self.limits = 1
+            if self.error:
+                self.busy = False
+                return
+            if record["kind"] == 0:
+                for axis, name in enumerate("xyz"):
+                    self.position[axis] += record[name]
+            self.busy = True
+            self.running_until = self.t + self.record_time
+
+    def read_register(self, address: int) -> int:
+        b, a = self.build, p.REGISTER_ADDRESSES
+        free = self.queue_size - len(self.queue)
+        records = len(self.queue) // self.record_len
+        values = {
+            a["ID"]: p.ID_VALUE,
+            a["VERSION"]: p.PROTOCOL_VERSION | self.record_len << 8 | b.W << 16 | b.POS_W << 24,
+            a["BUILD0"]: b.FEED_W | b.FRAC << 8 | b.NW << 16 | b.PF << 24,
+            a["BUILD1"]: b.LEN_W | b.ZW << 8 | b.MW << 16 | b.TW << 24,
+            a["CLOCK_HZ"]: self.clock_hz,
+            a["QUEUE_SIZE"]: (self.queue_size & 0xFFFF) | self.queue_aw << 16 | int(self.curves) << 24,
+            a["STATUS"]: (self.state() | int(self.busy) << 3 | int(not self.busy) << 4 | int(self.enabled) << 6
+                          | min(records, 255) << 8),
+            a["ERROR"]: self.error | self.limits << 8,
+            a["QUEUE_FREE"]: (free & 0xFFFF) | (free // self.record_len) << 16,
+            a["POS_X"]: self.position[0] & 0xFFFFFFFF, a["POS_Y"]: self.position[1] & 0xFFFFFFFF,
+            a["POS_Z"]: self.position[2] & 0xFFFFFFFF,
+            a["CONTROL"]: int(self.hold) | int(self.enabled) << 4,
+            a["LINK_FRAMES"]: (self.frames & 0xFFFF) | (self.duplicates & 0xFFFF) << 16,
+            a["LINK_ERRORS"]: (self.errors & 0xFFFF) | (self.gaps & 0xFFFF) << 16,
+            a["EXECUTED"]: len(self.executed) & 0xFFFFFFFF,
+        }
+        if address in values:
+            return values[address]
+        names = {v: k for k, v in a.items()}
+        return self.regs.get(names.get(address, ""), 0)
+
+    def write_register(self, address: int, value: int) -> None:
+        names = {v: k for k, v in p.REGISTER_ADDRESSES.items()}
+        name = names.get(address)
+        if name is None:
+            return
+        self.writes.append((name, value))
+        if name == "CONTROL":
+            if value & p.CONTROL_HOLD and not self.hold:
+                self.hold_since = self.t
+            self.hold = bool(value & p.CONTROL_HOLD)
+            self.enabled = bool(value & p.CONTROL_ENABLE)
+            if value & p.CONTROL_ABORT:
+                self.queue.clear()
+                self.busy = False
+            if value & p.CONTROL_CLEAR:
+                self.error, self.limits = 0, 0
+            self._execute()
+        elif name in self.regs:
+            self.regs[name] = value

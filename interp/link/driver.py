@@ -1,0 +1,475 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The host's sender (docs/host-driver.md): connect (HELLO, the build check, the machine
+settings), the record stream in DATA frames (a window of at most 16 unacknowledged
+sequenced frames, credits from the ACKs' free bytes, go-back-N after NAK 1 / 2 / 3 or a
+retransmission timeout, DATA payloads that shrink after errors and grow back after
+successes), register reads and writes, the progress poll, hold / resume / abort.
+
+The transport is pyserial-like (write, read honouring .timeout); the driver's clock is
+`transport.now` when it has one (the simulators: link time), else time.monotonic.
+
+Go-back-N: after an error the driver lets the line go quiet (everything it wrote has
+left, the replies have come back), asks HELLO for the controller's next expected
+sequence number E, and re-sends from E, re-cut into the (smaller) payload size.  Since
+nothing of the old frames can still arrive, a re-cut frame never meets an old one
+with the same sequence number.
+"""
+from __future__ import annotations
+
+import time
+from collections import deque
+from dataclasses import dataclass, field
+
+from . import protocol as p
+from .records import DEFAULT_BUILD, Build, record_bytes
+
+REG = p.REGISTER_ADDRESSES
+
+
+class LinkError(Exception):
+    """The link failed (no answer, too many errors): exit status 1."""
+
+
+class MismatchError(Exception):
+    """The controller's build or clock is not the one the program was compiled for: exit 2."""
+
+
+class MachineError(Exception):
+    """The controller latched an error (ALARM)."""
+
+    def __init__(self, code: int, limits: int, executed: int, message: str):
+        super().__init__(message)
+        self.code, self.limits, self.executed = code, limits, executed
+
+
+@dataclass
+class Item:
+    """One sequenced frame: DATA (a slice of the record stream) or WRITE."""
+
+    type: int
+    payload: bytes
+    offset: int = 0             # DATA: where its bytes start in the stream
+    write_id: int = -1          # WRITE: its number (write_register waits for it)
+
+
+@dataclass
+class Snapshot:
+    """What the progress display shows (from the latest polls)."""
+
+    executed: int = 0           # records dispatched to the cores since connect
+    records: int = 0            # records of the program
+    acked_bytes: int = 0
+    total_bytes: int = 0
+    state: int = 0
+    queue_records: int = 0
+    position: list = field(default_factory=lambda: [0, 0, 0])
+    error: int = 0
+
+
+class Driver:
+    def __init__(self, transport, *, baud: int = 115200, window: int = 16, lmax: int = p.LMAX,
+                 min_payload: int = 8, margin: float | None = None, dead_seconds: float = 2.0,
+                 poll_seconds: float = 0.05, grow_after: int = 8, log=None):
+        self.transport = transport
+        self.clock = getattr(transport, "now", time.monotonic)
+        if margin is None:          # reply latency beyond the bytes' time: a USB serial port's, or none (simulators)
+            margin = 0.002 if hasattr(transport, "now") else 0.03
+        self.byte_time = 10.0 / baud
+        self.window, self.lmax, self.min_payload = window, lmax, min_payload
+        self.margin, self.dead_seconds, self.poll_seconds = margin, dead_seconds, poll_seconds
+        self.grow_after = grow_after
+        self.log = log
+        self.transport.timeout = max(0.002, 4 * self.byte_time)
+        self.parser = p.FrameParser()
+        # sequenced frames: outstanding[0] has the absolute sequence number `base` (= E known)
+        self.base = 0
+        self.outstanding: deque[Item] = deque()
+        self.sent = 0                   # outstanding[:sent] have been sent
+        self.stream = b""
+        self.stream_pos = 0             # stream bytes cut into items
+        self.acked_bytes = 0
+        self.write_queue: deque[Item] = deque()
+        self.writes_issued = self.writes_done = 0
+        self.free = 0                   # the latest ACK's free bytes
+        self.payload = lmax
+        self.streak = 0
+        self.progress_time = 0.0
+        self.line_free = 0.0            # when the bytes written so far have left
+        self.last_valid = self.clock()
+        self.device_state = self.device_error = 0
+        # register reads
+        self.read_tag = 0
+        self.read_pending: tuple | None = None     # (tag, address, deadline)
+        self.read_wanted: deque[int] = deque()
+        self.values: dict[int, int] = {}
+        self.fresh: set[int] = set()
+        # counters
+        self.frames_sent = self.recoveries = self.naks = self.timeouts = 0
+        self._waiting = False
+        self.next_probe = 0.0
+
+    # ---------------- low level ----------------
+
+    def _write(self, frame: bytes) -> None:
+        now = self.clock()
+        self.transport.write(frame)
+        self.line_free = max(now, self.line_free) + len(frame) * self.byte_time
+
+    def _check_dead(self) -> None:
+        if self.clock() - self.last_valid > self.dead_seconds:
+            if not (self.sent or self.read_pending or self.parser.pending() or self._waiting):
+                self.last_valid = self.clock()          # nothing was asked: silence is fine
+                return
+            raise LinkError(f"no valid frame from the controller for {self.dead_seconds:g} s "
+                            f"({self.recoveries} retransmissions)")
+
+    def _receive(self) -> list:
+        data = self.transport.read(256)
+        frames = self.parser.feed(data) if data else []
+        if not data and self.parser.pending():
+            frames = self.parser.expire()
+        out = []
+        for frame in frames:
+            try:
+                reply = p.decode_reply(frame)
+            except ValueError:
+                continue                    # not a controller frame (an echo, noise that passed the CRC)
+            self.last_valid = self.clock()
+            out.append(reply)
+        return out
+
+    def _advance(self, wire_seq: int, free: int) -> bool:
+        """An ACK / NAK says E = wire_seq: drop the frames it acknowledges."""
+        d = (wire_seq - self.base) % 256
+        if d > self.sent:
+            return False                    # older than what we know, or not ours
+        for _ in range(d):
+            item = self.outstanding.popleft()
+            if item.type == p.DATA:
+                self.acked_bytes += len(item.payload)
+            else:
+                self.writes_done = max(self.writes_done, item.write_id + 1)
+        self.base += d
+        self.sent -= d
+        self.free = free
+        if d:
+            self.progress_time = self.clock()
+            self.streak += d
+            if self.streak >= self.grow_after and self.payload < self.lmax:
+                self.payload = min(self.lmax, self.payload * 3 // 2)
+                self.streak = 0
+        return True
+
+    def _handle(self, reply, recovering: bool = False) -> str | None:
+        """One controller frame; 'error' when it asks for a go-back."""
+        if isinstance(reply, p.Reply):
+            if self.read_pending and reply.seq == self.read_pending[0] and reply.address == self.read_pending[1]:
+                self.values[reply.address] = reply.value
+                self.fresh.add(reply.address)
+                self.read_pending = None
+            return None
+        if isinstance(reply, p.Ack):
+            if self._advance(reply.seq, reply.free):
+                self.device_state, self.device_error = reply.state, reply.error
+                self._waiting = False
+            return None
+        self.naks += 1
+        self._advance(reply.seq, reply.free)
+        if not recovering and reply.reason in (p.NAK_CRC, p.NAK_GAP, p.NAK_CREDIT) and self.sent:
+            return "error"
+        return None
+
+    def _rto(self) -> float:
+        in_flight = self._in_flight()
+        backlog = max(0.0, self.line_free - self.clock())
+        return backlog + (in_flight + 40) * self.byte_time + self.margin
+
+    def _in_flight(self) -> int:
+        return sum(len(i.payload) + p.OVERHEAD for i in list(self.outstanding)[:self.sent])
+
+    def _flight_limit(self) -> int:
+        """Bytes in flight that keep the line busy for a round trip (two frames, the ACK,
+        the latency): more would only be lost after an error (go-back-N)."""
+        return 2 * (self.payload + p.OVERHEAD) + 40 + int(self.margin / self.byte_time)
+
+    def _credit(self) -> int:
+        return self.free - sum(len(i.payload) for i in list(self.outstanding)[:self.sent] if i.type == p.DATA)
+
+    def _next_item(self) -> Item | None:
+        if self.write_queue:
+            return self.write_queue.popleft()
+        left = len(self.stream) - self.stream_pos
+        if left <= 0:
+            return None
+        credit = self._credit() - sum(len(i.payload) for i in list(self.outstanding)[self.sent:]
+                                      if i.type == p.DATA)
+        size = min(self.payload, left, credit)
+        if size < min(self.payload, left, 16):
+            return None                     # wait for credit
+        item = Item(p.DATA, self.stream[self.stream_pos:self.stream_pos + size], offset=self.stream_pos)
+        self.stream_pos += size
+        return item
+
+    def _send_some(self) -> None:
+        while self.sent < self.window:
+            if self.sent == len(self.outstanding):
+                item = self._next_item()
+                if item is None:
+                    break
+                self.outstanding.append(item)
+            item = self.outstanding[self.sent]
+            if item.type == p.DATA and len(item.payload) > self._credit():
+                break
+            if self.sent and self._in_flight() + len(item.payload) + p.OVERHEAD > self._flight_limit():
+                break                       # enough to keep the line busy until the ACKs come
+            if self.sent == 0:
+                self.progress_time = self.clock()
+            self._write(p.encode_frame(item.type, (self.base + self.sent) % 256, item.payload))
+            self.sent += 1
+            self.frames_sent += 1
+
+    def _poll_reads(self) -> None:
+        now = self.clock()
+        if self.read_pending and now > self.read_pending[2]:
+            self.read_wanted.appendleft(self.read_pending[1])      # lost: ask again
+            self.read_pending = None
+        if self.read_pending is None and self.read_wanted:
+            address = self.read_wanted.popleft()
+            self.read_tag = (self.read_tag + 1) % 256
+            self._write(p.encode_frame(p.READ, self.read_tag, p.read_payload(address)))
+            deadline = self.line_free + 30 * self.byte_time + self.margin
+            self.read_pending = (self.read_tag, address, deadline)
+
+    def pump(self) -> None:
+        """Send what the window and credit allow, read the replies, recover from errors."""
+        self._send_some()
+        self._poll_reads()
+        error = False
+        for reply in self._receive():
+            error = self._handle(reply) == "error" or error
+        now = self.clock()
+        if (not self.sent and self.stream_pos < len(self.stream) and now >= self.next_probe
+                and self.read_pending is None):
+            # waiting for credit with nothing in flight: no ACK would come, ask for one
+            self._write(p.encode_frame(p.HELLO, 0))
+            self.next_probe = self.line_free + 30 * self.byte_time + self.margin
+            self._waiting = True
+        elif self.sent or self.stream_pos >= len(self.stream):
+            self._waiting = False
+        if not error and self.sent and now - self.progress_time > self._rto():
+            self.timeouts += 1
+            error = True
+        if error:
+            self.recover()
+        self._check_dead()
+
+    def recover(self) -> None:
+        """Go back N: wait until the line is quiet, learn E with HELLO, re-cut what is not
+        acknowledged into smaller frames."""
+        self.recoveries += 1
+        self.payload = max(self.min_payload, self.payload * 2 // 3)
+        self.streak = 0
+        quiet = max(self.clock(), self.line_free) + 40 * self.byte_time + self.margin
+        while self.clock() < quiet:
+            for reply in self._receive():
+                self._handle(reply, recovering=True)
+            self._check_dead()
+        self.read_pending = None
+        self.parser.expire()
+        self._waiting = True
+        try:
+            self._hello(recovering=True)
+        finally:
+            self._waiting = False
+        # everything not acknowledged goes back to be cut again
+        data = [i for i in self.outstanding if i.type == p.DATA]
+        writes = [i for i in self.outstanding if i.type == p.WRITE]
+        if data:
+            self.stream_pos = data[0].offset
+        self.write_queue.extendleft(reversed(writes))
+        self.outstanding.clear()
+        self.sent = 0
+
+    def _hello(self, recovering: bool = False) -> p.Ack | p.Nak:
+        """HELLO until an ACK (or NAK) tells E and the free bytes."""
+        while True:
+            self._write(p.encode_frame(p.HELLO, 0))
+            deadline = self.line_free + 30 * self.byte_time + self.margin
+            while self.clock() < deadline:
+                for reply in self._receive():
+                    if not isinstance(reply, (p.Ack, p.Nak)):
+                        self._handle(reply, recovering=True)
+                        continue
+                    if not recovering:
+                        self.base, self.free = reply.seq, reply.free      # connect: E starts the sequence
+                    elif not self._advance(reply.seq, reply.free):
+                        continue
+                    if isinstance(reply, p.Ack):
+                        self.device_state, self.device_error = reply.state, reply.error
+                    return reply
+                self._check_dead()
+
+    # ---------------- register access ----------------
+
+    def connect(self) -> None:
+        self.parser.expire()
+        self.last_valid = self.clock()
+        self._waiting = True
+        try:
+            self._hello()
+        finally:
+            self._waiting = False
+
+    def read_register(self, name_or_address) -> int:
+        address = REG[name_or_address] if isinstance(name_or_address, str) else name_or_address
+        self.fresh.discard(address)
+        if address not in self.read_wanted:
+            self.read_wanted.append(address)
+        while address not in self.fresh:
+            self.pump()
+        return self.values[address]
+
+    def queue_write(self, name_or_address, value: int) -> int:
+        address = REG[name_or_address] if isinstance(name_or_address, str) else name_or_address
+        item = Item(p.WRITE, p.write_payload(address, value), write_id=self.writes_issued)
+        self.writes_issued += 1
+        self.write_queue.append(item)
+        return item.write_id
+
+    def write_register(self, name_or_address, value: int) -> None:
+        wid = self.queue_write(name_or_address, value)
+        while self.writes_done <= wid:
+            self.pump()
+
+    # ---------------- the stream ----------------
+
+    def start_stream(self, data: bytes) -> None:
+        self.stream, self.stream_pos, self.acked_bytes = bytes(data), 0, 0
+
+    def stream_done(self) -> bool:
+        return self.stream_pos >= len(self.stream) and not self.outstanding and not self.write_queue
+
+    def drop_stream(self) -> None:
+        """Send no more records (abort): the unsent part of the stream and unsent frames go."""
+        keep = deque(list(self.outstanding)[:self.sent])
+        keep += [i for i in list(self.outstanding)[self.sent:] if i.type == p.WRITE]
+        self.outstanding = keep
+        self.stream = self.stream[:self.stream_pos]
+
+    def poll(self, names) -> None:
+        for name in names:
+            if REG[name] not in self.read_wanted and not (self.read_pending and self.read_pending[1] == REG[name]):
+                self.read_wanted.append(REG[name])
+
+
+# ---------------- the session: connect, check, configure, run ----------------
+
+def field(value: int, lsb: int, width: int) -> int:
+    return (value >> lsb) & ((1 << width) - 1)
+
+
+def check_controller(driver: Driver, build: Build = DEFAULT_BUILD, clock_hz: float | None = None,
+                     curves: bool = False) -> dict[str, int]:
+    """Read ID, VERSION, BUILD0, BUILD1, CLOCK_HZ, QUEUE_SIZE; MismatchError (one line) when the
+    controller is not the build the program was compiled for."""
+    v = {name: driver.read_register(name) for name in ("ID", "VERSION", "BUILD0", "BUILD1", "CLOCK_HZ",
+                                                         "QUEUE_SIZE")}
+    if v["ID"] != p.ID_VALUE:
+        raise MismatchError(f"not an interp controller (ID 0x{v['ID']:08X}, expected 0x{p.ID_VALUE:08X})")
+    got = {"protocol": field(v["VERSION"], 0, 8), "record bytes": field(v["VERSION"], 8, 8),
+           "W": field(v["VERSION"], 16, 8), "POS_W": field(v["VERSION"], 24, 8),
+           "FEED_W": field(v["BUILD0"], 0, 8), "FRAC": field(v["BUILD0"], 8, 8), "NW": field(v["BUILD0"], 16, 8),
+           "PF": field(v["BUILD0"], 24, 8), "LEN_W": field(v["BUILD1"], 0, 8), "ZW": field(v["BUILD1"], 8, 8),
+           "MW": field(v["BUILD1"], 16, 8), "TW": field(v["BUILD1"], 24, 8)}
+    want = {"protocol": p.PROTOCOL_VERSION, "record bytes": record_bytes(build), "W": build.W,
+            "POS_W": build.POS_W, "FEED_W": build.FEED_W, "FRAC": build.FRAC, "NW": build.NW, "PF": build.PF,
+            "LEN_W": build.LEN_W, "ZW": build.ZW, "MW": build.MW}
+    bad = [f"{k} {got[k]} (the program needs {want[k]})" for k in want if got[k] != want[k]]
+    if bad:
+        raise MismatchError(f"the controller's build differs: {', '.join(bad)}")
+    if clock_hz is not None and v["CLOCK_HZ"] != round(clock_hz):
+        raise MismatchError(f"the controller's clock is {v['CLOCK_HZ']} Hz, the machine file's clock_hz is "
+                            f"{clock_hz:g} Hz")
+    if curves and not field(v["QUEUE_SIZE"], 24, 1):
+        raise MismatchError("the program has curve commands and the controller is built without CURVES")
+    return v
+
+
+def configure(driver: Driver, timing: dict, settings: dict) -> None:
+    """The machine settings `interp gcode` runs with: step timing, speed quantum, profile shifts,
+    override."""
+    quantum = int(settings.get("speed_quantum", 1))
+    driver.write_register("PULSE_WIDTH", int(timing["pulse_width"]))
+    driver.write_register("DIR_SETUP", int(timing["setup"]))
+    driver.write_register("DIR_HOLD", int(timing["hold"]))
+    driver.write_register("QUANTUM_LO", quantum & 0xFFFFFFFF)
+    driver.write_register("QUANTUM_HI", quantum >> 32)
+    driver.write_register("MOTION", int(settings.get("block_shift", 0)) | int(settings.get("jerk_shift", 0)) << 4)
+    driver.write_register("OVERRIDE", int(settings.get("override", 100)))
+
+
+POLLED = ("EXECUTED", "QUEUE_FREE", "POS_X", "POS_Y", "POS_Z", "ERROR", "STATUS")   # STATUS after EXECUTED: the end test
+
+
+@dataclass
+class Outcome:
+    status: str                 # "done", "aborted", "error"
+    executed: int
+    seconds: float
+    error: int = 0
+    limits: int = 0
+    message: str = ""
+
+
+def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, keys=None,
+                max_seconds: float | None = None) -> Outcome:
+    """Stream the records and follow the run to its end: all records executed and the
+    controller not busy.  progress(Snapshot) after every poll round; keys() -> the keys
+    typed since the last call ('!' hold, '~' resume, Ctrl-X abort)."""
+    start = driver.clock()
+    # a stale partial record or a latched error of an earlier run: flush and clear
+    status = driver.read_register("STATUS")
+    if field(status, 3, 1) and field(status, 0, 3) != p.ALARM:
+        raise LinkError(f"the controller is busy ({p.STATE_NAMES.get(field(status, 0, 3), '?')}): "
+                        "wait for its program to end or abort it")
+    driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_CLEAR | p.CONTROL_ENABLE)
+    base = driver.read_register("EXECUTED")
+    driver.start_stream(stream)
+    snap = Snapshot(records=records, total_bytes=len(stream))
+    held = aborted = False
+    while True:
+        driver.poll(POLLED)
+        fresh_round = all(REG[n] in driver.fresh for n in POLLED)
+        driver.pump()
+        if keys is not None:
+            for key in keys():
+                if key == "!" and not held:
+                    driver.queue_write("CONTROL", p.CONTROL_HOLD | p.CONTROL_ENABLE)
+                    held = True
+                elif key == "~" and held:
+                    driver.queue_write("CONTROL", p.CONTROL_ENABLE)
+                    held = False
+                elif key == "\x18" and not aborted:
+                    driver.drop_stream()
+                    driver.queue_write("CONTROL", p.CONTROL_ABORT | p.CONTROL_ENABLE)
+                    aborted = True
+        if not fresh_round:
+            continue
+        v = {n: driver.values[REG[n]] for n in POLLED}
+        driver.fresh.difference_update(REG[n] for n in POLLED)
+        snap.executed = (v["EXECUTED"] - base) & 0xFFFFFFFF
+        snap.state, snap.queue_records = field(v["STATUS"], 0, 3), field(v["STATUS"], 8, 8)
+        snap.position = [x - (1 << 32) if x >> 31 else x for x in (v["POS_X"], v["POS_Y"], v["POS_Z"])]
+        snap.error, snap.acked_bytes = field(v["ERROR"], 0, 8), driver.acked_bytes
+        if progress is not None:
+            progress(snap)
+        seconds = driver.clock() - start
+        if snap.error or snap.state == p.ALARM:
+            return Outcome("error", snap.executed, seconds, snap.error, field(v["ERROR"], 8, 3))
+        busy = field(v["STATUS"], 3, 1)
+        if aborted and driver.stream_done() and not busy:
+            return Outcome("aborted", snap.executed, seconds)
+        if driver.stream_done() and snap.executed >= records and not busy and snap.queue_records == 0:
+            return Outcome("done", snap.executed, seconds)
+        if max_seconds is not None and seconds > max_seconds:
+            return Outcome("timeout", snap.executed, seconds)
