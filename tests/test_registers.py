@@ -225,3 +225,147 @@ def test_bad_rdl_is_one_line(tmp_path, bad, where):
 def test_missing_rdl_is_one_line(tmp_path, capsys):
     assert regs.main(["--check", "--rdl", str(tmp_path / "none.rdl")]) == 1
     assert capsys.readouterr().err.strip() == f"regs: {tmp_path / 'none.rdl'}: no such file"
+
+
+# ------------------------------------------------------------ the RTL against the map
+# rtl/controller.v (module controller, COMMON ports) read and written through its Wishbone
+# port on Icarus: resets at the default build, read-only registers ignore writes, read-write
+# fields read back what was written (write-1 pulses read 0), unknown addresses read 0 and
+# ignore writes, wb_adr[1:0] ignored, every access acknowledged within 2 clocks.
+DEFAULT_BUILD = {"CLK_HZ": 50_000_000, "W": 32, "FEED_W": 50, "FRAC": 48, "NW": 40, "PF": 24, "LEN_W": 82,
+                 "ZW": 108, "MW": 12, "TW": 16, "POS_W": 32, "QUEUE_AW": 12, "CURVES": 1}
+UNKNOWN = (0x7C, 0x80, 0xC0, 0xFC)
+
+_BENCH = """`timescale 1ns/1ps
+`default_nettype none
+module regs_map_tb;
+    reg clk = 1'b0, rst = 1'b1;
+    always #5 clk = ~clk;
+    reg  [7:0]  adr = 8'd0;
+    reg  [31:0] dat_w = 32'd0;
+    reg         we = 1'b0, stb = 1'b0, cyc = 1'b0;
+    wire [31:0] dat_r;
+    wire        ack, cmd_ready, enable, spindle_on, spindle_ccw, spindle_pwm, mist, flood;
+    wire [15:0] queue_free;
+    wire [7:0]  status_state, status_error;
+    wire [2:0]  step, dir;
+    wire [3:0]  dout;
+    integer     waited;
+    controller #(PARAMS) dut (
+        .clk(clk), .rst(rst), .cmd_valid(1'b0), .cmd_data(8'd0), .cmd_ready(cmd_ready),
+        .queue_free(queue_free), .wb_adr(adr), .wb_dat_w(dat_w), .wb_dat_r(dat_r), .wb_we(we),
+        .wb_sel(4'hF), .wb_stb(stb), .wb_cyc(cyc), .wb_ack(ack),
+        .link_frames(16'd0), .link_duplicates(16'd0), .link_errors(16'd0), .link_gaps(16'd0),
+        .status_state(status_state), .status_error(status_error), .step(step), .dir(dir),
+        .enable(enable), .estop(1'b0), .limit(3'b000), .probe(1'b0), .spindle_on(spindle_on),
+        .spindle_ccw(spindle_ccw), .spindle_pwm(spindle_pwm), .mist(mist), .flood(flood), .dout(dout));
+    task access(input write, input [7:0] address, input [31:0] value);
+        begin
+            @(negedge clk);
+            adr = address; dat_w = value; we = write; stb = 1'b1; cyc = 1'b1; waited = 1;
+            @(posedge clk); #1;
+            while (!ack && waited < 9) begin waited = waited + 1; @(posedge clk); #1; end
+            $display("%s %02h %08h %0d", write ? "W" : "R", address, write ? value : dat_r, ack ? waited : 99);
+            @(negedge clk);
+            stb = 1'b0; cyc = 1'b0; we = 1'b0;
+        end
+    endtask
+    initial begin
+        repeat (4) @(posedge clk);
+        rst = 1'b0;
+        repeat (40) @(posedge clk);
+ACCESSES
+        $finish;
+    end
+endmodule
+"""
+
+
+def _rw_mask(name: str) -> int:
+    return sum(((1 << w) - 1) << lsb for key, (lsb, w, a) in registers.FIELDS.items()
+               if key.split(".")[0] == name and a == "rw")
+
+
+def _map_accesses() -> list[tuple[int, int, int]]:
+    """(write, address, value) in order: the reset state first, then writes."""
+    ro = [n for n, a in registers.ACCESS.items() if a == "ro"]
+    out = [(0, a, 0) for a in registers.REGISTERS.values()] + [(0, a, 0) for a in UNKNOWN] + [(0, 0x03, 0)]
+    for name in ro:
+        out += [(1, registers.REGISTERS[name], 0xFFFF_FFFF), (0, registers.REGISTERS[name], 0)]
+    for address in UNKNOWN:
+        out += [(1, address, 0xFFFF_FFFF), (0, address, 0)]
+    order = sorted(WRITABLE - {"CONTROL", "INPUT_INVERT"}) + ["CONTROL", "INPUT_INVERT"]
+    for name in order:   # INPUT_INVERT last: inverted inputs trip the e-stop
+        a = registers.REGISTERS[name]
+        for value in (0xFFFF_FFFF, 0x5A5A_A5A5, 0):
+            out += [(1, a | 2, value), (0, a, 0)]
+    return out
+
+
+def run_map_bench(rtl, tmp_path) -> tuple[list, list[str]]:
+    """Simulate the accesses on rtl/controller.v; the accesses and the bench's lines."""
+    from interp.flows.synth import sources
+
+    accesses = _map_accesses()
+    params = ", ".join(f".{k}({v})" for k, v in DEFAULT_BUILD.items())
+    body = "\n".join(f"        access(1'b{w}, 8'h{a:02X}, 32'h{v:08X});" for w, a, v in accesses)
+    bench = tmp_path / "regs_map_tb.v"
+    bench.write_text(_BENCH.replace("PARAMS", params).replace("ACCESSES", body))
+    files = [str(p) for p in sources("controller", rtl=rtl)]
+    binary = tmp_path / "regs_map_tb.vvp"
+    done = subprocess.run(["iverilog", "-g2005", "-o", str(binary), f"-I{rtl}", "-s", "regs_map_tb", str(bench), *files],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    done = subprocess.run(["vvp", "-n", str(binary)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    return accesses, [line for line in done.stdout.splitlines() if line[:2] in ("R ", "W ")]
+
+
+def map_mismatches(accesses, lines) -> list[str]:
+    """Where the simulated accesses disagree with the map (empty: conforms)."""
+    assert len(lines) == len(accesses), lines[-3:]
+    names = {a: n for n, a in registers.REGISTERS.items()}
+    bad, seen, last_write = [], {}, {}
+    for (write, address, value), line in zip(accesses, lines):
+        kind, shown, got, cycles = line.split()
+        got, cycles = int(got, 16), int(cycles)
+        name = names.get(address & 0xFC, f"0x{address:02X}")
+        if cycles > 2:
+            bad.append(f"{kind} {name}: acknowledged after {cycles} clocks (at most 2)")
+        if write:
+            last_write[address & 0xFC] = value
+            continue
+        if address & 0xFC not in names:
+            expected = 0
+        elif address & 0xFC in last_write and registers.ACCESS[name] == "rw":
+            expected = last_write[address & 0xFC] & _rw_mask(name)
+        elif name in seen:
+            expected = seen[name]                                   # read-only: writes ignored
+        elif registers.RESETS[name] is None:                      # STATUS: stopped follows motion_top
+            expected = got & ~0xFF07                               # IDLE, no records
+        else:
+            expected = registers.RESETS[name] if name != "CMD_DATA" else 0
+        if got != expected:
+            bad.append(f"R {name}: 0x{got:08X}, want 0x{expected:08X}"
+                       + (f" (after writing 0x{last_write[address & 0xFC]:08X})" if address & 0xFC in last_write else ""))
+        seen.setdefault(name, got)
+    return bad
+
+
+@pytest.mark.skipif(not (regs.ROOT / "rtl" / "controller.v").is_file(), reason="rtl/controller.v not merged yet")
+@pytest.mark.skipif(shutil.which("iverilog") is None, reason="iverilog missing")
+def test_controller_implements_the_map(tmp_path):
+    accesses, lines = run_map_bench(regs.ROOT / "rtl", tmp_path)
+    assert map_mismatches(accesses, lines) == []
+
+
+def test_map_check_catches_a_wrong_value():
+    """The comparison fails on a wrong reset, a writable read-only register and a slow ack."""
+    accesses = [(0, 0x44, 0), (1, 0x00, 0xFFFF_FFFF), (0, 0x00, 0), (0, 0x80, 0)]
+    lines = ["R 44 00000064 1", "W 00 ffffffff 1", "R 00 494e5450 2", "R 80 00000000 1"]
+    assert map_mismatches(accesses, lines) == []
+    lines = ["R 44 00000063 1", "W 00 ffffffff 1", "R 00 ffffffff 3", "R 80 00000001 1"]
+    assert map_mismatches(accesses, lines) == ["R OVERRIDE: 0x00000063, want 0x00000064",
+                                               "R ID: acknowledged after 3 clocks (at most 2)",
+                                               "R ID: 0xFFFFFFFF, want 0x494E5450 (after writing 0xFFFFFFFF)",
+                                               "R 0x80: 0x00000001, want 0x00000000"]
