@@ -78,7 +78,7 @@ module controller #(
         if (RECORD_BYTES > (1 << QUEUE_AW)) $error("%m: the segment queue must hold a record");
     end
 
-    localparam integer RECORD_BYTES = 1 + 4 * ((FEED_W + 7) / 8) + 7 * ((W + 7) / 8) + (NW + 7) / 8
+    localparam integer RECORD_BYTES = 1 + 3 * ((FEED_W + 7) / 8) + 7 * ((W + 7) / 8) + (NW + 7) / 8
                                       + (PF + 8) / 8 + (LEN_W + 7) / 8 + (ZW + 7) / 8;
     localparam integer SIZE = 1 << QUEUE_AW;
     localparam integer FREE_RECORDS = SIZE / RECORD_BYTES, FREE_REST = SIZE % RECORD_BYTES;

@@ -1,0 +1,493 @@
+# SPDX-License-Identifier: Apache-2.0
+"""controller: record bytes -> segment queue -> unpacker -> motion_top -> input guard -> pins,
+with the Wishbone register block (cocotbext-wishbone's WishboneMaster on wb_*).
+
+Every register's reset value, read-write / read-only / write-1-strobe behaviour and the
+unknown addresses; records through CMD_DATA and through the byte stream compared field by
+field with the commands pushed into motion_top; a line + arc + helix program ending at its
+programmed position (POS_*); e-stop and a limit switch mid-arc (the step pins low in the
+cycle the synchronized input shows it, error latched until clear); feed hold and resume
+mid-helix (no step lost); abort (mid-record too) and restart; rst at random cycles (seeded);
+events -> outputs, PWM duty; the probe latch; bad records (kind 6, 7; a curve when the
+curve core is left out).  The benches' small build (W 16, FRAC 16, CURVES 0, a 256-byte
+queue) for most; the G-code build (W 32, FRAC 48, CURVES 1) runs a compiled G-code program.
+Records come from interp.testing.controllerkit's encoder (the record format of the docs).
+"""
+import cocotb
+from cocotb.triggers import FallingEdge
+
+from interp.models.motion import ARC_CCW, ARC_CW, CURVE, DWELL, EVENT, LINE, Command, queue_steps
+from interp.models.profile import profile_for
+from interp.simulation import motion_build
+from interp.simulation.native.build import CLI_PARAMETERS
+from interp.simulation.runner import run_cocotb
+from interp.testing.controllerkit import (ABORT, ALARM, CLEAR, ENABLE, HELD, HOLD, IDLE, PROBE_ARM, REG, RUN,
+                                          ControllerBench, pushed_fields)
+from interp.testing.tbkit import seeded_rng
+
+SMALL = {**motion_build.PARAMETERS, "POS_W": 32, "QUEUE_AW": 8, "CLK_HZ": 1_000_000, "CURVES": 0}
+CLI = {**CLI_PARAMETERS, "QUEUE_AW": 12, "CLK_HZ": 50_000, "CURVES": 1}
+ONE = 1 << 16
+
+
+class Bench(ControllerBench):
+    async def start(self):
+        await super().start()
+        self.frac = int(self.dut.FRAC.value)
+        self.scale = 1 << (self.frac - 16)
+        self.settings = {"QUANTUM": 64 * self.scale, "PULSE_WIDTH": 1, "DIR_SETUP": 0, "DIR_HOLD": 0}
+        await self.configure()
+        return self
+
+    async def configure(self):
+        q = self.settings["QUANTUM"]
+        await self.write("QUANTUM_LO", q & 0xFFFFFFFF)
+        await self.write("QUANTUM_HI", q >> 32)
+        for name in ("PULSE_WIDTH", "DIR_SETUP", "DIR_HOLD"):
+            await self.write(name, self.settings[name])
+
+    def profiled(self, cmds):
+        top = min(ONE * self.scale, 1 << self.build["FEED_W"]) - 1
+        cmds = [c if c.kind in (DWELL, EVENT) else Command(**{**c.__dict__, "feed": min(c.feed * self.scale, top)})
+                for c in cmds]
+        return profile_for(cmds, quantum=self.settings["QUANTUM"], accel=32.0 * self.scale, frac=self.frac,
+                           pf=self.build["PF"], width=self.build["W"], feed_max=top, feed_w=self.build["FEED_W"])
+
+    def end_of(self, cmds, start=(0, 0, 0)):
+        steps, errors = queue_steps(cmds, self.build["W"])
+        assert not errors, errors
+        # (end position, pulses: one per stepping axis of each step)
+        return [o + sum(s[a] for s in steps) for a, o in enumerate(start)], sum(abs(v) for s in steps for v in s)
+
+    async def wait_steps(self, n, max_cycles=100_000):
+        for _ in range(max_cycles):
+            if len(self.steps.edges) >= n:
+                return
+            await FallingEdge(self.dut.clk)
+        raise AssertionError(f"fewer than {n} steps after {max_cycles} cycles")
+
+    async def quiet(self, cycles):
+        """No step edge for `cycles` cycles."""
+        before = len(self.steps.edges)
+        await self.clocks(cycles)
+        assert len(self.steps.edges) == before, f"{len(self.steps.edges) - before} steps while stopped"
+
+
+LINE_ARC_HELIX = [Command(LINE, ONE // 3, 12, -5, 3), Command(ARC_CCW, ONE // 3, 8, 8, 0, 8, 0),
+                  Command(ARC_CW, ONE // 4, 0, 0, -9, -6, 2, 40, plane=1),     # a full turn, helix in y
+                  Command(LINE, ONE // 2, -4, 0, 0)]
+
+
+@cocotb.test()
+async def registers(dut):
+    """Reset values; RW fields read back (masked to their widths); RO registers ignore writes;
+    CONTROL's strobes read 0; unknown addresses read 0 and ignore writes; ack in 1-2 cycles."""
+    tb = await ControllerBench(dut).start()
+    b, rb = tb.build, tb.rb
+    aw, clk = int(dut.QUEUE_AW.value), int(dut.CLK_HZ.value)
+    size, tw_mask, feed_mask = 1 << aw, (1 << b["TW"]) - 1, (1 << b["FEED_W"]) - 1
+    half_us = max(1, clk // 2_000_000)
+    reset = {"ID": 0x494E5450, "VERSION": 1 | rb << 8 | b["W"] << 16 | b["POS_W"] << 24,
+             "BUILD0": b["FEED_W"] | b["FRAC"] << 8 | b["NW"] << 16 | b["PF"] << 24,
+             "BUILD1": b["LEN_W"] | b["ZW"] << 8 | b["MW"] << 16 | b["TW"] << 24, "CLOCK_HZ": clk,
+             "QUEUE_SIZE": size | aw << 16 | int(dut.CURVES.value) << 24, "STATUS": 0, "ERROR": 0,
+             "QUEUE_FREE": size | (size // rb) << 16, "OVERRIDE": 100, "PULSE_WIDTH": half_us,
+             "DIR_SETUP": half_us, "DIR_HOLD": half_us, "QUANTUM_LO": 1, "SPINDLE_PERIOD": clk // 20000}
+    names = sorted(REG, key=REG.get)
+    want = {n: reset.get(n, 0) for n in names}
+    for name in names:
+        got = await tb.read(name)
+        assert got == want[name], f"{name} after reset: {got:#x}, want {want[name]:#x}"
+        assert tb.last_ack <= 2, f"{name}: ack after {tb.last_ack} cycles"
+    rw = {"OVERRIDE": 0xFF, "PULSE_WIDTH": tw_mask, "DIR_SETUP": tw_mask, "DIR_HOLD": tw_mask,
+          "QUANTUM_LO": feed_mask & 0xFFFFFFFF, "QUANTUM_HI": feed_mask >> 32, "MOTION": 0xFF,
+          "SPINDLE_PERIOD": 0xFFFF}
+    for name, mask in rw.items():
+        for value in (0xFFFFFFFF, 0x5A5A5A5A, 0):
+            await tb.write(name, value)
+            got = await tb.read(name)
+            assert got == value & mask, f"{name}: wrote {value:#x}, read {got:#x}"
+            assert tb.last_ack <= 2
+    for name in ("ID", "VERSION", "BUILD0", "BUILD1", "CLOCK_HZ", "QUEUE_SIZE", "STATUS", "ERROR", "QUEUE_FREE",
+                 "POS_X", "PROBE_Z", "INPUTS", "OUTPUTS", "LINK_FRAMES", "LINK_ERRORS", "EXECUTED"):
+        before = await tb.read(name)
+        await tb.write(name, 0xFFFFFFFF ^ before)
+        assert await tb.read(name) == before, f"{name} is read-only"
+    # CONTROL: hold and enable are RW, abort / clear / probe_arm read 0
+    await tb.write("CONTROL", 0xFFFFFFFF)
+    assert await tb.read("CONTROL") == HOLD | ENABLE
+    assert int(dut.enable.value) == 1
+    assert await tb.state() == HELD                  # hold at rest: held
+    await tb.write("CONTROL", 0)
+    assert await tb.read("CONTROL") == 0 and int(dut.enable.value) == 0
+    # unknown addresses and CMD_DATA read 0; writes there change nothing
+    snapshot = {n: await tb.read(n) for n in names}
+    for address in (0x7C, 0x80, 0xA4, 0xFC, 0x7D, 0x03):
+        await tb.write(address, 0xFFFFFFFF)
+        assert await tb.read(address) == (0 if address != 0x03 else 0x494E5450), f"address {address:#x}"
+    assert {n: await tb.read(n) for n in names} == snapshot
+    # link counters: inputs
+    dut.link_frames.value, dut.link_duplicates.value = 0x1234, 0xABCD
+    dut.link_errors.value, dut.link_gaps.value = 7, 0xFFFF
+    assert await tb.read("LINK_FRAMES") == 0xABCD1234
+    assert await tb.read("LINK_ERRORS") == 0xFFFF0007
+    # INPUT_INVERT: every input reads active, the e-stop latches ERROR 16 (ALARM) until clear
+    await tb.write("INPUT_INVERT", 0xFFFFFFFF)
+    assert await tb.read("INPUT_INVERT") == 0x1F
+    assert await tb.read("INPUTS") == 0x1F
+    assert await tb.read("ERROR") == 16 and await tb.state() == ALARM
+    await tb.write("CONTROL", CLEAR)
+    assert await tb.read("ERROR") == 16              # the e-stop is still active
+    await tb.write("INPUT_INVERT", 0)
+    await tb.write("CONTROL", CLEAR)
+    assert await tb.read("ERROR") == 0 and await tb.state() == IDLE
+    # rst restores every reset value
+    await tb.write("OVERRIDE", 33)
+    await tb.reset()
+    assert {n: await tb.read(n) for n in names} == {**want, "LINK_FRAMES": 0xABCD1234, "LINK_ERRORS": 0xFFFF0007}
+
+
+@cocotb.test()
+async def records_to_motion_top(dut):
+    """Seeded random records (dwells and events with every field random at full width, and
+    moves) through the byte stream and through CMD_DATA: motion_top sees exactly their fields,
+    in order, none dropped although the queues fill; STATUS records and QUEUE_FREE agree."""
+    rng = seeded_rng(dut, "records_to_motion_top")
+    tb = await Bench(dut).start()
+    b = tb.build
+
+    def field(bits):
+        return rng.getrandbits(bits)
+
+    def signed(bits):
+        return rng.randint(-(1 << (bits - 1)), (1 << (bits - 1)) - 1)
+
+    cmds = []
+    for n in range(24):
+        if rng.random() < 0.2:
+            cmds += tb.profiled([Command(LINE, rng.randint(ONE // 4, ONE - 1), rng.randint(-5, 5), rng.randint(1, 5))])
+            continue
+        kind = rng.choice([DWELL, EVENT])
+        code = rng.randint(13, 255) if kind == EVENT else rng.randint(0, 400)   # no machine event
+        cmds.append(Command(kind, field(b["FEED_W"]), code, *(signed(b["W"]) for _ in range(6)),
+                            plane=rng.randint(0, 3), limit=field(b["FEED_W"]), exit=field(b["NW"]),
+                            rate=field(b["PF"] + 1), cost=field(b["FEED_W"]), length=field(b["LEN_W"]),
+                            budget=field(b["ZW"])))
+    half = len(cmds) // 2
+    await tb.send(tb.records(cmds[:half]))
+    # while the queue holds records: the counters agree
+    status, free = await tb.read("STATUS"), await tb.read("QUEUE_FREE")
+    assert free >> 16 == (free & 0xFFFF) // tb.rb, f"QUEUE_FREE {free:#x}"
+    assert 0 <= (status >> 8 & 0xFF) - (half - len(tb.pushes)) <= 1, f"STATUS {status:#x}"   # a push may follow
+    assert status & 8, "busy"
+    await tb.send_words(tb.records(cmds[half:]))
+    await tb.wait_idle()
+    want = [pushed_fields(c, b) for c in cmds]
+    assert len(tb.pushes) == len(want), f"{len(tb.pushes)} commands pushed, want {len(want)}"
+    for n, (got, exp) in enumerate(zip(tb.pushes, want)):
+        assert got == exp, f"record {n}: pushed {got}, want {exp}"
+    assert await tb.read("ERROR") == 0
+    assert await tb.read("EXECUTED") == len(cmds)
+    size = 1 << int(dut.QUEUE_AW.value)
+    assert await tb.read("QUEUE_FREE") == size | (size // tb.rb) << 16
+
+
+@cocotb.test()
+async def program_ends_at_its_position(dut):
+    """A line, an arc, a helix (a full turn in ZX with y travel) and a line through the record
+    stream: every step once, POS_X/Y/Z = the programmed end, STATUS back to IDLE."""
+    tb = await Bench(dut).start()
+    cmds = tb.profiled(LINE_ARC_HELIX)
+    await tb.send(tb.records(cmds))
+    await tb.wait_idle()
+    end, n = tb.end_of(cmds)
+    assert await tb.position() == end == tb.steps.position(), f"end {await tb.position()}, programmed {end}"
+    assert len(tb.steps.edges) == n
+    assert await tb.read("STATUS") == IDLE and await tb.read("ERROR") == 0
+
+
+async def trip_mid_arc(tb, pin, value, code):
+    """Start a long arc, trip `pin` mid-way: the steps are gated in the cycle the synchronized
+    input shows it; ERROR, ALARM; positions = the pulses that went out."""
+    dut = tb.dut
+    cmds = tb.profiled([Command(ARC_CW, ONE // 2, 0, 0, 0, 15, 0)])     # a full circle, radius 15
+    await tb.send(tb.records(cmds))
+    await tb.wait_steps(len(tb.steps.edges) + 20)
+    getattr(dut, pin).value = value
+    for waited in range(6):
+        await FallingEdge(dut.clk)
+        synced = int(dut.u_guard.inputs.value)
+        if synced & 0xF:
+            break
+    assert synced & 0xF and waited <= 2, "the synchronizer takes two clocks"
+    assert int(dut.step.value) == 0, "a step pin is high in the cycle the trip shows"
+    await tb.quiet(200)
+    assert await tb.read("ERROR") == code
+    assert await tb.state() == ALARM
+    assert await tb.position() == tb.steps.position()
+    size = 1 << int(dut.QUEUE_AW.value)
+    assert await tb.read("QUEUE_FREE") & 0xFFFF == size, "ALARM flushes the queue"
+
+
+@cocotb.test()
+async def estop_and_limit_mid_arc(dut):
+    """E-stop mid-arc: steps gated at once, ERROR 16 until the e-stop is released and cleared.
+    A limit switch (y) mid-arc: ERROR 17 with bit 9 (y); cleared while the switch is still
+    active, it stays clear and the machine moves (off the switch); positions stay exact."""
+    tb = await Bench(dut).start()
+    await trip_mid_arc(tb, "estop", 1, 16)
+    await tb.write("CONTROL", CLEAR)
+    assert await tb.read("ERROR") == 16, "cleared while the e-stop is active"
+    dut.estop.value = 0
+    await tb.clocks(4)
+    await tb.write("CONTROL", CLEAR)
+    assert await tb.read("ERROR") == 0 and await tb.state() == IDLE
+    start = await tb.position()
+    await trip_mid_arc(tb, "limit", 0b010, 17 | 0b010 << 8)
+    await tb.write("CONTROL", CLEAR)
+    assert await tb.read("ERROR") == 0 and await tb.read("INPUTS") == 0b0100
+    start = await tb.position()
+    cmds = tb.profiled([Command(LINE, ONE // 2, 0, -6, 0)])
+    await tb.send(tb.records(cmds))
+    await tb.wait_idle()
+    dut.limit.value = 0
+    assert await tb.position() == tb.end_of(cmds, start)[0] == tb.steps.position()
+    assert await tb.read("ERROR") == 0
+
+
+@cocotb.test()
+async def hold_resume_mid_helix(dut):
+    """Feed hold mid-helix: decelerates to HELD, no step while held; resume: every step once,
+    the end position exact."""
+    tb = await Bench(dut).start()
+    cmds = tb.profiled([Command(ARC_CCW, ONE // 2, 0, 0, 25, 0, 10, 63, plane=2),
+                        Command(LINE, ONE // 2, 3, 3, 3)])
+    await tb.send(tb.records(cmds))
+    await tb.wait_steps(30)
+    await tb.write("CONTROL", HOLD)
+    for _ in range(2000):
+        if await tb.state() == HELD:
+            break
+    assert await tb.state() == HELD
+    assert await tb.read("STATUS") & 16, "stopped"
+    await tb.quiet(500)
+    await tb.write("CONTROL", 0)
+    assert await tb.state() == RUN
+    await tb.wait_idle()
+    end, n = tb.end_of(cmds)
+    assert await tb.position() == end == tb.steps.position()
+    assert len(tb.steps.edges) == n
+
+
+@cocotb.test()
+async def abort_and_restart(dut):
+    """Abort mid-program: the steps stop, queue and partial record flushed, positions kept;
+    a record cut by an abort is dropped; the next program runs from where the machine is."""
+    tb = await Bench(dut).start()
+    cmds = tb.profiled([Command(LINE, ONE // 2, 40, 10, 0), Command(LINE, ONE // 2, -30, 20, 5)] * 3)
+    await tb.send(tb.records(cmds))
+    await tb.wait_steps(25)
+    await tb.write("CONTROL", ABORT)
+    await tb.quiet(300)
+    size = 1 << int(dut.QUEUE_AW.value)
+    assert await tb.read("QUEUE_FREE") == size | (size // tb.rb) << 16
+    assert await tb.read("STATUS") == IDLE and await tb.read("ERROR") == 0
+    kept = await tb.position()
+    assert kept == tb.steps.position() and kept != [0, 0, 0]
+    # half a record, then abort: dropped
+    await tb.send(tb.records(cmds[:1])[:tb.rb // 2])
+    await tb.write("CONTROL", ABORT)
+    again = tb.profiled([Command(LINE, ONE // 2, -5, 7, 1), Command(ARC_CW, ONE // 3, 0, 0, 0, 4, 0)])
+    await tb.send(tb.records(again))
+    await tb.wait_idle()
+    assert await tb.position() == tb.end_of(again, kept)[0] == tb.steps.position()
+
+
+@cocotb.test()
+async def reset_at_random_cycles(dut):
+    """rst at seeded random cycles while records stream in, the machine moves and the spindle
+    runs: IDLE at once, pins low, positions 0, registers at reset; then a program runs exactly."""
+    rng = seeded_rng(dut, "reset_at_random_cycles")
+    tb = await Bench(dut).start()
+    job = tb.profiled([Command(EVENT, 0, 1, 30000), Command(LINE, ONE // 2, 20, -9, 4),
+                       Command(ARC_CCW, ONE // 2, 0, 0, 0, 6, 0), Command(EVENT, 0, 5, 0)] * 2)
+    for n in range(3):
+        await tb.write("CONTROL", ENABLE)
+        sender = cocotb.start_soon(tb.send(tb.records(job)))
+        await tb.clocks(rng.randint(1, 1200))
+        sender.cancel()
+        dut.cmd_valid.value = 0
+        dut.rst.value = 1
+        await FallingEdge(dut.clk)
+        dut.rst.value = 0
+        for _ in range(20):
+            assert int(dut.step.value) == 0 and int(dut.spindle_on.value) == 0 and int(dut.enable.value) == 0
+            await FallingEdge(dut.clk)
+        assert await tb.read("STATUS") == IDLE
+        assert await tb.position() == [0, 0, 0]
+        assert await tb.read("OUTPUTS") == 0 and await tb.read("EXECUTED") == 0
+        size = 1 << int(dut.QUEUE_AW.value)
+        assert await tb.read("QUEUE_FREE") == size | (size // tb.rb) << 16
+        assert await tb.read("QUANTUM_LO") == 1
+        await tb.configure()
+        tb.steps.edges.clear()
+        cmds = tb.profiled([Command(LINE, ONE // 2, 3, -4, 2)])
+        await tb.send(tb.records(cmds))
+        await tb.wait_idle()
+        assert await tb.position() == tb.end_of(cmds)[0] == tb.steps.position(), f"after reset {n}"
+
+
+async def pwm_high(tb, cycles):
+    high = 0
+    for _ in range(cycles):
+        await FallingEdge(tb.dut.clk)
+        high += int(tb.dut.spindle_pwm.value)
+    return high
+
+
+@cocotb.test()
+async def events_drive_outputs(dut):
+    """Spindle cw / ccw / speed / off with the PWM duty, mist, flood, coolant off, outputs on /
+    off (a bad output number ignored), unknown codes ignored, program end; pause sets the hold
+    (the next move waits until it is released); abort switches the spindle off."""
+    tb = await Bench(dut).start()
+    await tb.write("SPINDLE_PERIOD", 100)
+
+    async def events(*pairs):
+        await tb.send(tb.records([Command(EVENT, 0, code, value) for code, value in pairs]))
+        await tb.wait_idle()
+        await tb.clocks(250)                         # the PWM threshold follows within two periods
+        return await tb.read("OUTPUTS")
+
+    assert await events((1, 16384)) == 1 | 16384 << 16
+    assert await pwm_high(tb, 400) == 100           # 25 % of 100-clock periods
+    assert await events((2, 32767)) == 3 | 32767 << 16
+    assert abs(await pwm_high(tb, 400) - 200) <= 4
+    assert await events((4, -5)) == 3
+    assert await pwm_high(tb, 300) == 0
+    assert await events((4, 65535 >> (16 - min(16, tb.build["W"] - 1))), (3, 0)) & 0xFFFF == 2
+    assert await events((5, 0), (6, 0)) & 0xF == 0b1110
+    assert await events((7, 0)) & 0xF == 0b0010
+    assert await events((8, 2), (8, 0), (8, 7), (8, -1)) & 0xF0 == 0b0101 << 4
+    assert await events((9, 2), (99, 1), (0, 3)) & 0xF0 == 0b0001 << 4
+    assert await events((1, 100), (5, 0), (6, 0), (12, 0)) & 0xFF == 0b00010000   # program end
+    # pause: CONTROL.hold set; the line after it waits
+    cmds = tb.profiled([Command(EVENT, 0, 10, 0), Command(LINE, ONE // 2, 5, 0, 0)])
+    await tb.send(tb.records(cmds))
+    await tb.clocks(300)
+    assert await tb.read("CONTROL") & HOLD and await tb.state() == HELD
+    assert tb.steps.position() == [0, 0, 0]
+    await tb.write("CONTROL", 0)
+    await tb.wait_idle()
+    assert await tb.position() == [5, 0, 0]
+    # abort: spindle and coolant off at once
+    await events((1, 1000), (6, 0))
+    assert int(dut.spindle_on.value) and int(dut.flood.value)
+    await tb.write("CONTROL", ABORT)
+    assert await tb.read("OUTPUTS") & 0xD == 0 and not int(dut.spindle_pwm.value)
+
+
+@cocotb.test()
+async def probe_latch(dut):
+    """probe_arm, a move, the probe's edge: PROBE_X/Y/Z = the position at the edge (within the
+    synchronizer's two clocks), probe_valid; later edges change nothing until the next arm;
+    an inverted probe input."""
+    tb = await Bench(dut).start()
+    await tb.write("CONTROL", PROBE_ARM)
+    assert not await tb.read("STATUS") & 32
+    cmds = tb.profiled([Command(LINE, ONE // 4, 30, 15, -5)])
+    await tb.send(tb.records(cmds))
+    await tb.wait_steps(20)
+    at = tb.steps.position()
+    dut.probe.value = 1
+    await tb.clocks(4)
+    after = tb.steps.position()
+    probed = [await tb.signed(f"PROBE_{a}") for a in "XYZ"]
+    assert all(min(a, b) <= p <= max(a, b) for p, a, b in zip(probed, at, after)), (probed, at, after)
+    assert await tb.read("STATUS") & 32
+    dut.probe.value = 0
+    await tb.clocks(30)
+    dut.probe.value = 1
+    await tb.clocks(5)
+    assert [await tb.signed(f"PROBE_{a}") for a in "XYZ"] == probed, "an edge without arming"
+    await tb.wait_idle()
+    # inverted: the probe pin low is active
+    await tb.write("INPUT_INVERT", 0x10)
+    await tb.write("CONTROL", PROBE_ARM)
+    assert not await tb.read("STATUS") & 32
+    dut.probe.value = 0
+    await tb.clocks(5)
+    assert await tb.read("STATUS") & 32
+    assert [await tb.signed(f"PROBE_{a}") for a in "XYZ"] == await tb.position() == tb.end_of(cmds)[0]
+
+
+@cocotb.test()
+async def bad_records(dut):
+    """A record of kind 6 or 7: ERROR 18, ALARM; a curve in a build without the curve core:
+    ERROR 1 (motion_top's); after clear the next program runs."""
+    tb = await Bench(dut).start()
+    good = tb.profiled([Command(LINE, ONE // 2, 2, 1, 0)])
+    for kind, code in ((6, 18), (7, 18)) + (((CURVE, 1),) if not int(dut.CURVES.value) else ()):
+        bad = tb.profiled([Command(kind, ONE // 2, 8, 0, 25, 0, 0, 1, 0)])
+        if kind == CURVE:
+            bad[0].length, bad[0].rate, bad[0].limit = 100, 1, bad[0].feed
+        await tb.send(tb.records(bad + good))
+        await tb.clocks(50)
+        assert await tb.read("ERROR") == code and await tb.state() == ALARM, f"kind {kind}"
+        await tb.write("CONTROL", CLEAR)
+        assert await tb.state() == IDLE
+    start = await tb.position()
+    await tb.send(tb.records(good))
+    await tb.wait_idle()
+    assert await tb.position() == tb.end_of(good, start)[0]
+
+
+@cocotb.test()
+async def gcode_program(dut):
+    """The G-code build: a compiled G-code program (spindle, coolant, line, arc, helix, ZX arc,
+    program end) with the machine settings the host writes: ends at its programmed end, the
+    spindle ran during the moves and is off at the end."""
+    from interp.commands.gcode import compile_text
+    from interp.gcode.machine import load_machine
+
+    tb = await ControllerBench(dut).start()
+    machine = load_machine(clock_hz=int(dut.CLK_HZ.value))
+    text = ("G21 G90 G17\nM3 S12000\nM8\nG01 X1 F1200\nG03 X1.5 Y0.5 I0 J0.5\nG03 X1 Y1 Z-0.3 I-0.5 J0\n"
+            "G01 X0\nG18 G02 X-0.4 Z-0.3 I-0.2 K0\nG17 G00 X0.2 Y0.1 Z0.2\nM9\nM2\n")
+    _, compiled = compile_text(text, machine, costs="true")
+    settings, timing = compiled.settings, machine.timing()
+    await tb.write("QUANTUM_LO", settings["speed_quantum"] & 0xFFFFFFFF)
+    await tb.write("QUANTUM_HI", settings["speed_quantum"] >> 32)
+    await tb.write("MOTION", settings["block_shift"] | settings["jerk_shift"] << 4)
+    await tb.write("OVERRIDE", settings.get("override", 100))
+    for name, key in (("PULSE_WIDTH", "pulse_width"), ("DIR_SETUP", "setup"), ("DIR_HOLD", "hold")):
+        await tb.write(name, timing[key])
+    data = b"".join(
+        __import__("interp.testing.controllerkit", fromlist=["encode"]).encode(c, tb.build) for c in compiled.commands)
+    sender = cocotb.start_soon(tb.send(data))
+    spun = False
+    while not sender.done() or await tb.state() != IDLE or await tb.read("STATUS") & 8:
+        spun |= bool(await tb.read("OUTPUTS") & 1)
+        assert await tb.read("ERROR") == 0, f"ERROR {await tb.read('ERROR')}"
+        await tb.clocks(200)
+    assert spun, "the spindle never ran"
+    assert await tb.position() == list(compiled.end_steps) == tb.steps.position()
+    assert await tb.read("OUTPUTS") & 0xF == 0
+    assert await tb.read("EXECUTED") == len(compiled.commands)
+
+
+SMALL_TESTS = ["registers", "records_to_motion_top", "program_ends_at_its_position", "estop_and_limit_mid_arc",
+               "hold_resume_mid_helix", "abort_and_restart", "reset_at_random_cycles", "events_drive_outputs",
+               "probe_latch", "bad_records"]
+
+
+def test_controller(sim):
+    """The benches' small build, CURVES 0, a 256-byte queue."""
+    run_cocotb(toplevel="controller", test_module="test_controller", sim=sim, parameters=SMALL,
+               name="controller", testcase=SMALL_TESTS)
+
+
+def test_controller_cli_build(sim):
+    """The G-code build (W 32, FRAC 48, ..., CURVES 1, a 4 KiB queue)."""
+    run_cocotb(toplevel="controller", test_module="test_controller", sim=sim, parameters=CLI,
+               name="controller_cli", testcase=["gcode_program", "registers", "bad_records"])
