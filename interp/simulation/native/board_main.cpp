@@ -28,11 +28,13 @@
 // Steps CSV (--steps): "cycle,dx,dy,dz" as `interp gcode --steps` writes it: one row per
 // cycle with a rising edge on a step pin (d = -1 if its dir pin is set, else 1), the
 // cycle counted as motion_main.cpp counts it: the rising edge at which the first command
-// is pushed into motion_top (its cmd_valid high and cmd_full low) is cycle 1.
+// is pushed into motion_top (its cmd_valid high and cmd_full low) is cycle 1; if motion_top's
+// hold input is high then (the host primed the queue under a feed hold), the first rising
+// edge after that with hold low is cycle 1.
 // Position: the harness counts the pulses at the step pins.
 //
 // Quiet stretches (off with --exact 1): while a read waits, nothing is being shifted in
-// or out and the model is idle, the model's whole state (Verilator's root object) is
+// or out and motion_top is not busy, the model's whole state (Verilator's root object) is
 // compared with a snapshot; when it is bit-identical to itself P cycles earlier with the
 // inputs constant and no step, pin or uart_tx change in between, every following period
 // of P cycles is the same, and the read's remaining whole periods are skipped in one jump.
@@ -44,7 +46,7 @@
 // Compile-time settings (harness_config.h, written by interp/simulation/native/build.py):
 // BC_PUSH_VALID, BC_PUSH_FULL: root members of motion_top's cmd_valid and cmd_full
 // (kept by the build's Verilator configuration file); BC_FREE_COUNTERS: a list of
-// BC_FREE(member, bits) (may be empty).
+// BC_FREE(member, bits) (may be empty); BC_HOLD, BC_BUSY: motion_top's hold input and busy output.
 // Bad input: one line on stderr, exit status 2.
 #include <cerrno>
 #include <chrono>
@@ -211,7 +213,8 @@ class Board {
         top_->clk = 0;
         top_->eval();
         const bool push = (BC_PUSH_VALID) && !(BC_PUSH_FULL);
-        if (push && !first_push_) first_push_ = edge;
+        pushed_ = pushed_ || push;
+        if (pushed_ && !first_push_ && !(BC_HOLD)) first_push_ = edge;
         top_->clk = 1;
         top_->eval();
         cycle_ = edge;
@@ -276,7 +279,7 @@ class Board {
     // Quiet stretches (see the header): true if it skipped (or advanced) towards `end`.
     bool try_skip(uint64_t end) {
         constexpr uint64_t MIN_CALM = 64, MAX_PERIOD = 1 << 16;
-        const bool idle = !sending_ && out_queue_.empty() && !receiving_ && !activity_;
+        const bool idle = !sending_ && out_queue_.empty() && !receiving_ && !activity_ && !(BC_BUSY);
         if (!idle) {
             calm_ = 0;
             return false;
@@ -324,7 +327,7 @@ class Board {
     uint64_t cycle_ = 0, first_push_ = 0, rows_ = 0;
     int64_t position_[3] = {0, 0, 0};
     unsigned prev_step_ = 0;
-    bool activity_ = false;
+    bool activity_ = false, pushed_ = false;
     // host -> controller shifter
     std::deque<uint8_t> out_queue_;
     bool sending_ = false;
