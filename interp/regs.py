@@ -250,7 +250,9 @@ def _reset(value: int | None, width: int | None = None) -> str:
     """A register's reset in hex (width None), a field's in decimal; "—" if it follows the hardware."""
     if value is None:
         return "—"
-    return str(value) if width else f"0x{value:08X}"
+    if width is None:
+        return f"0x{value:08X}"
+    return str(value) if value < 0x10000 else f"0x{value:0{(width + 3) // 4}X} ({value})"
 
 
 def render_md(registers: list[Register], intro: str) -> str:

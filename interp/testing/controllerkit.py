@@ -4,8 +4,8 @@ record encoder, the register addresses, a Wishbone master on the controller's `w
 (cocotbext-wishbone), the record byte stream and monitors of the step pins and of the
 commands pushed into motion_top.
 
-The record encoder follows the record format (docs/controller.md, "Records") and is used
-when the host's interp.link.records is not there.
+Records are made by the host's encoder (interp.link.records); the local one (the record
+format of docs/controller.md, "Records") is checked against it and stands in without it.
 """
 from __future__ import annotations
 
@@ -47,6 +47,16 @@ def record_bytes(build: dict) -> int:
 
 
 def encode(cmd: Command, build: dict) -> bytes:
+    """One command -> its record: the host's encoder (interp.link.records) when it is there,
+    else local_encode."""
+    try:
+        from ..link import records
+    except ImportError:
+        return local_encode(cmd, build)
+    return records.encode(cmd, build)
+
+
+def local_encode(cmd: Command, build: dict) -> bytes:
     """One command -> its record (fields little-endian, signed ones sign-extended)."""
     out = bytearray([cmd.kind | cmd.plane << 4])
     for name, bits in layout(build):
@@ -136,7 +146,7 @@ class ControllerBench:
             last = now
 
     async def _watch_pushes(self):
-        dut, motion = self.dut, self.dut.u_motion
+        motion = self.dut.u_motion
         while True:
             await RisingEdge(motion.cmd_valid)
             await ReadOnly()
@@ -207,3 +217,14 @@ class ControllerBench:
     async def clocks(self, n: int) -> None:
         for _ in range(n):
             await FallingEdge(self.dut.clk)
+
+
+def icarus_in_make_test(sim: str) -> None:
+    """The controller's benches run on Icarus in `make test`, on Verilator too in `make
+    test-all` (INTERP_TEST_ALL=1): a Verilator build of the controller costs about 40 s of CPU."""
+    import os
+
+    import pytest
+
+    if sim != "icarus" and not os.environ.get("INTERP_TEST_ALL"):
+        pytest.skip("Verilator build of the controller benches: run with `make test-all`")

@@ -15,6 +15,9 @@ HELLO, DATA, READ, WRITE = 0x01, 0x02, 0x03, 0x04
 ACK, NAK, REPLY = 0x81, 0x82, 0x83
 NAK_FRAME, NAK_GAP, NAK_CREDIT, NAK_TYPE = 1, 2, 3, 4
 LMAX = 128
+# run_cocotb's env for these benches: cocotb's clock in C instead of a Python coroutine
+# (about 3x faster; the benches drive at falling edges, where inertial writes are safe).
+FAST_CLOCK = {"COCOTB_TRUST_INERTIAL_WRITES": 1}
 
 crc16 = crcmod.predefined.mkPredefinedCrcFun("crc-ccitt-false")
 

@@ -22,7 +22,7 @@ from interp.simulation import motion_build
 from interp.simulation.native.build import CLI_PARAMETERS
 from interp.simulation.runner import run_cocotb
 from interp.testing.controllerkit import (ABORT, ALARM, CLEAR, ENABLE, HELD, HOLD, IDLE, PROBE_ARM, REG, RUN,
-                                          ControllerBench, pushed_fields)
+                                          ControllerBench, icarus_in_make_test, pushed_fields)
 from interp.testing.tbkit import seeded_rng
 
 SMALL = {**motion_build.PARAMETERS, "POS_W": 32, "QUEUE_AW": 8, "CLK_HZ": 1_000_000, "CURVES": 0}
@@ -483,11 +483,13 @@ SMALL_TESTS = ["registers", "records_to_motion_top", "program_ends_at_its_positi
 
 def test_controller(sim):
     """The benches' small build, CURVES 0, a 256-byte queue."""
+    icarus_in_make_test(sim)
     run_cocotb(toplevel="controller", test_module="test_controller", sim=sim, parameters=SMALL,
                name="controller", testcase=SMALL_TESTS)
 
 
 def test_controller_cli_build(sim):
     """The G-code build (W 32, FRAC 48, ..., CURVES 1, a 4 KiB queue)."""
+    icarus_in_make_test(sim)
     run_cocotb(toplevel="controller", test_module="test_controller", sim=sim, parameters=CLI,
                name="controller_cli", testcase=["gcode_program", "registers", "bad_records"])

@@ -2,9 +2,11 @@
 """crc16: CRC-16/CCITT-FALSE one byte per clock against crcmod; a frame's CRC appended leaves 0."""
 
 import cocotb
+import pytest
 
 from interp.simulation.runner import run_cocotb
 from interp.testing.linkkit import crc16 as reference
+from interp.testing.linkkit import FAST_CLOCK
 from interp.testing.tbkit import TB, seeded_rng
 
 IDLE = {"clear": 0, "valid": 0, "data": 0}
@@ -61,5 +63,6 @@ async def clear_with_byte(dut):
     assert int(dut.crc.value) == reference(b"xy")
 
 
-def test_crc16(sim):
-    run_cocotb(toplevel="crc16", test_module="test_crc16", sim=sim)
+@pytest.mark.parametrize("simulator", ["icarus", pytest.param("verilator", marks=pytest.mark.slow)])
+def test_crc16(simulator):
+    run_cocotb(toplevel="crc16", test_module="test_crc16", sim=simulator, env=FAST_CLOCK)

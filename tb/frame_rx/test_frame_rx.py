@@ -10,6 +10,7 @@ import pytest
 from interp.simulation.runner import run_cocotb
 from interp.testing.linkkit import (DATA, HELLO, NAK_CREDIT, NAK_FRAME, NAK_GAP, NAK_TYPE, READ, SYNC, WRITE,
                                     FrameRxModel, frame, read_frame, write_frame)
+from interp.testing.linkkit import FAST_CLOCK
 from interp.testing.tbkit import TB, seeded_rng
 
 IDLE = {"in_valid": 0, "in_data": 0, "in_error": 0, "queue_free": 1000, "wb_busy": 0, "cmd_ready": 1}
@@ -242,4 +243,5 @@ async def random_stream(dut):
 @pytest.mark.parametrize("simulator", ["icarus", pytest.param("verilator", marks=pytest.mark.slow)])
 def test_frame_rx(simulator):
     run_cocotb(toplevel="frame_rx", test_module="test_frame_rx", sim=simulator,
-               parameters={"LMAX": 16, "TIMEOUT_CLOCKS": 120}, name="frame_rx_16")
+               parameters={"LMAX": 16, "TIMEOUT_CLOCKS": 120}, name="frame_rx_16",
+               env=FAST_CLOCK)

@@ -8,6 +8,7 @@ from cocotb.triggers import FallingEdge, Timer
 from cocotbext.uart import UartSource
 
 from interp.simulation.runner import run_cocotb
+from interp.testing.linkkit import FAST_CLOCK
 from interp.testing.tbkit import TB, seeded_rng
 
 PERIOD_NS = 10
@@ -112,4 +113,5 @@ async def baud_error(dut):
 @pytest.mark.parametrize("simulator", ["icarus", pytest.param("verilator", marks=pytest.mark.slow)])
 def test_uart_rx(simulator, clocks):
     run_cocotb(toplevel="uart_rx", test_module="test_uart_rx", sim=simulator,
-               parameters={"CLKS_PER_BIT": clocks}, name=f"uart_rx_{clocks}")
+               parameters={"CLKS_PER_BIT": clocks}, name=f"uart_rx_{clocks}",
+               env=FAST_CLOCK)

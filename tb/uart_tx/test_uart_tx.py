@@ -4,10 +4,11 @@ leave without a gap; random bytes at random times reach cocotbext-uart's UartSin
 
 import cocotb
 import pytest
-from cocotb.triggers import FallingEdge, Timer
+from cocotb.triggers import Timer
 from cocotbext.uart import UartSink
 
 from interp.simulation.runner import run_cocotb
+from interp.testing.linkkit import FAST_CLOCK
 from interp.testing.tbkit import TB, seeded_rng
 
 PERIOD_NS = 10
@@ -71,4 +72,5 @@ async def random_bytes(dut):
 @pytest.mark.parametrize("simulator", ["icarus", pytest.param("verilator", marks=pytest.mark.slow)])
 def test_uart_tx(simulator, clocks):
     run_cocotb(toplevel="uart_tx", test_module="test_uart_tx", sim=simulator,
-               parameters={"CLKS_PER_BIT": clocks}, name=f"uart_tx_{clocks}")
+               parameters={"CLKS_PER_BIT": clocks}, name=f"uart_tx_{clocks}",
+               env=FAST_CLOCK)
