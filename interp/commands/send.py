@@ -48,7 +48,9 @@ def open_transport(args, machine: Machine):
         try:
             return serial.serial_for_url(args.port, baudrate=args.baud, timeout=0.01), args.baud
         except (serial.SerialException, ValueError) as err:
-            raise LinkError(f"cannot open {args.port}: {err}") from None
+            cause = err.__context__
+            text = cause.strerror if isinstance(cause, OSError) and cause.strerror else str(err)
+            raise LinkError(f"cannot open {args.port}: {text}") from None
     if getattr(args, "sim_model", False):
         from ..link.devicemodel import DeviceModel
 
@@ -170,7 +172,11 @@ def cmd_send(args) -> int:
     build = compile_build()
     stream = encode_program(compiled.commands, build)
     records = len(compiled.commands)
-    transport, baud = open_transport(args, machine)
+    try:
+        transport, baud = open_transport(args, machine)
+    except LinkError as err:
+        print(f"interp: error: link: {err}", file=sys.stderr)
+        return 1
     keyboard = progress = None
     result = None
     try:

@@ -15,7 +15,11 @@ def cmd_status(args) -> int:
     args.steps = args.line_noise = None
     check_link_args(args)
     machine = load_machine(args.machine, [], None)
-    transport, baud = open_transport(args, machine)
+    try:
+        transport, baud = open_transport(args, machine)
+    except LinkError as err:
+        print(f"interp: error: link: {err}", file=sys.stderr)
+        return 1
     try:
         driver = Driver(transport, baud=baud)
         driver.connect()

@@ -465,6 +465,8 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
             progress(snap)
         seconds = driver.clock() - start
         if snap.error or snap.state == p.ALARM:
+            # motion has stopped: EXECUTED no longer moves (the round's value may be older)
+            snap.executed = (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
             return Outcome("error", snap.executed, seconds, snap.error, field(v["ERROR"], 8, 3))
         busy = field(v["STATUS"], 3, 1)
         if aborted and driver.stream_done() and not busy:

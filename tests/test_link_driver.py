@@ -1,0 +1,164 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The sender (interp.link.driver) against the Python model of the controller's link
+(interp.link.devicemodel): delivery under line noise, credits, the build check, machine
+errors, hold / resume / abort, a dead link.  Random noise: the seed is printed, SEED=
+repeats a run."""
+from __future__ import annotations
+
+import os
+import random
+
+import pytest
+
+from interp.link import protocol as p
+from interp.link.devicemodel import DeviceModel
+from interp.link.driver import (Driver, LinkError, MismatchError, check_controller, configure, run_program)
+from interp.link.records import Build, encode
+
+SEED = int(os.environ.get("SEED", random.randrange(1 << 30)))
+
+
+def commands(n: int) -> list[dict]:
+    rng = random.Random(n)
+    return [{"kind": 0, "feed": rng.randrange(1, 1 << 50), "x": rng.randrange(-1000, 1000), "y": k, "z": -k,
+             "limit": rng.randrange(1 << 50), "rate": rng.randrange(1, 1 << 24), "length": rng.randrange(1 << 82),
+             "budget": rng.randrange(1 << 108)} for k in range(n)]
+
+
+def run(model: DeviceModel, cmds, **kw):
+    driver = Driver(model, baud=model.baud)
+    driver.connect()
+    check_controller(driver, clock_hz=model.clock_hz)
+    configure(driver, {"pulse_width": 30, "setup": 40, "hold": 50},
+              {"speed_quantum": (7 << 32) | 5, "block_shift": 3, "jerk_shift": 2, "override": 120})
+    stream = b"".join(encode(c) for c in cmds)
+    outcome = run_program(driver, stream, len(cmds), **kw)
+    return driver, outcome
+
+
+def executed_fields(model, cmds):
+    return [{k: rec[k] for k in cmds[0]} for rec in model.executed]
+
+
+@pytest.mark.parametrize("noise, count", [(0.0, 60), (0.001, 20), (0.01, 3)])
+def test_every_record_once_in_order(noise, count):
+    seed = SEED + int(noise * 1e6)
+    print(f"seed {seed} (SEED={SEED})")
+    cmds = commands(count)
+    model = DeviceModel(line_noise=noise, seed=seed, records_per_second=400)
+    driver, outcome = run(model, cmds)
+    assert outcome.status == "done" and outcome.executed == count
+    assert executed_fields(model, cmds) == cmds
+    # the settings arrived (each write executed exactly once, in order)
+    assert [w for w in model.writes if w[0] != "CONTROL"] == [
+        ("PULSE_WIDTH", 30), ("DIR_SETUP", 40), ("DIR_HOLD", 50), ("QUANTUM_LO", 5), ("QUANTUM_HI", 7),
+        ("MOTION", 3 | 2 << 4), ("OVERRIDE", 120)]
+    if noise:
+        assert model.errors > 0 and driver.recoveries > 0           # the noise did hit, and was recovered
+
+
+def test_throughput_without_noise():
+    """The record stream at 115200 baud runs at >= 85 % of the line's 11520 bytes/s."""
+    cmds = commands(150)
+    model = DeviceModel(records_per_second=5000)
+    driver, outcome = run(model, cmds)
+    rate = 84 * len(cmds) / outcome.seconds
+    print(f"{rate:.0f} bytes/s of records over {outcome.seconds:.3f} s link time")
+    assert outcome.status == "done" and rate >= 0.85 * 11520
+    assert driver.recoveries == 0 and model.gaps == 0 and model.errors == 0
+
+
+def test_credits_with_a_small_queue():
+    """A 512-byte queue and a slow executor: the driver never overruns the credit (no NAK 3)."""
+    cmds = commands(25)
+    model = DeviceModel(queue_aw=9, records_per_second=40)
+    driver, outcome = run(model, cmds)
+    assert outcome.status == "done" and executed_fields(model, cmds) == cmds
+    assert model.gaps == 0 and driver.naks == 0
+    assert outcome.seconds >= 25 / 40
+
+
+@pytest.mark.parametrize("build, clock, word", [
+    (Build(W=16), 50_000_000, r"W 16 \(the program needs 32\)"),
+    (Build(PF=20), 50_000_000, "PF 20"),
+    (Build(), 25_000_000, "clock is 25000000 Hz"),
+])
+def test_mismatch_refused(build, clock, word):
+    model = DeviceModel(build=build, clock_hz=clock)
+    driver = Driver(model)
+    driver.connect()
+    with pytest.raises(MismatchError, match=word):
+        check_controller(driver, clock_hz=50e6)
+
+
+def test_curves_refused_when_left_out():
+    driver = Driver(DeviceModel(curves=False))
+    driver.connect()
+    with pytest.raises(MismatchError, match="CURVES"):
+        check_controller(driver, clock_hz=50e6, curves=True)
+
+
+def test_machine_error_names_the_record():
+    cmds = commands(12)
+    model = DeviceModel(fail_at=5, fail_code=17)
+    _, outcome = run(model, cmds)
+    assert (outcome.status, outcome.error, outcome.limits, outcome.executed) == ("error", 17, 1, 5)
+
+
+def test_bad_record_latches_error_18():
+    cmds = commands(3)
+    model = DeviceModel()
+    driver = Driver(model)
+    driver.connect()
+    stream = encode(cmds[0]) + bytes([7]) + bytes(83) + encode(cmds[2])
+    outcome = run_program(driver, stream, 3)
+    assert (outcome.status, outcome.error, outcome.executed) == ("error", 18, 2)
+
+
+def test_hold_resume_abort_keys():
+    cmds = commands(40)
+    model = DeviceModel(records_per_second=100)
+    script = iter(["", "", "!", "", "", "", "~"] + [""] * 30 + ["\x18"])
+    _, outcome = run(model, cmds, keys=lambda: next(script, ""))
+    controls = [v for name, v in model.writes if name == "CONTROL"]
+    assert controls[1:] == [p.CONTROL_HOLD | p.CONTROL_ENABLE, p.CONTROL_ENABLE,
+                            p.CONTROL_ABORT | p.CONTROL_ENABLE]
+    assert outcome.status == "aborted" and 0 < outcome.executed < 40
+    assert executed_fields(model, cmds) == cmds[:len(model.executed)]
+
+
+class Silent:
+    """A port with nothing on it: reads time out in link time."""
+
+    timeout = 0.01
+
+    def __init__(self):
+        self.t = 0.0
+
+    def now(self):
+        return self.t
+
+    def write(self, data):
+        return len(data)
+
+    def read(self, size=1):
+        self.t += self.timeout
+        return b""
+
+
+def test_dead_link():
+    driver = Driver(Silent())
+    with pytest.raises(LinkError, match="no valid frame from the controller for 2 s"):
+        driver.connect()
+    assert driver.clock() == pytest.approx(2.0, abs=0.1)
+
+
+def test_link_dies_mid_stream():
+    model = DeviceModel()
+    driver = Driver(model)
+    driver.connect()
+    model.noise, model._flip_in = 1.0, 0                          # every bit flips from now on
+    driver.start_stream(b"".join(encode(c) for c in commands(10)))
+    with pytest.raises(LinkError, match="no valid frame"):
+        for _ in range(100000):
+            driver.pump()

@@ -1,0 +1,126 @@
+# SPDX-License-Identifier: Apache-2.0
+"""`interp send` and `interp status` (interp/commands/send.py, status.py) against the Python
+model of the controller (the hidden --sim-model) and pyserial URLs: results, errors as one
+line, exit status."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from interp.cli import main
+from interp.commands import gcode, send
+from interp.link.devicemodel import DeviceModel
+from interp.link.records import Build
+
+CORPUS = Path(__file__).resolve().parents[1] / ".." / "shared" / "gcode"
+PROGRAM = "G21 G90\nG1 X1 F600\nG1 Y1\nG1 X0\nM3 S1000\nG1 Y0\nM5\nM2\n"
+
+
+@pytest.fixture
+def program(tmp_path):
+    path = tmp_path / "square.nc"
+    path.write_text(PROGRAM)
+    return str(path)
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_send_sim_model(capsys, program):
+    code, out, err = run(capsys, "send", program, "--sim-model")
+    _, compiled = gcode.compile_text(PROGRAM)
+    assert code == 0, err
+    assert out.startswith(f"sent {len(compiled.commands)} records ({84 * len(compiled.commands)} bytes)")
+    assert err == ""
+
+
+def test_send_sim_model_noise(capsys, program):
+    code, out, err = run(capsys, "send", program, "--sim-model", "--line-noise", "0.002", "--seed", "3")
+    assert code == 0, err
+    assert "retransmissions" in out and " 0 retransmissions" not in out
+
+
+@pytest.mark.skipif(not (CORPUS / "ugs_square.nc").exists(), reason="the G-code corpus is not beside the repository")
+def test_send_corpus_program(capsys):
+    code, out, err = run(capsys, "send", str(CORPUS / "ugs_square.nc"), "--sim-model")
+    assert code == 0 and out.startswith("sent 101 records (8484 bytes)")
+
+
+def test_machine_error_line(capsys, program):
+    _, compiled = gcode.compile_text(PROGRAM)
+    line = compiled.commands[2].source
+    code, out, err = run(capsys, "send", program, "--sim-model", "--sim-model-fail", "3")
+    assert code == 1
+    assert err.strip() == (f"interp: error: controller error 17 (limit switch, x limit) at record 3 of "
+                           f"{len(compiled.commands)}, line {line}")
+
+
+def test_build_mismatch_exit_2(capsys, program, monkeypatch):
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (DeviceModel(build=Build(MW=10)), 115200))
+    code, out, err = run(capsys, "send", program, "--sim-model")
+    assert code == 2
+    assert err.strip() == "interp: error: the controller's build differs: MW 10 (the program needs 12)"
+
+
+def test_clock_mismatch_exit_2(capsys, program, monkeypatch):
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (DeviceModel(clock_hz=12_000_000), 115200))
+    code, out, err = run(capsys, "send", program, "--sim-model")
+    assert code == 2 and "clock is 12000000 Hz" in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("argv, word", [
+    ([], "give one of --port DEVICE or --sim"),
+    (["--port", "loop://", "--sim"], "got --port and --sim"),
+    (["--sim-model", "--line-noise", "2"], "--line-noise 2"),
+    (["--port", "loop://", "--line-noise", "0.1"], "--line-noise goes with --sim"),
+    (["--port", "loop://", "--baud", "0"], "--baud 0"),
+    (["--port"], "expected one argument"),
+])
+def test_usage_errors(capsys, program, argv, word):
+    code, out, err = run(capsys, "send", program, *argv)
+    assert code == 2 and word in err and len(err.strip().splitlines()) == 1 and out == ""
+
+
+def test_gcode_error_like_interp_gcode(capsys, tmp_path):
+    path = tmp_path / "bad.nc"
+    path.write_text("G21\nG1 X1 F600\nG1 Q7 X2\n")
+    code, out, err = run(capsys, "send", str(path), "--sim-model")
+    code_g, _, err_g = run(capsys, "gcode", str(path), "--check")
+    assert code == code_g == 2 and err == err_g and "line 3" in err
+
+
+def test_missing_file(capsys):
+    code, _, err = run(capsys, "send", "/nonexistent/x.nc", "--sim-model")
+    assert code == 2 and "cannot read /nonexistent/x.nc" in err
+
+
+def test_port_cannot_open(capsys, program):
+    code, _, err = run(capsys, "send", program, "--port", "/dev/nonexistent-tty")
+    assert code == 1 and err.startswith("interp: error: link: cannot open /dev/nonexistent-tty")
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_port_without_controller(capsys, program):
+    """loop:// echoes the host's own frames: no controller answers; one line after 2 s."""
+    code, _, err = run(capsys, "send", program, "--port", "loop://")
+    assert code == 1 and err.strip() == ("interp: error: link: no valid frame from the controller for 2 s "
+                                         "(0 retransmissions)")
+
+
+def test_status_sim_model(capsys):
+    code, out, err = run(capsys, "status", "--sim-model")
+    assert code == 0, err
+    lines = out.splitlines()
+    assert lines[0] == "ID 1229870160 (0x494E5450)"
+    assert "VERSION 0x20205401: protocol=1 record_bytes=84 w=32 pos_w=32" in lines
+    assert any(x.startswith("STATUS 0x") and "state=IDLE" in x for x in lines)
+    assert not any(x.startswith("CMD_DATA") for x in lines)
+
+
+def test_status_usage(capsys):
+    code, out, err = run(capsys, "status")
+    assert code == 2 and "give one of --port DEVICE or --sim" in err
