@@ -296,8 +296,16 @@ def stale(root: Path, outputs: dict[str, str]) -> list[str]:
     return bad
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse that reports a bad argument as one line, exit status 2."""
+
+    def error(self, message):
+        print(f"{self.prog}: {message}", file=sys.stderr)
+        raise SystemExit(2)
+
+
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m interp.regs", description=__doc__.split("\n")[0])
+    parser = _Parser(prog="python -m interp.regs", description=__doc__.split("\n")[0])
     parser.add_argument("--root", type=Path, default=ROOT, help="where the outputs are (default: the repository)")
     parser.add_argument("--rdl", type=Path, default=RDL, help="the SystemRDL source (default regs/controller.rdl)")
     parser.add_argument("--check", action="store_true", help="write nothing; exit 1 if an output is stale")

@@ -369,3 +369,10 @@ def test_map_check_catches_a_wrong_value():
                                                "R ID: acknowledged after 3 clocks (at most 2)",
                                                "R ID: 0xFFFFFFFF, want 0x494E5450 (after writing 0xFFFFFFFF)",
                                                "R 0x80: 0x00000001, want 0x00000000"]
+
+
+def test_bad_option_is_one_line(capsys):
+    with pytest.raises(SystemExit) as stop:
+        regs.main(["--frobnicate"])
+    assert stop.value.code == 2
+    assert capsys.readouterr().err.strip() == "python -m interp.regs: unrecognized arguments: --frobnicate"
