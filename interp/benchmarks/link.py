@@ -17,7 +17,8 @@
    holds CAPACITY records (its segment queue, 2^QUEUE_AW bytes, plus motion_top's
    command queue), full at the start (the driver primes it, or the program is shorter).
    The lowest level is the fewest records waiting ahead of the running one at any
-   command's start; below 0 the queue starves (the machine would wait for the link).
+   command's start (before the program's last CAPACITY records, where the queue drains
+   by design); 0 with waits > 0: the queue starves (the machine waits for the link).
 """
 from __future__ import annotations
 
@@ -50,7 +51,8 @@ def queue_low(command_time: list[float], rate: float, slots: int) -> tuple[int, 
     record k - 1 and not before a slot is free (command k - slots ended), the first
     `slots` there at time 0; a command whose record is not there waits for it (and
     everything after it moves later).  Level at the start of command k: the records
-    there (arrived, not started) after it was taken."""
+    there (arrived, not started) after it was taken; the lowest over the commands
+    that still have `slots` or more records after them."""
     n = len(command_time)
     if n == 0:
         return 0, 0
@@ -65,7 +67,8 @@ def queue_low(command_time: list[float], rate: float, slots: int) -> tuple[int, 
             start = arrival[k]
         starts[k] = start
         ends[k] = start + command_time[k] - (command_time[k - 1] if k else 0.0)
-    lowest = min(bisect_right(arrival, starts[k]) - k - 1 for k in range(n))
+    # while `slots` or more records are still to come (at the end the queue drains by design)
+    lowest = min((bisect_right(arrival, starts[k]) - k - 1 for k in range(max(1, n - slots))), default=slots)
     return lowest, waits
 
 
