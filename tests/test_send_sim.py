@@ -199,6 +199,13 @@ def test_bad_input_one_line(files, capsys):
     assert main(["send", str(files / "tiny.nc"), "--sim", "--line-noise", "-1"]) != 0
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "line-noise" in err[0] and "Traceback" not in err[0]
+    # a simulator that stopped: SimLinkError with its one line, close() still answers
+    link = SimLink(machine=files / "machine.toml")
+    link._proc.stdin.write("zz\n")
+    link._proc.stdin.flush()
+    with pytest.raises(SimLinkError, match='status 2.*unknown request "zz"'):
+        link.read(1)
+    assert link.close()["stopped"] is True
     # the harness itself: a bad request ends it with one line, status 2
     from interp.simulation.native.build import board_executable
 

@@ -174,8 +174,9 @@ class SimLink:
         cycles, wall_seconds, plus seconds (simulated) and cycles_per_second (simulation speed)."""
         if self._result is not None:
             return self._result
-        if self._proc is None:
-            raise SimLinkError("the simulated link stopped before close()")
+        if self._proc is None:             # the simulator stopped (its error was raised then)
+            self._result = {"cycles": self._cycle, "seconds": self._cycle / self.clock_hz, "stopped": True}
+            return self._result
         line = self._ask("q")
         self._proc.wait()
         self._proc = None
