@@ -80,10 +80,7 @@ module controller #(
 
     localparam integer RECORD_BYTES = 1 + 3 * ((FEED_W + 7) / 8) + 7 * ((W + 7) / 8) + (NW + 7) / 8
                                       + (PF + 8) / 8 + (LEN_W + 7) / 8 + (ZW + 7) / 8;
-    localparam integer SIZE = 1 << QUEUE_AW;
-    localparam integer FREE_RECORDS = SIZE / RECORD_BYTES, FREE_REST = SIZE % RECORD_BYTES;
-    localparam [15:0] RB = RECORD_BYTES[15:0];
-    localparam [7:0] ALARM_STATE = 8'd4;
+    localparam [7:0] RB = RECORD_BYTES[7:0];
 
     reg  [7:0]  error_code;
     reg  [2:0]  error_limits;
@@ -119,36 +116,13 @@ module controller #(
     wire        q_valid, q_ready;
     wire [7:0]  q_data;
     wire [QUEUE_AW:0] q_level, q_free;
-    segment_queue #(.AW(QUEUE_AW)) u_queue (
+    wire [15:0] free_records;
+    segment_queue #(.AW(QUEUE_AW), .RECORD_BYTES(RECORD_BYTES)) u_queue (
         .clk(clk), .rst(rst), .flush(flush), .in_valid(q_in_valid), .in_data(q_in_data),
         .in_ready(q_in_ready), .out_valid(q_valid), .out_data(q_data), .out_ready(q_ready),
-        .level(q_level), .free(q_free)
+        .level(q_level), .free(q_free), .free_records(free_records)
     );
     assign queue_free = {{(15 - QUEUE_AW){1'b0}}, q_free};
-    wire q_take = q_valid & q_ready & ~flush;
-
-    // free whole records (free bytes = records * RB + rest, tracked as bytes come and go)
-    reg  [15:0] free_records, free_rest;
-    always @(posedge clk) begin
-        if (rst | flush) begin
-            free_records <= FREE_RECORDS[15:0];
-            free_rest    <= FREE_REST[15:0];
-        end else if (q_write & ~q_take) begin
-            if (free_rest == 16'd0) begin
-                free_records <= free_records - 1'b1;
-                free_rest    <= RB - 1'b1;
-            end else begin
-                free_rest <= free_rest - 1'b1;
-            end
-        end else if (q_take & ~q_write) begin
-            if (free_rest == RB - 1'b1) begin
-                free_records <= free_records + 1'b1;
-                free_rest    <= 16'd0;
-            end else begin
-                free_rest <= free_rest + 1'b1;
-            end
-        end
-    end
 
     // ---------------- unpacker -> motion_top ----------------
     wire              m_valid, m_full, record_error, taken, assembling;
@@ -172,7 +146,7 @@ module controller #(
     // records written and not yet taken by the unpacker (STATUS[15:8])
     reg  [7:0]  write_at;                       // byte of the record being written
     reg  [15:0] records;
-    wire        record_in = q_write && write_at == RB[7:0] - 1'b1;
+    wire        record_in = q_write && write_at == RB - 1'b1;
     wire        record_out = taken & ~flush;
     always @(posedge clk) begin
         if (rst | flush) begin
@@ -297,7 +271,7 @@ module controller #(
 
     wire        busy = m_busy | q_level != {(QUEUE_AW+1){1'b0}} | assembling | ~data_ready;
     wire [2:0]  state = alarm ? 3'd4 : hold ? (stopped ? 3'd3 : 3'd2) : busy ? 3'd1 : 3'd0;
-    assign status_state = alarm ? ALARM_STATE : {5'd0, state};
+    assign status_state = {5'd0, state};
     assign status_error = error_code;
     assign enable = enabled;
 

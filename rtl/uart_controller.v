@@ -6,8 +6,8 @@
 //   uart_rx -> uart_link -> record bytes -> controller -> step/dir, spindle, coolant
 //                        -> Wishbone (READ/WRITE frames) -> controller's registers
 //   uart_tx <- ACK/NAK/REPLY frames (queue free bytes, state, error)
-// LEDs: [2:0] state (0 IDLE, 1 RUN, 2 HOLDING, 3 HELD, 4 ALARM), [3] busy (a record or
-// motion pending: state not IDLE nor HELD), [4] alarm, [5] spindle on, [6] enable,
+// LEDs: [2:0] state (0 IDLE, 1 RUN, 2 HOLDING, 3 HELD, 4 ALARM), [3] moving (RUN or
+// HOLDING), [4] alarm, [5] spindle on, [6] enable,
 // [7] heartbeat (toggles about twice a second).
 module uart_controller #(
     parameter integer CLK_HZ        = 50000000, // clock frequency, Hz (>= 4 * BAUD)

@@ -56,8 +56,10 @@ def core_text(module: str, modules: set[str], rtl: Path | None = None) -> str:
     forms = family_forms(module, rtl)
     for fileset, source in [("rtl", path)] + [(f"rtl_{f}", p) for f, p in forms.items()]:
         deps = sorted(t for t in _tokens(source) if t in modules and t != module)
-        lines += [f"  {fileset}:", "    files:", f"      - {source.relative_to(rtl).as_posix()}",
-                  "    file_type: verilogSource"]
+        includes = sorted(set(re.findall(r'^\s*`include\s+"([^"]+)"', source.read_text(), re.M)))
+        lines += [f"  {fileset}:", "    files:"]
+        lines += [f"      - {name}: {{is_include_file: true}}" for name in includes]    # e.g. controller_regs.vh
+        lines += [f"      - {source.relative_to(rtl).as_posix()}", "    file_type: verilogSource"]
         if deps:
             lines += ["    depend:"] + [f"      - interp:rtl:{d}" for d in deps]
     if forms:

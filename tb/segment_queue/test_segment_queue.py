@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """segment_queue: every cycle against a cycle model (a list for the block RAM, the read
 register and its `held` flag): order, no byte lost or duplicated, level / free / in_ready
-at every fill up to full (2^AW bytes), flush at random cycles (seeded)."""
+at every fill up to full (2^AW bytes), free whole records, flush at random cycles (seeded)."""
 import cocotb
 from cocotb.triggers import FallingEdge
 
@@ -36,7 +36,7 @@ class Model:
 async def random_traffic(dut):
     """Bursts of writes and reads at random rates (the queue runs full and empty), flushes."""
     rng = seeded_rng(dut, "random_traffic")
-    aw = int(dut.AW.value)
+    aw, record_bytes = int(dut.AW.value), int(dut.RECORD_BYTES.value)
     tb = TB(dut)
     idle = {"in_valid": 0, "in_data": 0, "out_ready": 0, "flush": 0}
     await tb.reset(idle)
@@ -47,6 +47,7 @@ async def random_traffic(dut):
             level = int(dut.level.value)
             assert level == model.level(), f"level {level}, model {model.level()}"
             assert int(dut.free.value) == model.size - level
+            assert int(dut.free_records.value) == (model.size - level) // record_bytes
             assert int(dut.in_ready.value) == (level != model.size)
             assert int(dut.out_valid.value) == model.held
             if model.held:
@@ -77,5 +78,5 @@ async def random_traffic(dut):
 
 def test_segment_queue(sim):
     icarus_in_make_test(sim)
-    run_cocotb(toplevel="segment_queue", test_module="test_segment_queue", sim=sim, parameters={"AW": 4},
+    run_cocotb(toplevel="segment_queue", test_module="test_segment_queue", sim=sim, parameters={"AW": 4, "RECORD_BYTES": 5},
                name="segment_queue")
