@@ -54,9 +54,9 @@ module uart_link #(
     wire [15:0] req_addr;
     wire [31:0] req_value;
 
-    reg         cyc_q, we_q, reply_q;
+    reg         cyc_q, we_q, off_bus_reply_q;
     reg [15:0]  addr_q;
-    reg [31:0]  dat_w_q, reply_value_q;
+    reg [31:0]  dat_w_q;
     reg [7:0]   seq_q;
     reg [15:0]  frames_q, duplicates_q, errors_q, gaps_q;
 
@@ -75,7 +75,7 @@ module uart_link #(
 
     frame_tx u_frame_tx (
         .clk(clk), .rst(rst), .ans_valid(rsp_valid), .ans_reason(rsp_reason),
-        .reply_valid(reply_q), .reply_addr(addr_q), .reply_value(reply_value_q), .reply_seq(seq_q),
+        .reply_valid(reply_valid), .reply_addr(addr_q), .reply_value(reply_value), .reply_seq(seq_q),
         .expected(expected), .queue_free(queue_free), .status_state(status_state),
         .status_error(status_error), .out_valid(tx_valid), .out_data(tx_data), .out_ready(tx_ready)
     );
@@ -97,34 +97,29 @@ module uart_link #(
     assign link_gaps       = gaps_q;
 
     // Wishbone master: one access at a time (frame_rx refuses READ/WRITE while cyc is high).
-    wire on_bus = req_addr[15:8] == 8'd0;
+    // A read's value goes to frame_tx in the acknowledge's cycle; off the 8-bit bus it is 0.
+    wire        on_bus      = req_addr[15:8] == 8'd0;
+    wire        bus_reply   = cyc_q && wbm_ack && !we_q;
+    wire        reply_valid = bus_reply || off_bus_reply_q;
+    wire [31:0] reply_value = bus_reply ? wbm_dat_r : 32'd0;
     always @(posedge clk) begin
         if (rst) begin
-            cyc_q         <= 1'b0;
-            we_q          <= 1'b0;
-            reply_q       <= 1'b0;
-            addr_q        <= 16'd0;
-            dat_w_q       <= 32'd0;
-            reply_value_q <= 32'd0;
-            seq_q         <= 8'd0;
+            cyc_q           <= 1'b0;
+            we_q            <= 1'b0;
+            off_bus_reply_q <= 1'b0;
+            addr_q          <= 16'd0;
+            dat_w_q         <= 32'd0;
+            seq_q           <= 8'd0;
         end else begin
-            reply_q <= 1'b0;
+            off_bus_reply_q <= read_req && !on_bus;
             if (read_req || write_req) begin
                 addr_q  <= req_addr;
                 dat_w_q <= req_value;
                 seq_q   <= req_seq;
                 we_q    <= write_req;
                 cyc_q   <= on_bus;
-                if (read_req && !on_bus) begin
-                    reply_value_q <= 32'd0;         // off the 8-bit bus: reads 0
-                    reply_q       <= 1'b1;
-                end
             end else if (cyc_q && wbm_ack) begin
                 cyc_q <= 1'b0;
-                if (!we_q) begin
-                    reply_value_q <= wbm_dat_r;
-                    reply_q       <= 1'b1;
-                end
             end
         end
     end

@@ -89,6 +89,8 @@ CORES = [
            width=None),
     # W: the command fields (X, Y, Z, I, J, K, L) and the cores' coordinates
     Target("motion_top", "motion_top", {"W": WIDTH, "POS_W": WIDTH}, width="W"),
+    # the controller's serial link at the boards' clock (12 MHz) and 115200 baud
+    Target("uart_link", "uart_link", {"CLK_HZ": 12000000, "BAUD": 115200}, width=None),
 ]
 
 FAMILIES = {

@@ -90,6 +90,24 @@ async def good_data_frames(dut):
 
 
 @cocotb.test()
+async def latency(dut):
+    """CRC_LO in cycle m: the answer in cycle m + 2 (E advanced), the first payload byte in m + 3,
+    one byte per clock after it (as the datasheet's timing table says)."""
+    bench = await setup(dut)
+    await bench.send(frame(DATA, 0, b"xyz"), spacing=1)
+    seen = {}
+    for cycle in range(1, 8):
+        if int(dut.rsp_valid.value):
+            seen.setdefault("answer", cycle)
+            assert int(dut.expected.value) == 1
+        if int(dut.cmd_valid.value):
+            seen.setdefault("first", cycle)
+        await bench.tick()
+    assert seen == {"answer": 2, "first": 3}, seen
+    assert bytes(bench.released) == b"xyz"
+
+
+@cocotb.test()
 async def refusals(dut):
     """Bad CRC, LEN > LMAX, unknown TYPE, bad LEN for the TYPE, duplicate, gap: nothing released."""
     bench = await setup(dut)
