@@ -162,3 +162,16 @@ def test_link_dies_mid_stream():
     with pytest.raises(LinkError, match="no valid frame"):
         for _ in range(100000):
             driver.pump()
+
+
+def test_register_access_under_noise():
+    """Reads and writes through a line flipping 1 % of the bits: right values, writes once."""
+    print(f"seed {SEED}")
+    model = DeviceModel(line_noise=0.01, seed=SEED)
+    driver = Driver(model)
+    driver.connect()
+    for value in (1, 150, 7):
+        driver.write_register("OVERRIDE", value)
+        assert driver.read_register("OVERRIDE") == value
+        assert driver.read_register("ID") == p.ID_VALUE
+    assert [v for name, v in model.writes if name == "OVERRIDE"] == [1, 150, 7]

@@ -200,6 +200,9 @@ def cmd_send(args) -> int:
     except LinkError as err:
         print(f"interp: error: link: {err}", file=sys.stderr)
         return 1
+    except KeyboardInterrupt:
+        print("interp: interrupted", file=sys.stderr)
+        return 1
     finally:
         if progress is not None:
             progress.close()

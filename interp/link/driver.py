@@ -274,7 +274,9 @@ class Driver:
             for reply in self._receive():
                 self._handle(reply, recovering=True)
             self._check_dead()
-        self.read_pending = None
+        if self.read_pending:                   # its REPLY may have been lost in the noise: ask again
+            self.read_wanted.appendleft(self.read_pending[1])
+            self.read_pending = None
         self.parser.expire()
         self._waiting = True
         try:
