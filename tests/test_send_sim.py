@@ -163,7 +163,9 @@ def test_line_noise_completes_with_the_same_steps(files, gcode_steps):
     """--line-noise 0.01: the steps in order and the end position are the gcode run's; the
     registers show the programmed end, every record executed once, frames repeated."""
     steps = files / "noise.csv"
-    outcome, regs, result, compiled = run_driver(files, steps, 0.01, seed=3)
+    seed = int(os.environ.get("SEED", 3))
+    print(f"line noise 0.01, seed {seed} (SEED=)")
+    outcome, regs, result, compiled = run_driver(files, steps, 0.01, seed=seed)
     assert outcome.status == "done", outcome
     assert result["flipped_to_device"] > 0 and result["flipped_from_device"] > 0
     sequence = [row.split(",", 1)[1] for row in steps.read_text().splitlines()[1:]]
@@ -179,8 +181,10 @@ def test_line_noise_completes_with_the_same_steps(files, gcode_steps):
 def test_same_seed_same_run(files):
     """Lockstep: a run depends on the seed only (not on the host's speed)."""
     runs = []
+    seed = int(os.environ.get("SEED", 9))
+    print(f"line noise 0.05, seed {seed} (SEED=)")
     for _ in range(2):
-        with SimLink(machine=files / "machine.toml", line_noise=0.05, seed=9, timeout=0.0005) as link:
+        with SimLink(machine=files / "machine.toml", line_noise=0.05, seed=seed, timeout=0.0005) as link:
             parser = p.FrameParser()
             got = []
             for n in range(5):
