@@ -9,6 +9,8 @@ import os
 import random
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from interp.link import protocol as p
 from interp.link.devicemodel import DeviceModel
@@ -175,3 +177,28 @@ def test_register_access_under_noise():
         assert driver.read_register("OVERRIDE") == value
         assert driver.read_register("ID") == p.ID_VALUE
     assert [v for name, v in model.writes if name == "OVERRIDE"] == [1, 150, 7]
+
+
+def delivery_case(noise: float, seed: int, count: int, queue_aw: int, rate: float) -> None:
+    cmds = commands(count)
+    model = DeviceModel(line_noise=noise, seed=seed, queue_aw=queue_aw, records_per_second=rate)
+    _, outcome = run(model, cmds)
+    assert outcome.status == "done" and executed_fields(model, cmds) == cmds
+
+
+@settings(max_examples=8, deadline=None, derandomize=True)
+@given(noise=st.sampled_from([0.0, 0.0003, 0.002]), seed=st.integers(0, 1 << 20), count=st.integers(1, 12),
+       queue_aw=st.integers(7, 12), rate=st.sampled_from([30.0, 300.0, 3000.0]))
+def test_delivery_property(noise, seed, count, queue_aw, rate):
+    """Any noise, queue size and executor speed: every record once, in order."""
+    delivery_case(noise, seed, count, queue_aw, rate)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("noise", [0.001, 0.003, 0.01])
+def test_delivery_sweep(noise):
+    """make test-all: 40 seeds per noise level, 30 records each (4 at 0.01)."""
+    for k in range(40):
+        seed = SEED + k
+        print(f"noise {noise} seed {seed}")
+        delivery_case(noise, seed, 4 if noise >= 0.01 else 30, 9, 500.0)

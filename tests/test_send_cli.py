@@ -124,3 +124,10 @@ def test_status_sim_model(capsys):
 def test_status_usage(capsys):
     code, out, err = run(capsys, "status")
     assert code == 2 and "give one of --port DEVICE or --sim" in err
+
+
+def test_empty_program(capsys, tmp_path):
+    path = tmp_path / "empty.nc"
+    path.write_text("(nothing to do)\n")
+    code, out, err = run(capsys, "send", str(path), "--sim-model")
+    assert code == 0 and out.startswith("sent 0 records (0 bytes)")

@@ -69,7 +69,7 @@ class Snapshot:
 class Driver:
     def __init__(self, transport, *, baud: int = 115200, window: int = 16, lmax: int = p.LMAX,
                  min_payload: int = 8, margin: float | None = None, dead_seconds: float = 2.0,
-                 poll_seconds: float = 0.05, grow_after: int = 8, log=None):
+                 poll_seconds: float = 0.05, grow_after: int = 2):
         self.transport = transport
         self.clock = getattr(transport, "now", time.monotonic)
         if margin is None:          # reply latency beyond the bytes' time: a USB serial port's, or none (simulators)
@@ -78,7 +78,6 @@ class Driver:
         self.window, self.lmax, self.min_payload = window, lmax, min_payload
         self.margin, self.dead_seconds, self.poll_seconds = margin, dead_seconds, poll_seconds
         self.grow_after = grow_after
-        self.log = log
         self.transport.timeout = max(0.002, 4 * self.byte_time)
         self.parser = p.FrameParser()
         # sequenced frames: outstanding[0] has the absolute sequence number `base` (= E known)
@@ -156,7 +155,7 @@ class Driver:
             self.progress_time = self.clock()
             self.streak += d
             if self.streak >= self.grow_after and self.payload < self.lmax:
-                self.payload = min(self.lmax, self.payload * 3 // 2)
+                self.payload = min(self.lmax, self.payload + max(2, self.payload // 4))
                 self.streak = 0
         return True
 
@@ -267,7 +266,7 @@ class Driver:
         """Go back N: wait until the line is quiet, learn E with HELLO, re-cut what is not
         acknowledged into smaller frames."""
         self.recoveries += 1
-        self.payload = max(self.min_payload, self.payload * 2 // 3)
+        self.payload = max(self.min_payload, self.payload * 3 // 4)
         self.streak = 0
         quiet = max(self.clock(), self.line_free) + 40 * self.byte_time + self.margin
         while self.clock() < quiet:
@@ -439,9 +438,13 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     driver.start_stream(stream)
     snap = Snapshot(records=records, total_bytes=len(stream))
     held = aborted = False
+    next_round, polling = driver.clock(), False
     while True:
-        driver.poll(POLLED)
-        fresh_round = all(REG[n] in driver.fresh for n in POLLED)
+        if not polling and driver.clock() >= next_round:
+            driver.fresh.difference_update(REG[n] for n in POLLED)
+            driver.poll(POLLED)                 # a new round of polls, at most every poll_seconds
+            next_round, polling = driver.clock() + driver.poll_seconds, True
+        fresh_round = polling and all(REG[n] in driver.fresh for n in POLLED)
         driver.pump()
         if keys is not None:
             for key in keys():
@@ -457,6 +460,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                     aborted = True
         if not fresh_round:
             continue
+        polling = False
         v = {n: driver.values[REG[n]] for n in POLLED}
         driver.fresh.difference_update(REG[n] for n in POLLED)
         snap.executed = (v["EXECUTED"] - base) & 0xFFFFFFFF
