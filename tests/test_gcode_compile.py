@@ -13,6 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from interp.testing.seeds import seeded_random
 from interp.gcode.compile import (ARC_LIMIT, DWELL_MAX, EVENT, EVENT_CODES, EXIT_MARGIN, FRAC, LINE_MAX, PF,
                                   PWM_FULL, CompileError, Compiler, compile_program)
 from interp.gcode.stepcount import arc_count, helix_count
@@ -188,9 +189,7 @@ def leading_travel(r: float, a0: float, sweep: float) -> float:
 
 
 def test_arc_end_correction_random():
-    seed = random.randrange(1 << 30)
-    print("seed", seed)
-    rng = random.Random(seed)
+    rng, seed = seeded_random()
     corrected = 0
     for n in range(300):
         plane = rng.choice(list(PLANES))
@@ -530,9 +529,7 @@ def test_commands_through_the_step_model():
 
     if not hasattr(motion, "helix_steps"):
         pytest.skip("interp.models.motion has no plane/helix step model yet")
-    seed = random.randrange(1 << 30)
-    print("seed", seed)
-    rng = random.Random(seed)
+    rng, seed = seeded_random()
     for _ in range(20):
         here, moves = (0.0, 0.0, 0.0), []
         for n in range(1, 8):

@@ -10,11 +10,11 @@ Skipped while the native harness does not take the profile settings and controls
 import csv
 import importlib.util
 import inspect
-import os
 import random
 
 import pytest
 
+from interp.testing.seeds import seeded_random
 from interp.cli import main
 from interp.commands import gcode
 
@@ -92,9 +92,7 @@ def fuzz(tmp_path, capsys, sim: str, profile: str, programs: int, moves: tuple[i
         pytest.skip(reason)
     if sim == "icarus" and importlib.util.find_spec("cocotb") is None:
         pytest.skip("needs cocotb")
-    seed = int(os.environ.get("SEED", random.randrange(1 << 30)))     # SEED=... repeats a run
-    print("seed", seed)
-    rng = random.Random(seed)
+    rng, seed = seeded_random()
     for n in range(programs):
         text = random_program(rng, moves)
         program, compiled = gcode.compile_text(text, profile=profile, machine=gcode.load_machine(clock_hz=clock))

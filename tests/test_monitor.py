@@ -7,11 +7,11 @@ speed jump, with a lost or an extra step, or a hold that does not brake must fai
 check that concerns it.
 """
 import math
-import random
 
 import numpy as np
 import pytest
 
+from interp.testing.seeds import seeded_random
 from interp.gcode.compile import compile_program
 from interp.gcode.machine import load_machine
 from interp.gcode.moves import Arc, Dwell, Line, Program
@@ -121,9 +121,7 @@ def test_hold_distance():
 
 
 def test_random_programs_pass_on_the_ideal_machine():
-    seed = random.randrange(1 << 30)
-    print("seed", seed)
-    rng = random.Random(seed)
+    rng, seed = seeded_random()
     for _ in range(4):
         here, moves = (0.0, 0.0, 0.0), []
         for n in range(1, 6):

@@ -15,6 +15,7 @@ import shutil
 
 import pytest
 
+from interp.testing.seeds import seeded_random
 from interp.cores import UsageError
 from interp.models.motion import Command
 from interp.models.profile import profile_for
@@ -117,10 +118,9 @@ def both(tmp_path, rows, max_cycles=2_000_000, name="job", timing=TIMING, settin
 
 
 def test_random_jobs_native_equals_icarus(native, tmp_path):
-    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
-    print(f"seed {seed} (SEED={seed} repeats this test)")
+    rng, seed = seeded_random()
     size = 300 if os.environ.get("INTERP_TEST_ALL") else 80      # make test-all: the long job
-    rows = random_job(random.Random(seed), size)
+    rows = random_job(rng, size)
     got = both(tmp_path, rows)
     print(f"{got['cycles']} cycles, {got['steps']} steps, {len(got['errors'])} errors, {len(got['events'])} events")
     assert not got["stopped"] and got["pushed"] == got["dispatched"] == got["commands"] == len(rows)
@@ -238,9 +238,7 @@ def test_progress_callback(native, tmp_path):
 def test_holds_and_override_native_equals_icarus(native, tmp_path):
     """Feed holds, resumes and override changes from a controls schedule: the same steps CSV
     and the same hold_stops natively, without skipping and on Icarus; every step out once."""
-    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
-    print(f"seed {seed} (SEED={seed} repeats this test)")
-    rng = random.Random(seed)
+    rng, seed = seeded_random()
     rows = [r for r in random_job(rng, 40) if r[0] != 6 and r[2] != 0 or r[0] in (4, 5)]
     controls, cycle = [], 0
     for _ in range(6):

@@ -2,13 +2,13 @@
 """The path-speed profile generator's cycle model (interp.models.speed_ramp) on its
 own: exact distance, the acceleration bound, braking to rest exactly at the end with a
 short crawl, hold, override, underrun, the braking bound R(n, u) itself."""
-import os
 import random
 
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from interp.testing.seeds import seeded_random
 from interp.models.speed_ramp import (Segment, SpeedRamp, braking_need, clamp_override,
                                       plan_exits, profile_stimulus, random_segments,
                                       run_profile, segment_budget)
@@ -18,9 +18,7 @@ PF = BENCH["pf"]
 
 
 def rng_for(name: str) -> random.Random:
-    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
-    print(f"{name} seed={seed} (re-run with SEED={seed})")
-    return random.Random(seed)
+    return seeded_random(name)[0]
 
 
 def run(segments, **options):

