@@ -25,6 +25,7 @@ from interp.cli import main
 from interp.link import protocol as p
 from interp.link.simlink import SimLink, SimLinkError
 from interp.simulation.runner import RTL
+from interp.testing.seeds import seeded_random
 
 pytestmark = pytest.mark.skipif(not (RTL / "uart_controller.v").is_file(),
                                 reason="rtl/uart_controller.v is not in this tree")
@@ -163,8 +164,7 @@ def test_line_noise_completes_with_the_same_steps(files, gcode_steps):
     """--line-noise 0.01: the steps in order and the end position are the gcode run's; the
     registers show the programmed end, every record executed once, frames repeated."""
     steps = files / "noise.csv"
-    seed = int(os.environ.get("SEED", 3))
-    print(f"line noise 0.01, seed {seed} (SEED=)")
+    _, seed = seeded_random("line noise 0.01")
     outcome, regs, result, compiled = run_driver(files, steps, 0.01, seed=seed)
     assert outcome.status == "done", outcome
     assert result["flipped_to_device"] > 0 and result["flipped_from_device"] > 0
@@ -181,8 +181,7 @@ def test_line_noise_completes_with_the_same_steps(files, gcode_steps):
 def test_same_seed_same_run(files):
     """Lockstep: a run depends on the seed only (not on the host's speed)."""
     runs = []
-    seed = int(os.environ.get("SEED", 9))
-    print(f"line noise 0.05, seed {seed} (SEED=)")
+    _, seed = seeded_random("line noise 0.05")
     for _ in range(2):
         with SimLink(machine=files / "machine.toml", line_noise=0.05, seed=seed, timeout=0.0005) as link:
             parser = p.FrameParser()
