@@ -126,6 +126,28 @@ def test_corrupted_frame_is_not_executed_and_a_duplicate_not_twice(files):
     assert errors & 0xFFFF == 1
 
 
+def test_input_pins(files):
+    """set_pin drives the model's inputs: INPUTS shows the pins, a limit switch latches ERROR 17
+    with the axes that tripped and ALARM."""
+    with SimLink(machine=files / "machine.toml") as link:
+        parser = p.FrameParser()
+        exchange(link, parser, p.encode_frame(p.HELLO, 0, b""))
+        assert register(link, parser, 0x1C) & 0xFF == 0              # ERROR
+        link.set_pin("limit", 0b101)
+        link.set_pin("probe", 1)
+        link.sleep(0.0001)
+        assert register(link, parser, 0x3C) & 0x1F == 0b11010         # INPUTS: probe, limit z, limit x
+        assert register(link, parser, 0x1C) & 0x7FF == 0b101 << 8 | 17  # limit switch, x and z
+        assert register(link, parser, 0x18) & 0x7 == 4                # ALARM
+        link.set_pin("limit", 0)
+        link.set_pin("probe", 0)
+        link.set_pin("estop", 1)
+        link.sleep(0.0001)
+        assert register(link, parser, 0x3C) & 0x1F == 0b00001         # INPUTS: estop
+        with pytest.raises(SimLinkError, match="unknown pin"):
+            link.set_pin("spindle", 1)
+
+
 def test_send_sim_equals_gcode(files, gcode_steps, capsys):
     steps = files / "send.csv"
     assert main(["send", str(files / "tiny.nc"), "--sim", "--steps", str(steps),
