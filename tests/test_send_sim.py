@@ -6,12 +6,15 @@ through its UART pins in simulated time.
   * the bridge: frames through the real link RTL (HELLO, READ), a frame with a bad CRC
     is refused and not executed, its retransmission is executed once, a duplicate is
     acknowledged and not executed again (LINK_FRAMES / LINK_ERRORS, EXECUTED);
+  * the input pins (set_pin): INPUTS, a limit switch's ERROR and ALARM;
   * a tiny built-in program: `interp send --sim --steps A` equals `interp gcode --steps B`
     byte for byte; the end position registers equal the programmed end;
   * line noise 0.01 (most frames corrupted): the run completes, the steps in order and
     the end position are those of `interp gcode`, nothing ran twice;
+  * determinism: the same seed, the same frames and figures;
   * bad input: one line, no traceback;
-  * a short corpus program (slow; skipped without ../shared/gcode).
+  * a short corpus program that starts with an event (slow; skipped without
+    ../shared/gcode): the same steps and end, every cycle later by one constant.
 
 The machine file of these tests runs the controller at 12 MHz (the lowest clock for
 3 Mbaud: the link needs 4 clocks a bit) so that the simulated seconds cost few cycles.
