@@ -131,8 +131,26 @@ def executable(parameters: dict | None = None, trace: bool = False, rtl: Path = 
     parameters = full_parameters(parameters)
     rtl = Path(rtl).resolve()
     key, args = build_key(parameters, trace, rtl)
+    return _build(Target("motion_top", MAIN, EXE, lambda folder: config_header(parameters, trace, rtl, folder)),
+                  key, args, rtl, f"{describe(parameters)}{', with VCD' if trace else ''}",
+                  {"parameters": parameters, "trace": trace, "rtl": str(rtl)}, announce)
+
+
+class Target:
+    """One native harness: the Verilog top, its C++ main, the executable's name, the
+    harness_config.h it needs (a function of the build folder, after Verilator ran) and
+    extra Verilator inputs (e.g. a configuration file)."""
+
+    def __init__(self, top: str, main: Path, exe: str, config, extra: tuple = ()):
+        self.top, self.main, self.exe, self.config, self.extra = top, main, exe, config, list(extra)
+
+
+def _build(target: Target, key: str, args: list[str], rtl: Path, description: str, stamp_data: dict,
+           announce) -> Path:
+    """Verilate target.top with target.main into CACHE/<key>/ unless already built there;
+    concurrent builds of one key wait for each other on a file lock."""
     folder = CACHE / key
-    exe = folder / EXE
+    exe = folder / target.exe
     stamp = folder / "built"
     if stamp.exists() and exe.exists():
         return exe
@@ -141,8 +159,8 @@ def executable(parameters: dict | None = None, trace: bool = False, rtl: Path = 
         fcntl.flock(lock, fcntl.LOCK_EX)           # another process may be building it
         if stamp.exists() and exe.exists():
             return exe
-        announce(f"interp: building the Verilator model of motion_top ({describe(parameters)}"
-                 f"{', with VCD' if trace else ''}), once, about {BUILD_SECONDS} s")
+        announce(f"interp: building the Verilator model of {target.top} ({description}), once, "
+                 f"about {BUILD_SECONDS} s")
         folder.mkdir(parents=True, exist_ok=True)
         verilator = str(verilator_bin() / "verilator")
         env = {**os.environ, "PATH": str(verilator_bin()) + os.pathsep + os.environ.get("PATH", "")}
@@ -153,15 +171,84 @@ def executable(parameters: dict | None = None, trace: bool = False, rtl: Path = 
                 log.write(" ".join(cmd) + "\n")
                 log.flush()
                 if subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=env).returncode:
-                    raise RuntimeError(f"the Verilator build of motion_top failed (log {log_path}):\n"
+                    raise RuntimeError(f"the Verilator build of {target.top} failed (log {log_path}):\n"
                                        + log_path.read_text()[-3000:])
 
-            step([verilator, "--cc", "--exe", *args, "-y", str(rtl), "--Mdir", str(folder), "-o", EXE,
-                  str(rtl / "motion_top.v"), str(MAIN)])
-            (folder / "harness_config.h").write_text(config_header(parameters, trace, rtl, folder))
-            step(["make", "-s", "-C", str(folder), "-f", "Vmotion_top.mk", *MAKE_VARIABLES])
+            step([verilator, "--cc", "--exe", *args, "-y", str(rtl), "--Mdir", str(folder), "-o", target.exe,
+                  *[str(f) for f in target.extra], str(rtl / f"{target.top}.v"), str(target.main)])
+            (folder / "harness_config.h").write_text(target.config(folder))
+            step(["make", "-s", "-C", str(folder), "-f", f"V{target.top}.mk", *MAKE_VARIABLES])
         if not exe.exists():
-            raise RuntimeError(f"the Verilator build of motion_top made no {exe}")
-        stamp.write_text(json.dumps({"parameters": parameters, "trace": trace, "rtl": str(rtl),
-                                     "seconds": round(time.monotonic() - start, 1)}) + "\n")
+            raise RuntimeError(f"the Verilator build of {target.top} made no {exe}")
+        stamp.write_text(json.dumps({**stamp_data, "seconds": round(time.monotonic() - start, 1)}) + "\n")
     return exe
+
+
+# ---- the board-level design: rtl/uart_controller.v under board_main.cpp ----------------------
+
+BOARD_MAIN = HERE / "board_main.cpp"
+BOARD_EXE = "board_sim"
+# motion_top's push handshake, hold and busy, kept visible to the harness (it numbers the
+# steps CSV's cycles from the first push; it skips quiet stretches only while motion_top is
+# not busy) whatever Verilator inlines
+BOARD_CONFIG = """`verilator_config
+public_flat_rd -module "motion_top" -var "cmd_valid"
+public_flat_rd -module "motion_top" -var "cmd_full"
+public_flat_rd -module "motion_top" -var "hold"
+public_flat_rd -module "motion_top" -var "busy"
+"""
+
+
+# free-running counters of uart_controller (+1 a cycle, wrapping, read only by the LEDs):
+# board_main.cpp moves them on when it skips a quiet stretch
+FREE_COUNTERS = ("uart_controller__DOT__beat",)
+
+
+def board_config_header(folder: Path) -> str:
+    """harness_config.h of board_main.cpp: the root members of motion_top's cmd_valid and
+    cmd_full (the instance whose path also holds both and, if Verilator kept any, its
+    submodules u_profile / u_out; else the deepest)."""
+    header = "\n".join(f.read_text() for f in sorted(folder.glob("Vuart_controller___024root*.h")))
+    prefixes = [m for m in set(re.findall(r"\b(\w+__DOT__)cmd_valid;", header))
+                if re.search(r"\b" + re.escape(m) + r"cmd_full;", header)]
+    if not prefixes:
+        raise RuntimeError("the board model shows no motion_top cmd_valid / cmd_full (is motion_top inside "
+                           "uart_controller?)")
+    prefixes.sort(key=lambda m: (bool(re.search(r"\b" + re.escape(m) + r"u_(profile|out)__DOT__", header)),
+                                 m.count("__DOT__"), m))
+    motion = prefixes[-1]
+    lines = ["// Generated by interp/simulation/native/build.py for this build.", "#pragma once",
+             f"#define BC_PUSH_VALID (top_->rootp->{motion}cmd_valid)",
+             f"#define BC_PUSH_FULL (top_->rootp->{motion}cmd_full)",
+             f"#define BC_HOLD (top_->rootp->{motion}hold)", f"#define BC_BUSY (top_->rootp->{motion}busy)"]
+    free = []
+    for name in FREE_COUNTERS:
+        bits = _member_width(header, name)
+        if bits:
+            free.append(f"BC_FREE({name}, {bits})")
+    lines.append("#define BC_FREE_COUNTERS " + " ".join(free))
+    return "\n".join(lines) + "\n"
+
+
+def board_executable(parameters: dict | None = None, rtl: Path = RTL,
+                     announce=lambda text: print(text, file=sys.stderr, flush=True)) -> Path:
+    """The board harness (board_main.cpp around rtl/uart_controller.v) for these
+    uart_controller parameters (e.g. CLK_HZ, BAUD; the others at the design's defaults)."""
+    rtl = Path(rtl).resolve()
+    if not (rtl / "uart_controller.v").is_file():
+        raise RuntimeError(f"no {rtl / 'uart_controller.v'}: the board-level design is not in this tree")
+    parameters = {k: int(v) for k, v in (parameters or {}).items()}
+    args = [*VERILATOR_FLAGS, "-Wno-fatal", "-Wno-lint", "-Wno-style", "--quiet-exit", "--top-module",
+            "uart_controller", *[f"-G{k}={v}" for k, v in parameters.items()], "-CFLAGS", CFLAGS]
+    h = hashlib.sha256()
+    for f in sorted(rtl.glob("*.v")) + sorted(rtl.glob("*.vh")) + [BOARD_MAIN, Path(__file__)]:
+        h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+    h.update(json.dumps([args, MAKE_VARIABLES, BOARD_CONFIG, _verilator_version()]).encode())
+    key = "board-" + h.hexdigest()[:16]
+    folder = CACHE / key
+    folder.mkdir(parents=True, exist_ok=True)
+    vlt = folder / "board.vlt"
+    vlt.write_text(BOARD_CONFIG)
+    return _build(Target("uart_controller", BOARD_MAIN, BOARD_EXE, board_config_header, (vlt,)),
+                  key, [*args, "-I" + str(rtl)], rtl, describe(parameters) or "default parameters",
+                  {"parameters": parameters, "rtl": str(rtl)}, announce)

@@ -1,0 +1,266 @@
+# SPDX-License-Identifier: Apache-2.0
+"""`interp send --sim`: the Verilator model of rtl/uart_controller.v behind SimLink
+(interp/link/simlink.py, interp/simulation/native/board_main.cpp), driven bit by bit
+through its UART pins in simulated time.
+
+  * the bridge: frames through the real link RTL (HELLO, READ), a frame with a bad CRC
+    is refused and not executed, its retransmission is executed once, a duplicate is
+    acknowledged and not executed again (LINK_FRAMES / LINK_ERRORS, EXECUTED);
+  * the input pins (set_pin): INPUTS, a limit switch's ERROR and ALARM;
+  * a tiny built-in program: `interp send --sim --steps A` equals `interp gcode --steps B`
+    byte for byte; the end position registers equal the programmed end;
+  * line noise 0.01 (most frames corrupted): the run completes, the steps in order and
+    the end position are those of `interp gcode`, nothing ran twice;
+  * determinism: the same seed, the same frames and figures;
+  * bad input: one line, no traceback;
+  * a short corpus program that starts with an event (slow; skipped without
+    ../shared/gcode): the same steps and end, every cycle later by one constant.
+
+The machine file of these tests runs the controller at 12 MHz (the lowest clock for
+3 Mbaud: the link needs 4 clocks a bit) so that the simulated seconds cost few cycles.
+"""
+import os
+import subprocess
+
+import pytest
+
+from interp.cli import main
+from interp.link import protocol as p
+from interp.link.simlink import SimLink, SimLinkError
+from interp.simulation.runner import RTL
+from interp.testing.seeds import seeded_random
+
+pytestmark = pytest.mark.skipif(not (RTL / "uart_controller.v").is_file(),
+                                reason="rtl/uart_controller.v is not in this tree")
+
+CORPUS = os.path.join(os.path.dirname(__file__), "..", "..", "shared", "gcode")
+MACHINE = """[controller]
+clock_hz = 12_000_000
+"""
+# starts with a move long enough (~40 ms) for the second record to arrive over the link
+PROGRAM = """G21 G90
+G1 X1 Y0.5 F3000
+G1 X1.5 Y1.2
+G0 X0.2 Y0
+M2
+"""
+PROGRAM_END = (20, 0, 0)        # steps at 100 steps/mm
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("send_sim")
+    (folder / "machine.toml").write_text(MACHINE)
+    (folder / "tiny.nc").write_text(PROGRAM)
+    return folder
+
+
+@pytest.fixture(scope="module")
+def gcode_steps(files):
+    """`interp gcode --steps` of the tiny program (the reference)."""
+    out = files / "gcode.csv"
+    assert main(["gcode", str(files / "tiny.nc"), "--machine", str(files / "machine.toml"), "--steps", str(out)]) == 0
+    return out.read_text()
+
+
+def exchange(link, parser, frame: bytes, seconds: float = 0.001):
+    link.write(frame)
+    link.timeout = seconds
+    return parser.feed(link.read(256))
+
+
+def register(link, parser, address: int) -> int:
+    (reply,) = exchange(link, parser, p.encode_frame(p.READ, 0, address.to_bytes(2, "little")))
+    assert reply.type == p.REPLY and int.from_bytes(reply.payload[:2], "little") == address
+    return int.from_bytes(reply.payload[2:6], "little")
+
+
+def test_bridge_hello_and_registers(files):
+    with SimLink(machine=files / "machine.toml") as link:
+        parser = p.FrameParser()
+        (ack,) = exchange(link, parser, p.encode_frame(p.HELLO, 7, b""))
+        assert ack.type == p.ACK and ack.seq == 0
+        assert register(link, parser, 0x00) == 0x494E5450           # ID "INTP"
+        assert register(link, parser, 0x10) == 12_000_000           # CLOCK_HZ
+        assert 0 < link.now() < 0.01
+        result = link.close()
+    assert result["chars_dropped"] == 0 and result["flipped_to_device"] == 0
+    assert result["cycles"] == round(result["seconds"] * 12_000_000)
+
+
+def test_corrupted_frame_is_not_executed_and_a_duplicate_not_twice(files):
+    """A WRITE with a bad CRC: NAK 1, not executed; the retransmission: executed (ACK, E = 1);
+    the same frame again: a duplicate, acknowledged, not executed.  A DATA frame (a zero dwell
+    record) sent twice runs once (EXECUTED)."""
+    from interp.link.records import encode
+
+    with SimLink(machine=files / "machine.toml") as link:
+        parser = p.FrameParser()
+        exchange(link, parser, p.encode_frame(p.HELLO, 0, b""))
+        frames0 = register(link, parser, 0x6C)
+        write = p.encode_frame(p.WRITE, 0, bytes([0x44, 0]) + (150).to_bytes(4, "little"))   # OVERRIDE 150
+        bad = bytearray(write)
+        bad[-1] ^= 0x10
+        (nak,) = exchange(link, parser, bytes(bad))
+        assert nak.type == p.NAK and nak.payload[0] == p.NAK_CRC
+        assert register(link, parser, 0x44) == 100                  # not executed
+        (ack,) = exchange(link, parser, write)
+        assert ack.type == p.ACK and ack.seq == 1
+        assert register(link, parser, 0x44) == 150
+        (ack,) = exchange(link, parser, p.encode_frame(p.WRITE, 0, bytes([0x44, 0]) + (120).to_bytes(4, "little")))
+        assert ack.type == p.ACK and ack.seq == 1                   # seq 0 again: a duplicate
+        assert register(link, parser, 0x44) == 150                  # not executed again
+        record = encode({"kind": 4})                                # DWELL of 0 cycles
+        data = p.encode_frame(p.DATA, 1, record[:60])
+        for _ in range(2):
+            (ack,) = exchange(link, parser, data)
+            assert ack.type == p.ACK and ack.seq == 2
+        (ack,) = exchange(link, parser, p.encode_frame(p.DATA, 2, record[60:]), 0.002)
+        assert ack.type == p.ACK and ack.seq == 3
+        executed = register(link, parser, 0x78)
+        frames = register(link, parser, 0x6C)
+        errors = register(link, parser, 0x70)
+        link.close()
+    assert executed == 1
+    # frames executed after the READ of frames0 (which counts itself): READ, WRITE, READ, READ,
+    # DATA, DATA, READ, READ = 8 (the bad WRITE is an error, the two duplicates are not executed)
+    assert frames & 0xFFFF == frames0 + 8
+    assert frames >> 16 == 2
+    assert errors & 0xFFFF == 1
+
+
+def test_input_pins(files):
+    """set_pin drives the model's inputs: INPUTS shows the pins, a limit switch latches ERROR 17
+    with the axes that tripped and ALARM."""
+    with SimLink(machine=files / "machine.toml") as link:
+        parser = p.FrameParser()
+        exchange(link, parser, p.encode_frame(p.HELLO, 0, b""))
+        assert register(link, parser, 0x1C) & 0xFF == 0              # ERROR
+        link.set_pin("limit", 0b101)
+        link.set_pin("probe", 1)
+        link.sleep(0.0001)
+        assert register(link, parser, 0x3C) & 0x1F == 0b11010         # INPUTS: probe, limit z, limit x
+        assert register(link, parser, 0x1C) & 0x7FF == 0b101 << 8 | 17  # limit switch, x and z
+        assert register(link, parser, 0x18) & 0x7 == 4                # ALARM
+        link.set_pin("limit", 0)
+        link.set_pin("probe", 0)
+        link.set_pin("estop", 1)
+        link.sleep(0.0001)
+        assert register(link, parser, 0x3C) & 0x1F == 0b00001         # INPUTS: estop
+        with pytest.raises(SimLinkError, match="unknown pin"):
+            link.set_pin("spindle", 1)
+
+
+def test_send_sim_equals_gcode(files, gcode_steps, capsys):
+    steps = files / "send.csv"
+    assert main(["send", str(files / "tiny.nc"), "--sim", "--steps", str(steps),
+                 "--machine", str(files / "machine.toml")]) == 0
+    out = capsys.readouterr().out
+    assert f"end {PROGRAM_END} steps" in out, out
+    assert steps.read_text() == gcode_steps
+
+
+def run_driver(files, steps, noise: float, seed: int = 1):
+    """The host driver's run through SimLink; (outcome, registers after the run, link result, records)."""
+    from interp.commands.gcode import compile_text, read_program
+    from interp.commands.send import compile_build, encode_program
+    from interp.gcode.machine import load_machine
+    from interp.link.driver import Driver, check_controller, configure, run_program
+
+    machine = load_machine(str(files / "machine.toml"))
+    _, compiled = compile_text(read_program(str(files / "tiny.nc")), machine)
+    stream = encode_program(compiled.commands, compile_build())
+    link = SimLink(steps=steps, line_noise=noise, seed=seed, machine=machine)
+    driver = Driver(link, baud=link.baud)
+    driver.connect()
+    check_controller(driver, compile_build(), machine.clock_hz)
+    configure(driver, machine.timing(), compiled.settings)
+    outcome = run_program(driver, stream, len(compiled.commands))
+    registers = {name: driver.read_register(name) for name in ("POS_X", "POS_Y", "POS_Z", "EXECUTED",
+                                                                "LINK_FRAMES", "LINK_ERRORS")}
+    return outcome, registers, link.close(), compiled
+
+
+def signed(value: int) -> int:
+    return value - (1 << 32) if value >> 31 else value
+
+
+def test_line_noise_completes_with_the_same_steps(files, gcode_steps):
+    """--line-noise 0.01: the steps in order and the end position are the gcode run's; the
+    registers show the programmed end, every record executed once, frames repeated."""
+    steps = files / "noise.csv"
+    _, seed = seeded_random("line noise 0.01")
+    outcome, regs, result, compiled = run_driver(files, steps, 0.01, seed=seed)
+    assert outcome.status == "done", outcome
+    assert result["flipped_to_device"] > 0 and result["flipped_from_device"] > 0
+    sequence = [row.split(",", 1)[1] for row in steps.read_text().splitlines()[1:]]
+    reference = [row.split(",", 1)[1] for row in gcode_steps.splitlines()[1:]]
+    assert sequence == reference
+    end = tuple(signed(regs[n]) for n in ("POS_X", "POS_Y", "POS_Z"))
+    assert end == tuple(compiled.end_steps) == PROGRAM_END
+    assert tuple(result["position"]) == PROGRAM_END
+    assert outcome.executed == len(compiled.commands)
+    assert regs["LINK_FRAMES"] >> 16 > 0 or regs["LINK_ERRORS"] & 0xFFFF > 0    # the noise did hit
+
+
+def test_same_seed_same_run(files):
+    """Lockstep: a run depends on the seed only (not on the host's speed)."""
+    runs = []
+    _, seed = seeded_random("line noise 0.05")
+    for _ in range(2):
+        with SimLink(machine=files / "machine.toml", line_noise=0.05, seed=seed, timeout=0.0005) as link:
+            parser = p.FrameParser()
+            got = []
+            for n in range(5):
+                got += [str(f) for f in exchange(link, parser, p.encode_frame(p.HELLO, n, b""), 0.0005)]
+            runs.append((got, link.close()))
+    assert runs[0][0] == runs[1][0]
+    assert {k: v for k, v in runs[0][1].items() if "wall" not in k and "per_second" not in k} == \
+        {k: v for k, v in runs[1][1].items() if "wall" not in k and "per_second" not in k}
+
+
+def test_bad_input_one_line(files, capsys):
+    with pytest.raises(SimLinkError, match="line noise"):
+        SimLink(machine=files / "machine.toml", line_noise=1.5)
+    with pytest.raises(SimLinkError, match="baud"):
+        SimLink(machine=files / "machine.toml", baud=7_000_000)
+    assert main(["send", str(files / "tiny.nc"), "--sim", "--line-noise", "-1"]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "line-noise" in err[0] and "Traceback" not in err[0]
+    # a simulator that stopped: SimLinkError with its one line, close() still answers
+    link = SimLink(machine=files / "machine.toml")
+    link._proc.stdin.write("zz\n")
+    link._proc.stdin.flush()
+    with pytest.raises(SimLinkError, match='status 2.*unknown request "zz"'):
+        link.read(1)
+    assert link.close()["stopped"] is True
+    # the harness itself: a bad request ends it with one line, status 2
+    from interp.simulation.native.build import board_executable
+
+    exe = board_executable({"CLK_HZ": 12_000_000, "BAUD": 3_000_000})
+    proc = subprocess.run([str(exe), "--clock-hz", "12000000", "--baud", "3000000"], input="w 1\n",
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2 and proc.stderr.strip() == "w: odd number of hex digits"
+    proc = subprocess.run([str(exe), "--clock-hz", "12000000"], capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not os.path.isdir(CORPUS), reason="no G-code corpus beside the repository (../shared/gcode)")
+def test_corpus_program_steps_equal_gcode(files, tmp_path, capsys):
+    """A short corpus program (ugs_window.nc: 24 records, 11 s of machine time) streamed
+    through the simulated link: the steps in order and the end position are `interp gcode`'s,
+    and the cycles are too, shifted by one constant: the program starts with an event
+    (M3), so its first move's record comes a frame time after the first push (measured:
+    5313 clocks at 12 MHz, 3 Mbaud)."""
+    program = os.path.join(CORPUS, "ugs_window.nc")
+    machine = str(files / "machine.toml")
+    a, b = tmp_path / "send.csv", tmp_path / "gcode.csv"
+    assert main(["gcode", program, "--machine", machine, "--steps", str(b)]) == 0
+    assert main(["send", program, "--sim", "--machine", machine, "--steps", str(a)]) == 0
+    assert "end (0, 0, 1000) steps" in capsys.readouterr().out
+    sent = [row.split(",", 1) for row in a.read_text().splitlines()[1:]]
+    reference = [row.split(",", 1) for row in b.read_text().splitlines()[1:]]
+    assert [r[1] for r in sent] == [r[1] for r in reference]
+    shifts = {int(s[0]) - int(r[0]) for s, r in zip(sent, reference)}
+    assert len(shifts) == 1 and 0 < shifts.pop() < 6000          # one frame time: 134 * 10 * 4 clocks
