@@ -13,6 +13,7 @@ through its UART pins in simulated time.
     the end position are those of `interp gcode`, nothing ran twice;
   * determinism: the same seed, the same frames and figures;
   * bad input: one line, no traceback;
+  * a program pause (M0, M6) is released after --pause-seconds without a terminal;
   * a short corpus program that starts with an event (slow; skipped without
     ../shared/gcode): the same steps and end, every cycle later by one constant.
 
@@ -158,6 +159,19 @@ def test_send_sim_equals_gcode(files, gcode_steps, capsys):
     out = capsys.readouterr().out
     assert f"end {PROGRAM_END} steps" in out, out
     assert steps.read_text() == gcode_steps
+
+
+def test_program_pause_is_released(files, capsys):
+    """M0 and M6 make the controller hold by itself; without a terminal the driver releases each
+    pause after --pause-seconds (here 0.01 s of machine time) and the program ends where it should."""
+    program = files / "pause.nc"
+    program.write_text("G21 G90\nG1 X0.5 F3000\nM0\nG1 X1\nT2 M6\nG1 X0.3\nM2\n")
+    assert main(["send", str(program), "--sim", "--pause-seconds", "0.01",
+                 "--machine", str(files / "machine.toml")]) == 0
+    captured = capsys.readouterr()
+    assert "end (30, 0, 0) steps" in captured.out, captured
+    assert captured.err.count("program paused at line") == 2, captured.err
+    assert "line 3: resuming after 0.01 s" in captured.err, captured.err
 
 
 def run_driver(files, steps, noise: float, seed: int = 1):

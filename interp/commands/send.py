@@ -4,6 +4,7 @@
 
   interp send FILE.nc --port DEVICE [--baud B] [--machine FILE.toml]
   interp send FILE.nc --sim [--steps FILE] [--line-noise P] [--seed S] [--machine FILE.toml]
+  (both: [--pause-seconds S], how long a program pause lasts without a terminal)
 
 The program is compiled as `interp gcode` compiles it (interp.commands.gcode.compile_text),
 encoded into records (interp.link.records) and streamed by the driver (interp.link.driver).
@@ -81,6 +82,9 @@ def check_link_args(args) -> None:
         for flag, value in (("--steps", getattr(args, "steps", None)), ("--line-noise", getattr(args, "line_noise", None))):
             if value is not None:
                 raise UsageError(f"{flag} goes with --sim, not --port")
+    pause = getattr(args, "pause_seconds", 0.0)
+    if not (math.isfinite(pause) and pause >= 0.0):
+        raise UsageError(f"--pause-seconds {pause:g}: give a number of seconds >= 0")
     noise = getattr(args, "line_noise", None)
     if noise is not None and not (math.isfinite(noise) and 0.0 <= noise <= 1.0):
         raise UsageError(f"--line-noise {noise:g}: give a bit-flip probability 0 .. 1")
@@ -155,6 +159,15 @@ def line_of(compiled, executed: int) -> int:
     return cmds[min(max(executed, 1), len(cmds)) - 1].source if cmds else 0
 
 
+def pause_line(compiled, executed: int) -> int:
+    """The G-code line of the last pause or tool change among the first `executed` records (the
+    controller has dispatched the move after it by the time it reports the hold)."""
+    for cmd in reversed(compiled.commands[:max(executed, 1)]):
+        if cmd.kind == gc.EVENT and cmd.x in (gc.EVENT_CODES["pause"], gc.EVENT_CODES["tool_change"]):
+            return cmd.source
+    return line_of(compiled, executed)
+
+
 def limit_names(limits: int) -> str:
     return ", ".join(f"{a} limit" for n, a in enumerate("xyz") if limits >> n & 1)
 
@@ -190,7 +203,13 @@ def cmd_send(args) -> int:
             print(f"interp send: {records} records, {len(stream)} bytes; {KEYS_HELP}", file=sys.stderr)
         progress = Progress(compiled, machine, sys.stderr.isatty())
         try:
-            outcome = run_program(driver, stream, records, progress=progress, keys=keyboard)
+            def on_pause(snap) -> None:
+                how = "press ~ to resume" if interactive else f"resuming after {args.pause_seconds:g} s"
+                print(f"\ninterp send: program paused at line {pause_line(compiled, snap.executed)}: {how}",
+                      file=sys.stderr)
+
+            outcome = run_program(driver, stream, records, progress=progress, keys=keyboard, on_pause=on_pause,
+                                  pause_resume=None if interactive else args.pause_seconds)
         except KeyboardInterrupt:
             driver.drop_stream()
             driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_ENABLE)
@@ -251,4 +270,7 @@ def add_parser(sub) -> None:
     add_link_options(p_, "the Verilator model of the controller instead of a port")
     p_.add_argument("--steps", metavar="FILE", help="--sim: CSV of the steps (cycle,dx,dy,dz)")
     p_.add_argument("--line-noise", type=float, metavar="P", help="--sim: bit-flip probability per bit, both ways")
+    p_.add_argument("--pause-seconds", type=float, default=0.0, metavar="S",
+                    help="a program pause (M0, M1, M6) ends after S seconds when no terminal is attached to "
+                         "resume it with ~ (default 0)")
     p_.set_defaults(func=cmd_send)

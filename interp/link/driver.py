@@ -423,10 +423,14 @@ class Outcome:
 
 
 def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, keys=None,
-                max_seconds: float | None = None) -> Outcome:
+                max_seconds: float | None = None, pause_resume: float | None = 0.0,
+                on_pause=None) -> Outcome:
     """Stream the records and follow the run to its end: all records executed and the
     controller not busy.  progress(Snapshot) after every poll round; keys() -> the keys
-    typed since the last call ('!' hold, '~' resume, Ctrl-X abort)."""
+    typed since the last call ('!' hold, '~' resume, Ctrl-X abort).
+    A program pause (M0, M1, M6: the controller holds by itself) is released
+    pause_resume seconds after the machine has stopped, or, with None, by the '~' key;
+    on_pause(Snapshot) is told once per pause."""
     start = driver.clock()
     # a stale partial record or a latched error of an earlier run: flush and clear
     status = driver.read_register("STATUS")
@@ -437,7 +441,8 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     base = driver.read_register("EXECUTED")
     driver.start_stream(stream)
     snap = Snapshot(records=records, total_bytes=len(stream))
-    held = aborted = False
+    held = aborted = paused = False
+    paused_since = None
     next_round, polling = driver.clock(), False
     while True:
         if not polling and driver.clock() >= next_round:
@@ -451,9 +456,10 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                 if key == "!" and not held:
                     driver.queue_write("CONTROL", p.CONTROL_HOLD | p.CONTROL_ENABLE)
                     held = True
-                elif key == "~" and held:
+                elif key == "~" and (held or paused):
                     driver.queue_write("CONTROL", p.CONTROL_ENABLE)
-                    held = False
+                    held = paused = False
+                    paused_since = None
                 elif key == "\x18" and not aborted:
                     driver.drop_stream()
                     driver.queue_write("CONTROL", p.CONTROL_ABORT | p.CONTROL_ENABLE)
@@ -474,6 +480,15 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
             # motion has stopped: EXECUTED no longer moves (the round's value may be older)
             snap.executed = (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
             return Outcome("error", snap.executed, seconds, snap.error, field(v["ERROR"], 8, 3))
+        if snap.state in (p.HOLDING, p.HELD) and not held and not aborted and not paused:
+            paused = True                       # the program's own pause: the controller held
+            if on_pause is not None:
+                on_pause(snap)
+        if paused and snap.state == p.HELD and pause_resume is not None:
+            paused_since = driver.clock() if paused_since is None else paused_since
+            if driver.clock() - paused_since >= pause_resume:
+                driver.queue_write("CONTROL", p.CONTROL_ENABLE)
+                paused, paused_since = False, None
         busy = field(v["STATUS"], 3, 1)
         if aborted and driver.stream_done() and not busy:
             return Outcome("aborted", snap.executed, seconds)
