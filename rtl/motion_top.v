@@ -30,7 +30,7 @@
 //                  clock cycles (unsigned)
 //   kind 5 EVENT   wait until the speed is 0 and the drive has stopped, then
 //                  event_valid for one cycle with event_code = cmd_x[7:0], event_value = cmd_y
-//   kind 6, 7      illegal
+//   kind 6, 7      illegal (and kind 3 in a build with CURVES = 0: curve_tangent left out)
 // The profile of a move (speeds in path units per clock, 2^FRAC = one axial step):
 //   cmd_feed cruise speed, cmd_limit ceiling for override > 100 % (>= cmd_feed),
 //   cmd_exit exit speed in quanta of speed_quantum, cmd_rate acceleration p * 2^PF
@@ -67,7 +67,8 @@ module motion_top #(
     parameter integer QLW    = 3,   // width of queue_level (2^QLW > QDEPTH)
     parameter integer SDEPTH = 2,   // steps the synchronization buffer holds (>= 2)
     parameter integer TW     = 8,   // width of the timing registers of the output stage
-    parameter integer POS_W  = 32   // width of the position counters (>= W)
+    parameter integer POS_W  = 32,  // width of the position counters (>= W)
+    parameter integer CURVES = 1    // 1: curve_tangent present; 0: left out, kind 3 refused (error 1)
 ) (
     input  wire              clk,
     input  wire              rst,
@@ -134,6 +135,7 @@ module motion_top #(
         if (SDEPTH < 2) $error("%m: SDEPTH must be at least 2");
         if (TW < 1) $error("%m: TW must be at least 1");
         if (POS_W < W) $error("%m: POS_W must be at least W");
+        if (CURVES < 0 || CURVES > 1) $error("%m: CURVES must be 0 or 1");
     end
 
     localparam [2:0] K_LINE = 3'd0, K_ARC_CW = 3'd1, K_ARC_CCW = 3'd2, K_CURVE = 3'd3, K_DWELL = 3'd4,
@@ -156,7 +158,7 @@ module motion_top #(
     wire [PF:0]  rate_top = {1'b1, {PF{1'b0}}};
     wire p_move    = cmd_kind <= K_CURVE;
     wire p_arc     = cmd_kind == K_ARC_CW || cmd_kind == K_ARC_CCW;
-    wire bad_kind  = cmd_kind > K_EVENT;
+    wire bad_kind  = cmd_kind > K_EVENT || (CURVES == 0 && cmd_kind == K_CURVE);
     wire bad_feed  = p_move && cmd_feed == {FEED_W{1'b0}};
     wire bad_range = cmd_kind == K_LINE && (cmd_x == min_w || cmd_y == min_w || cmd_z == min_w);
     wire bad_plane = p_arc && cmd_plane == 2'd3;
@@ -221,17 +223,24 @@ module motion_top #(
     );
 
     wire cv_sx, cv_sy, cv_dx, cv_dy, cv_busy, cv_done, cv_error;
-    curve_tangent #(.WIDTH(W), .PW(CPW), .CW(W)) u_curve (
-        .clk(clk), .rst(rst), .start(start_curve), .tick(core_tick),
-        .x0({W{1'b0}}), .y0({W{1'b0}}),
-        .p0({{8{h_x[W-1]}}, h_x}), .q0({{8{h_y[W-1]}}, h_y}),
-        .dp_dx({{8{h_i[W-1]}}, h_i}), .dp_dy({{8{h_j[W-1]}}, h_j}),
-        .dq_dx({{8{h_k[W-1]}}, h_k}), .dq_dy({{8{h_l[W-1]}}, h_l}),
-        .reverse(1'b0), .count(h_z), .end_sel(2'd0), .end_coord({W{1'b0}}), .improved(1'b0),
-        .e_load(1'b0), .e_init({(CPW+4){1'b0}}),
-        .step_x(cv_sx), .step_y(cv_sy), .dir_x(cv_dx), .dir_y(cv_dy),
-        .busy(cv_busy), .done(cv_done), .error(cv_error)
-    );
+    generate
+        if (CURVES != 0) begin : g_curve
+            curve_tangent #(.WIDTH(W), .PW(CPW), .CW(W)) u_curve (
+                .clk(clk), .rst(rst), .start(start_curve), .tick(core_tick),
+                .x0({W{1'b0}}), .y0({W{1'b0}}),
+                .p0({{8{h_x[W-1]}}, h_x}), .q0({{8{h_y[W-1]}}, h_y}),
+                .dp_dx({{8{h_i[W-1]}}, h_i}), .dp_dy({{8{h_j[W-1]}}, h_j}),
+                .dq_dx({{8{h_k[W-1]}}, h_k}), .dq_dy({{8{h_l[W-1]}}, h_l}),
+                .reverse(1'b0), .count(h_z), .end_sel(2'd0), .end_coord({W{1'b0}}), .improved(1'b0),
+                .e_load(1'b0), .e_init({(CPW+4){1'b0}}),
+                .step_x(cv_sx), .step_y(cv_sy), .dir_x(cv_dx), .dir_y(cv_dy),
+                .busy(cv_busy), .done(cv_done), .error(cv_error)
+            );
+        end else begin : g_no_curve     // kind 3 is refused at the push: never started
+            assign {cv_sx, cv_sy, cv_dx, cv_dy, cv_busy, cv_done, cv_error} = 7'd0;
+            wire unused_curve = &{1'b0, start_curve, h_l};
+        end
+    endgenerate
 
     // The running core's steps (the others are idle and show no step).
     reg [2:0] core_step, core_dir;

@@ -73,7 +73,7 @@ def lint(toplevel: str, files: list[Path], family: str | None = None,
     """Verilator -Wall on `files` (top first): None if clean, else its first message (one line)."""
     extra = cell_stubs(family, files) if family else []
     cmd = [str(verilator_bin() / "verilator"), "--lint-only", "-Wall", "--quiet",
-           "--top-module", toplevel, *[f"-G{k}={v}" for k, v in (parameters or {}).items()],
+           "--top-module", toplevel, f"-I{RTL}", *[f"-G{k}={v}" for k, v in (parameters or {}).items()],
            *[str(f) for f in extra + list(files)]]
     run = subprocess.run(cmd, capture_output=True, text=True)
     if run.returncode == 0:

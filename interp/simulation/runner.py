@@ -81,7 +81,7 @@ def run_cocotb(
     parameters = dict(parameters or {})
     build_dir = build_dir_for(sim, name or toplevel, parameters)
     sources = list(sources) if sources else rtl_sources(toplevel)
-    build_args: list[str] = ["-y", str(RTL)]
+    build_args: list[str] = ["-y", str(RTL), f"-I{RTL}"]    # -I: `include "controller_regs.vh"
     test_args: list[str] = []
     plusargs: list[str] = []
     defines: dict = {}

@@ -1,0 +1,327 @@
+// SPDX-License-Identifier: Apache-2.0
+`default_nettype none
+// CNC controller: the command record stream and a Wishbone register block around
+// motion_top, with the machine's inputs and outputs.
+//   record bytes (cmd_valid/cmd_data, or CMD_DATA register writes, 4 bytes each)
+//     -> segment_queue (2^QUEUE_AW bytes of block RAM; queue_free gives the link its credit)
+//     -> record_unpack (RECORD_BYTES bytes -> motion_top's command fields)
+//     -> motion_top (queues, cores, path-speed profile, step/dir)
+//     -> input_guard (e-stop and limit switches gate the steps, probe latch) -> step, dir
+//   motion_top's events -> machine_io (spindle, PWM, coolant, digital outputs)
+//   controller_regs: the register map (Wishbone B4 classic slave).
+// Positions (POS_X/Y/Z) count the rising edges of the step pins, here, so that an abort
+// (which resets motion_top) keeps them.  Any error latched in ERROR puts the controller in
+// ALARM: motion_top held in reset (steps stop at once), queue and partial record flushed,
+// incoming record bytes taken and dropped, spindle and coolant off, until CONTROL.clear.
+// CONTROL.abort does the same for one clock (no error).  rst (synchronous, active high)
+// returns everything to IDLE with positions 0.
+module controller #(
+    parameter integer CLK_HZ   = 50000000,  // clock frequency, Hz (CLOCK_HZ register, reset timings)
+    parameter integer W        = 32,        // command field width (motion_top; 6 .. 255)
+    parameter integer FEED_W   = 50,        // speed word width (motion_top; 2 .. 64)
+    parameter integer FRAC     = 48,        // fraction bits of the path units (motion_top)
+    parameter integer NW       = 40,        // speed in quanta width (motion_top)
+    parameter integer PF       = 24,        // rate fraction bits (motion_top)
+    parameter integer LEN_W    = 82,        // move length width (motion_top)
+    parameter integer ZW       = 108,       // braking budget width (motion_top)
+    parameter integer MW       = 12,        // S-curve filter depth 2^MW blocks (motion_top)
+    parameter integer TW       = 16,        // step timing register width (motion_top; 1 .. 32)
+    parameter integer POS_W    = 32,        // position counter width (W .. 32)
+    parameter integer QDEPTH   = 8,         // commands motion_top's queues hold
+    parameter integer QLW      = 4,         // width of motion_top's queue level (2^QLW > QDEPTH)
+    parameter integer SDEPTH   = 2,         // steps motion_top's synchronization buffer holds
+    parameter integer CURVES   = 1,         // 1: curve core present; 0: left out, kind 3 refused (error 1)
+    parameter integer QUEUE_AW = 12         // segment queue: 2^QUEUE_AW bytes (4 .. 15)
+) (
+    input  wire        clk,
+    input  wire        rst,
+    // record byte stream (from the link)
+    input  wire        cmd_valid,
+    input  wire [7:0]  cmd_data,
+    output wire        cmd_ready,
+    output wire [15:0] queue_free,      // free bytes of the segment queue
+    // Wishbone B4 classic slave
+    input  wire [7:0]  wb_adr,
+    input  wire [31:0] wb_dat_w,
+    output wire [31:0] wb_dat_r,
+    input  wire        wb_we,
+    input  wire [3:0]  wb_sel,
+    input  wire        wb_stb,
+    input  wire        wb_cyc,
+    output wire        wb_ack,
+    // link counters (LINK_FRAMES, LINK_ERRORS; 0 without a link)
+    input  wire [15:0] link_frames,
+    input  wire [15:0] link_duplicates,
+    input  wire [15:0] link_errors,
+    input  wire [15:0] link_gaps,
+    output wire [7:0]  status_state,    // STATUS[2:0], for the link's ACK
+    output wire [7:0]  status_error,    // ERROR[7:0]
+    // machine
+    output wire [2:0]  step,            // x, y, z
+    output wire [2:0]  dir,             // 1 = negative
+    output wire        enable,          // drivers' enable (CONTROL.enable)
+    input  wire        estop,
+    input  wire [2:0]  limit,
+    input  wire        probe,
+    output wire        spindle_on,
+    output wire        spindle_ccw,
+    output wire        spindle_pwm,
+    output wire        mist,
+    output wire        flood,
+    output wire [3:0]  dout
+);
+    initial begin
+        if (W < 6 || W > 255) $error("%m: W must be 6 .. 255");
+        if (POS_W < W || POS_W > 32) $error("%m: POS_W must be W .. 32");
+        if (CURVES < 0 || CURVES > 1) $error("%m: CURVES must be 0 or 1");
+        if (QUEUE_AW < 4 || QUEUE_AW > 15) $error("%m: QUEUE_AW must be 4 .. 15");
+        if (RECORD_BYTES > (1 << QUEUE_AW)) $error("%m: the segment queue must hold a record");
+    end
+
+    localparam integer RECORD_BYTES = 1 + 4 * ((FEED_W + 7) / 8) + 7 * ((W + 7) / 8) + (NW + 7) / 8
+                                      + (PF + 8) / 8 + (LEN_W + 7) / 8 + (ZW + 7) / 8;
+    localparam integer SIZE = 1 << QUEUE_AW;
+    localparam integer FREE_RECORDS = SIZE / RECORD_BYTES, FREE_REST = SIZE % RECORD_BYTES;
+    localparam [15:0] RB = RECORD_BYTES[15:0];
+    localparam [7:0] ALARM_STATE = 8'd4;
+
+    reg  [7:0]  error_code;
+    reg  [2:0]  error_limits;
+    wire        alarm = error_code != 8'd0;
+    wire        abort, clear, probe_arm, hold, hold_set, enabled;
+    wire        flush = abort | alarm;          // queue, partial record, motion_top
+
+    // ---------------- record bytes: link stream or CMD_DATA words ----------------
+    reg  [31:0] word;                           // CMD_DATA bytes still to queue, lowest first
+    reg  [2:0]  word_left;
+    wire        data_write;
+    wire [31:0] data_word;
+    wire        data_ready = word_left == 3'd0;
+    wire        q_in_valid = data_ready ? cmd_valid : 1'b1;
+    wire [7:0]  q_in_data  = data_ready ? cmd_data : word[7:0];
+    wire        q_in_ready;
+    wire        q_write    = q_in_valid & q_in_ready & ~flush;
+    assign cmd_ready = flush | (q_in_ready & data_ready);   // in ALARM bytes are dropped
+
+    always @(posedge clk) begin
+        if (rst | flush) begin
+            word      <= 32'd0;
+            word_left <= 3'd0;
+        end else if (data_write) begin
+            word      <= data_word;
+            word_left <= 3'd4;
+        end else if (~data_ready & q_in_ready) begin
+            word      <= {8'd0, word[31:8]};
+            word_left <= word_left - 1'b1;
+        end
+    end
+
+    wire        q_valid, q_ready;
+    wire [7:0]  q_data;
+    wire [QUEUE_AW:0] q_level, q_free;
+    segment_queue #(.AW(QUEUE_AW)) u_queue (
+        .clk(clk), .rst(rst), .flush(flush), .in_valid(q_in_valid), .in_data(q_in_data),
+        .in_ready(q_in_ready), .out_valid(q_valid), .out_data(q_data), .out_ready(q_ready),
+        .level(q_level), .free(q_free)
+    );
+    assign queue_free = {{(15 - QUEUE_AW){1'b0}}, q_free};
+    wire q_take = q_valid & q_ready & ~flush;
+
+    // free whole records (free bytes = records * RB + rest, tracked as bytes come and go)
+    reg  [15:0] free_records, free_rest;
+    always @(posedge clk) begin
+        if (rst | flush) begin
+            free_records <= FREE_RECORDS[15:0];
+            free_rest    <= FREE_REST[15:0];
+        end else if (q_write & ~q_take) begin
+            if (free_rest == 16'd0) begin
+                free_records <= free_records - 1'b1;
+                free_rest    <= RB - 1'b1;
+            end else begin
+                free_rest <= free_rest - 1'b1;
+            end
+        end else if (q_take & ~q_write) begin
+            if (free_rest == RB - 1'b1) begin
+                free_records <= free_records + 1'b1;
+                free_rest    <= 16'd0;
+            end else begin
+                free_rest <= free_rest + 1'b1;
+            end
+        end
+    end
+
+    // ---------------- unpacker -> motion_top ----------------
+    wire              m_valid, m_full, record_error, taken, assembling;
+    wire [2:0]        m_kind;
+    wire [1:0]        m_plane;
+    wire [FEED_W-1:0] m_feed, m_limit, m_cost;
+    wire [W-1:0]      m_x, m_y, m_z, m_i, m_j, m_k, m_l;
+    wire [NW-1:0]     m_exit;
+    wire [PF:0]       m_rate;
+    wire [LEN_W-1:0]  m_length;
+    wire [ZW-1:0]     m_budget;
+    record_unpack #(.W(W), .FEED_W(FEED_W), .NW(NW), .PF(PF), .LEN_W(LEN_W), .ZW(ZW)) u_unpack (
+        .clk(clk), .rst(rst), .flush(flush), .in_valid(q_valid), .in_data(q_data), .in_ready(q_ready),
+        .cmd_valid(m_valid), .cmd_kind(m_kind), .cmd_plane(m_plane), .cmd_feed(m_feed),
+        .cmd_x(m_x), .cmd_y(m_y), .cmd_z(m_z), .cmd_i(m_i), .cmd_j(m_j), .cmd_k(m_k), .cmd_l(m_l),
+        .cmd_limit(m_limit), .cmd_exit(m_exit), .cmd_rate(m_rate), .cmd_cost(m_cost),
+        .cmd_length(m_length), .cmd_budget(m_budget), .cmd_full(m_full),
+        .record_error(record_error), .taken(taken), .assembling(assembling)
+    );
+
+    // records written and not yet taken by the unpacker (STATUS[15:8])
+    reg  [7:0]  write_at;                       // byte of the record being written
+    reg  [15:0] records;
+    wire        record_in = q_write && write_at == RB[7:0] - 1'b1;
+    wire        record_out = taken & ~flush;
+    always @(posedge clk) begin
+        if (rst | flush) begin
+            write_at <= 8'd0;
+            records  <= 16'd0;
+        end else begin
+            if (q_write)
+                write_at <= record_in ? 8'd0 : write_at + 1'b1;
+            if (record_in & ~record_out)
+                records <= records + 1'b1;
+            else if (record_out & ~record_in)
+                records <= records - 1'b1;
+        end
+    end
+
+    wire [TW-1:0]     pulse_width, dir_setup, dir_hold;
+    wire [FEED_W-1:0] quantum;
+    wire [3:0]        block_shift, jerk_shift;
+    wire [7:0]        override_percent;
+    wire [2:0]        m_step, m_dir;
+    wire [POS_W-1:0]  unused_pos_x, unused_pos_y, unused_pos_z;
+    wire [FEED_W-1:0] unused_speed;
+    wire              stopped, m_busy, unused_done, m_error, event_valid;
+    wire [3:0]        m_error_code;
+    wire [QLW-1:0]    m_level;
+    wire [7:0]        event_code;
+    wire [W-1:0]      event_value;
+    motion_top #(.W(W), .FEED_W(FEED_W), .FRAC(FRAC), .NW(NW), .PF(PF), .LEN_W(LEN_W), .ZW(ZW),
+                 .MW(MW), .QDEPTH(QDEPTH), .QLW(QLW), .SDEPTH(SDEPTH), .TW(TW), .POS_W(POS_W),
+                 .CURVES(CURVES)) u_motion (
+        .clk(clk), .rst(rst | flush),
+        .cmd_valid(m_valid), .cmd_kind(m_kind), .cmd_plane(m_plane), .cmd_feed(m_feed),
+        .cmd_x(m_x), .cmd_y(m_y), .cmd_z(m_z), .cmd_i(m_i), .cmd_j(m_j), .cmd_k(m_k), .cmd_l(m_l),
+        .cmd_limit(m_limit), .cmd_exit(m_exit), .cmd_rate(m_rate), .cmd_cost(m_cost),
+        .cmd_length(m_length), .cmd_budget(m_budget), .cmd_full(m_full), .queue_level(m_level),
+        .speed_quantum(quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
+        .override(override_percent), .hold(hold),
+        .pulse_width(pulse_width), .setup(dir_setup), .hold_time(dir_hold),
+        .step_x(m_step[0]), .step_y(m_step[1]), .step_z(m_step[2]),
+        .dir_x(m_dir[0]), .dir_y(m_dir[1]), .dir_z(m_dir[2]),
+        .pos_x(unused_pos_x), .pos_y(unused_pos_y), .pos_z(unused_pos_z),
+        .speed(unused_speed), .stopped(stopped), .busy(m_busy), .done(unused_done),
+        .error(m_error), .error_code(m_error_code),
+        .event_valid(event_valid), .event_code(event_code), .event_value(event_value)
+    );
+
+    // ---------------- inputs, positions, errors ----------------
+    wire [4:0]       inputs, input_invert;
+    wire             estop_trip, probe_valid;
+    wire [2:0]       limit_trip;
+    reg  [POS_W-1:0] pos_x, pos_y, pos_z;
+    wire [POS_W-1:0] probe_x, probe_y, probe_z;
+    input_guard #(.POS_W(POS_W)) u_guard (
+        .clk(clk), .rst(rst), .estop(estop), .limit(limit), .probe(probe), .invert(input_invert),
+        .alarm(alarm), .probe_arm(probe_arm), .step_in(m_step), .step_out(step),
+        .inputs(inputs), .estop_trip(estop_trip), .limit_trip(limit_trip),
+        .pos_x(pos_x), .pos_y(pos_y), .pos_z(pos_z),
+        .probe_valid(probe_valid), .probe_x(probe_x), .probe_y(probe_y), .probe_z(probe_z)
+    );
+    assign dir = m_dir;
+
+    reg  [2:0] step_q;
+    function [POS_W-1:0] moved(input [POS_W-1:0] pos, input rise, input negative);
+        moved = rise ? (negative ? pos - 1'b1 : pos + 1'b1) : pos;
+    endfunction
+
+    wire [7:0] code_left = clear ? 8'd0 : error_code;
+    always @(posedge clk) begin
+        if (rst) begin
+            step_q       <= 3'b000;
+            pos_x        <= {POS_W{1'b0}};
+            pos_y        <= {POS_W{1'b0}};
+            pos_z        <= {POS_W{1'b0}};
+            error_code   <= 8'd0;
+            error_limits <= 3'b000;
+        end else begin
+            step_q <= step;
+            pos_x  <= moved(pos_x, step[0] & ~step_q[0], dir[0]);
+            pos_y  <= moved(pos_y, step[1] & ~step_q[1], dir[1]);
+            pos_z  <= moved(pos_z, step[2] & ~step_q[2], dir[2]);
+            if (clear)
+                error_limits <= 3'b000;
+            // the first error wins until CONTROL.clear
+            if (code_left == 8'd0) begin
+                if (estop_trip)
+                    error_code <= 8'd16;
+                else if (limit_trip != 3'b000) begin
+                    error_code   <= 8'd17;
+                    error_limits <= limit_trip;
+                end else if (m_error)
+                    error_code <= {4'd0, m_error_code};
+                else if (record_error)
+                    error_code <= 8'd18;
+                else
+                    error_code <= 8'd0;
+            end else if (error_code == 8'd17) begin
+                error_limits <= error_limits | limit_trip;
+            end
+        end
+    end
+
+    // ---------------- outputs, registers ----------------
+    wire [15:0] duty;
+    wire        pause;
+    machine_io #(.W(W)) u_io (
+        .clk(clk), .rst(rst), .event_valid(event_valid), .event_code(event_code),
+        .event_value(event_value), .off(flush), .period(spindle_period),
+        .spindle_on(spindle_on), .spindle_ccw(spindle_ccw), .duty(duty), .spindle_pwm(spindle_pwm),
+        .mist(mist), .flood(flood), .dout(dout), .pause(pause)
+    );
+    assign hold_set = pause;
+
+    // records pushed into motion_top (or dropped) minus those still in its queue
+    reg  [31:0] consumed;
+    always @(posedge clk) begin
+        if (rst)
+            consumed <= 32'd0;
+        else if (taken & ~flush)
+            consumed <= consumed + 1'b1;
+    end
+    wire [31:0] executed = consumed - {{(32 - QLW){1'b0}}, m_level};
+
+    wire        busy = m_busy | q_level != {(QUEUE_AW+1){1'b0}} | assembling | ~data_ready;
+    wire [2:0]  state = alarm ? 3'd4 : hold ? (stopped ? 3'd3 : 3'd2) : busy ? 3'd1 : 3'd0;
+    assign status_state = alarm ? ALARM_STATE : {5'd0, state};
+    assign status_error = error_code;
+    assign enable = enabled;
+
+    wire [15:0] spindle_period;
+    controller_regs #(.CLK_HZ(CLK_HZ), .W(W), .FEED_W(FEED_W), .FRAC(FRAC), .NW(NW), .PF(PF),
+                      .LEN_W(LEN_W), .ZW(ZW), .MW(MW), .TW(TW), .POS_W(POS_W), .QUEUE_AW(QUEUE_AW),
+                      .CURVES(CURVES), .RECORD_BYTES(RECORD_BYTES)) u_regs (
+        .clk(clk), .rst(rst), .wb_adr(wb_adr), .wb_dat_w(wb_dat_w), .wb_dat_r(wb_dat_r), .wb_we(wb_we),
+        .wb_sel(wb_sel), .wb_stb(wb_stb), .wb_cyc(wb_cyc), .wb_ack(wb_ack),
+        .state(state), .busy(busy), .stopped(stopped), .probe_valid(probe_valid),
+        .records(records > 16'd255 ? 8'd255 : records[7:0]), .error_code(error_code),
+        .error_limits(error_limits), .free_bytes(queue_free), .free_records(free_records),
+        .pos_x(pos_x), .pos_y(pos_y), .pos_z(pos_z), .probe_x(probe_x), .probe_y(probe_y),
+        .probe_z(probe_z), .inputs(inputs),
+        .outputs({8'd0, dout, flood, mist, spindle_ccw, spindle_on}), .duty(duty),
+        .link_frames(link_frames), .link_duplicates(link_duplicates), .link_errors(link_errors),
+        .link_gaps(link_gaps), .executed(executed), .hold_set(hold_set),
+        .hold(hold), .enable(enabled), .abort_strobe(abort), .clear_strobe(clear), .arm_strobe(probe_arm),
+        .override_percent(override_percent), .pulse_width(pulse_width), .dir_setup(dir_setup),
+        .dir_hold(dir_hold), .quantum(quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
+        .input_invert(input_invert), .spindle_period(spindle_period),
+        .data_write(data_write), .data_word(data_word), .data_ready(data_ready)
+    );
+
+    wire unused = &{1'b0, unused_pos_x, unused_pos_y, unused_pos_z, unused_speed, unused_done};
+endmodule
+`default_nettype wire

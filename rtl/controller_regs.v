@@ -1,0 +1,226 @@
+// SPDX-License-Identifier: Apache-2.0
+`default_nettype none
+// Register block of the controller: a Wishbone B4 classic slave, 32-bit data, byte
+// addresses on wb_adr[7:0] (bits 1:0 ignored, byte selects ignored: whole words).
+// Every access is acknowledged in the cycle after it is seen (wb_ack one cycle), except a
+// write to CMD_DATA, which waits until the controller takes its 4 bytes (`data_ready`).
+// Unknown addresses read 0 and ignore writes.  The addresses are rtl/controller_regs.vh's
+// REG_<NAME> (generated from regs/controller.rdl); the map is in docs/registers.md.
+// Read-only registers are composed here from the controller's status inputs; the
+// read-write ones (machine settings) are held here and drive the outputs.  CONTROL:
+// [0] hold (RW; also set by `hold_set`, a pause event), write-1 strobes [1] abort,
+// [2] clear, [3] probe_arm, [4] enable (RW).
+module controller_regs #(
+    parameter integer CLK_HZ   = 50000000,  // board clock, Hz (CLOCK_HZ register; >= 1)
+    parameter integer W        = 32,        // command field width (VERSION; 6 .. 255)
+    parameter integer FEED_W   = 50,        // speed word width (BUILD0; 2 .. 64)
+    parameter integer FRAC     = 48,        // fraction bits (BUILD0; 1 .. 64)
+    parameter integer NW       = 40,        // speed in quanta width (BUILD0; 1 .. 255)
+    parameter integer PF       = 24,        // rate fraction bits (BUILD0; 1 .. 255)
+    parameter integer LEN_W    = 82,        // move length width (BUILD1; 1 .. 255)
+    parameter integer ZW       = 108,       // braking budget width (BUILD1; 1 .. 255)
+    parameter integer MW       = 12,        // S-curve depth (BUILD1; 2 .. 15)
+    parameter integer TW       = 16,        // output stage timing width (BUILD1; 1 .. 32)
+    parameter integer POS_W    = 32,        // position counter width (VERSION; 2 .. 32)
+    parameter integer QUEUE_AW = 12,        // segment queue: 2^QUEUE_AW bytes (QUEUE_SIZE; 4 .. 15)
+    parameter integer CURVES   = 1,         // curve core present (QUEUE_SIZE bit 24; 0 or 1)
+    parameter integer RECORD_BYTES = 84     // bytes of a record (VERSION; 1 .. 255)
+) (
+    input  wire              clk,
+    input  wire              rst,
+    // Wishbone B4 classic slave
+    input  wire [7:0]        wb_adr,
+    input  wire [31:0]       wb_dat_w,
+    output reg  [31:0]       wb_dat_r,
+    input  wire              wb_we,
+    input  wire [3:0]        wb_sel,
+    input  wire              wb_stb,
+    input  wire              wb_cyc,
+    output reg               wb_ack,
+    // status
+    input  wire [2:0]        state,         // STATUS[2:0]
+    input  wire              busy,
+    input  wire              stopped,
+    input  wire              probe_valid,
+    input  wire [7:0]        records,       // records in the queue, saturated
+    input  wire [7:0]        error_code,
+    input  wire [2:0]        error_limits,
+    input  wire [15:0]       free_bytes,
+    input  wire [15:0]       free_records,
+    input  wire [POS_W-1:0]  pos_x,
+    input  wire [POS_W-1:0]  pos_y,
+    input  wire [POS_W-1:0]  pos_z,
+    input  wire [POS_W-1:0]  probe_x,
+    input  wire [POS_W-1:0]  probe_y,
+    input  wire [POS_W-1:0]  probe_z,
+    input  wire [4:0]        inputs,
+    input  wire [15:0]       outputs,       // OUTPUTS[15:0]
+    input  wire [15:0]       duty,          // OUTPUTS[31:16]
+    input  wire [15:0]       link_frames,
+    input  wire [15:0]       link_duplicates,
+    input  wire [15:0]       link_errors,
+    input  wire [15:0]       link_gaps,
+    input  wire [31:0]       executed,
+    input  wire              hold_set,      // a pause event: set CONTROL.hold
+    // settings and strobes
+    output reg               hold,
+    output reg               enable,
+    output wire              abort_strobe,  // CONTROL write-1 strobes: abort, clear, probe_arm
+    output wire              clear_strobe,
+    output wire              arm_strobe,
+    output reg  [7:0]        override_percent,
+    output reg  [TW-1:0]     pulse_width,
+    output reg  [TW-1:0]     dir_setup,
+    output reg  [TW-1:0]     dir_hold,
+    output reg  [FEED_W-1:0] quantum,
+    output reg  [3:0]        block_shift,
+    output reg  [3:0]        jerk_shift,
+    output reg  [4:0]        input_invert,
+    output reg  [15:0]       spindle_period,
+    output wire              data_write,    // strobe: data_word's 4 bytes for the queue
+    output wire [31:0]       data_word,
+    input  wire              data_ready     // the controller takes a data_word now
+);
+    initial begin
+        if (CLK_HZ < 1) $error("%m: CLK_HZ must be at least 1");
+        if (W < 6 || W > 255) $error("%m: W must be 6 .. 255");
+        if (FEED_W < 2 || FEED_W > 64) $error("%m: FEED_W must be 2 .. 64");
+        if (FRAC < 1 || FRAC > 64) $error("%m: FRAC must be 1 .. 64");
+        if (NW < 1 || NW > 255) $error("%m: NW must be 1 .. 255");
+        if (PF < 1 || PF > 255) $error("%m: PF must be 1 .. 255");
+        if (LEN_W < 1 || LEN_W > 255) $error("%m: LEN_W must be 1 .. 255");
+        if (ZW < 1 || ZW > 255) $error("%m: ZW must be 1 .. 255");
+        if (MW < 2 || MW > 15) $error("%m: MW must be 2 .. 15");
+        if (TW < 1 || TW > 32) $error("%m: TW must be 1 .. 32");
+        if (POS_W < 2 || POS_W > 32) $error("%m: POS_W must be 2 .. 32");
+        if (QUEUE_AW < 4 || QUEUE_AW > 15) $error("%m: QUEUE_AW must be 4 .. 15");
+        if (CURVES < 0 || CURVES > 1) $error("%m: CURVES must be 0 or 1");
+        if (RECORD_BYTES < 1 || RECORD_BYTES > 255) $error("%m: RECORD_BYTES must be 1 .. 255");
+    end
+
+    /* verilator lint_off UNUSEDPARAM */
+    `include "controller_regs.vh"
+    /* verilator lint_on UNUSEDPARAM */
+
+    // reset values: 0.5 us of pulse, set-up and hold (at least a clock), 20 kHz PWM
+    localparam integer HALF_US = CLK_HZ / 2000000 > 0 ? CLK_HZ / 2000000 : 1;
+    localparam integer PWM_CLOCKS = CLK_HZ / 20000 > 0 ? (CLK_HZ / 20000 > 65535 ? 65535 : CLK_HZ / 20000) : 1;
+    localparam [31:0] TIMING_RESET = HALF_US;
+    localparam [31:0] PERIOD_RESET = PWM_CLOCKS;
+    localparam [31:0] ID      = 32'h494E5450;                   // "INTP"
+    localparam [31:0] VERSION = {POS_W[7:0], W[7:0], RECORD_BYTES[7:0], 8'd1};
+    localparam [31:0] BUILD0  = {PF[7:0], NW[7:0], FRAC[7:0], FEED_W[7:0]};
+    localparam [31:0] BUILD1  = {TW[7:0], MW[7:0], ZW[7:0], LEN_W[7:0]};
+    localparam [31:0] CLOCK   = CLK_HZ;
+    localparam [15:0] QUEUE_BYTES = 16'd1 << QUEUE_AW;
+    localparam [31:0] QUEUE_SIZE  = {7'd0, CURVES[0], QUEUE_AW[7:0], QUEUE_BYTES};
+
+    wire [7:0] address = {wb_adr[7:2], 2'b00};
+    wire       access  = wb_cyc & wb_stb & ~wb_ack;
+    wire       is_data = address == REG_CMD_DATA[7:0];
+    wire       done    = access & (~(wb_we & is_data) | data_ready);
+    wire       write   = done & wb_we;
+
+    assign data_write = access & wb_we & is_data & data_ready;
+    assign data_word  = wb_dat_w;
+    wire   control_write = write && address == REG_CONTROL[7:0];
+    assign abort_strobe = control_write & wb_dat_w[1];
+    assign clear_strobe = control_write & wb_dat_w[2];
+    assign arm_strobe   = control_write & wb_dat_w[3];
+
+    // positions sign-extended to 32 bits
+    function [31:0] extended(input [POS_W-1:0] value);
+        extended = {{(33 - POS_W){value[POS_W-1]}}, value[POS_W-2:0]};
+    endfunction
+
+    wire [63:0] quantum_wide = {{(64 - FEED_W){1'b0}}, quantum};
+    wire [63:0] quantum_lo   = {quantum_wide[63:32], wb_dat_w};
+    wire [63:0] quantum_hi   = {wb_dat_w, quantum_wide[31:0]};
+
+    reg [31:0] value;
+    always @* begin
+        case (address)
+            REG_ID[7:0]:             value = ID;
+            REG_VERSION[7:0]:        value = VERSION;
+            REG_BUILD0[7:0]:         value = BUILD0;
+            REG_BUILD1[7:0]:         value = BUILD1;
+            REG_CLOCK_HZ[7:0]:       value = CLOCK;
+            REG_QUEUE_SIZE[7:0]:     value = QUEUE_SIZE;
+            REG_STATUS[7:0]:         value = {16'd0, records, 1'b0, enable, probe_valid, stopped, busy, state};
+            REG_ERROR[7:0]:          value = {21'd0, error_limits, error_code};
+            REG_QUEUE_FREE[7:0]:     value = {free_records, free_bytes};
+            REG_POS_X[7:0]:          value = extended(pos_x);
+            REG_POS_Y[7:0]:          value = extended(pos_y);
+            REG_POS_Z[7:0]:          value = extended(pos_z);
+            REG_PROBE_X[7:0]:        value = extended(probe_x);
+            REG_PROBE_Y[7:0]:        value = extended(probe_y);
+            REG_PROBE_Z[7:0]:        value = extended(probe_z);
+            REG_INPUTS[7:0]:         value = {27'd0, inputs};
+            REG_CONTROL[7:0]:        value = {27'd0, enable, 3'd0, hold};
+            REG_OVERRIDE[7:0]:       value = {24'd0, override_percent};
+            REG_PULSE_WIDTH[7:0]:    value = {{(32 - TW){1'b0}}, pulse_width};
+            REG_DIR_SETUP[7:0]:      value = {{(32 - TW){1'b0}}, dir_setup};
+            REG_DIR_HOLD[7:0]:       value = {{(32 - TW){1'b0}}, dir_hold};
+            REG_QUANTUM_LO[7:0]:     value = quantum_wide[31:0];
+            REG_QUANTUM_HI[7:0]:     value = quantum_wide[63:32];
+            REG_MOTION[7:0]:         value = {24'd0, jerk_shift, block_shift};
+            REG_INPUT_INVERT[7:0]:   value = {27'd0, input_invert};
+            REG_SPINDLE_PERIOD[7:0]: value = {16'd0, spindle_period};
+            REG_OUTPUTS[7:0]:        value = {duty, outputs};
+            REG_LINK_FRAMES[7:0]:    value = {link_duplicates, link_frames};
+            REG_LINK_ERRORS[7:0]:    value = {link_gaps, link_errors};
+            REG_EXECUTED[7:0]:       value = executed;
+            default:                 value = 32'd0;         // CMD_DATA (write-only), unknown
+        endcase
+    end
+
+    always @(posedge clk) begin
+        if (rst) begin
+            wb_ack   <= 1'b0;
+            wb_dat_r <= 32'd0;
+        end else begin
+            wb_ack   <= done;
+            wb_dat_r <= done & ~wb_we ? value : 32'd0;
+        end
+    end
+
+    always @(posedge clk) begin
+        if (rst) begin
+            hold             <= 1'b0;
+            enable           <= 1'b0;
+            override_percent <= 8'd100;
+            pulse_width      <= TIMING_RESET[TW-1:0];
+            dir_setup        <= TIMING_RESET[TW-1:0];
+            dir_hold         <= TIMING_RESET[TW-1:0];
+            quantum          <= {{(FEED_W-1){1'b0}}, 1'b1};
+            block_shift      <= 4'd0;
+            jerk_shift       <= 4'd0;
+            input_invert     <= 5'd0;
+            spindle_period   <= PERIOD_RESET[15:0];
+        end else begin
+            if (hold_set)
+                hold <= 1'b1;
+            if (write) begin
+                case (address)
+                    REG_CONTROL[7:0]: begin
+                        hold   <= wb_dat_w[0];
+                        enable <= wb_dat_w[4];
+                    end
+                    REG_OVERRIDE[7:0]:       override_percent <= wb_dat_w[7:0];
+                    REG_PULSE_WIDTH[7:0]:    pulse_width <= wb_dat_w[TW-1:0];
+                    REG_DIR_SETUP[7:0]:      dir_setup <= wb_dat_w[TW-1:0];
+                    REG_DIR_HOLD[7:0]:       dir_hold <= wb_dat_w[TW-1:0];
+                    REG_QUANTUM_LO[7:0]:     quantum <= quantum_lo[FEED_W-1:0];
+                    REG_QUANTUM_HI[7:0]:     quantum <= quantum_hi[FEED_W-1:0];
+                    REG_MOTION[7:0]:         {jerk_shift, block_shift} <= wb_dat_w[7:0];
+                    REG_INPUT_INVERT[7:0]:   input_invert <= wb_dat_w[4:0];
+                    REG_SPINDLE_PERIOD[7:0]: spindle_period <= wb_dat_w[15:0];
+                    default: ;
+                endcase
+            end
+        end
+    end
+
+    wire unused = &{1'b0, wb_adr[1:0], wb_sel, quantum_lo, quantum_hi, wb_dat_w};
+endmodule
+`default_nettype wire

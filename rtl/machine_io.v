@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: Apache-2.0
+`default_nettype none
+// Machine outputs of the controller, set by motion_top's events (applied in program
+// order, when the drive has stopped before them): spindle on / direction / speed as a
+// PWM duty 0 .. 65535 of `period` clocks, mist and flood coolant, four digital outputs.
+// Event codes: 1 spindle clockwise (value = duty), 2 counter-clockwise (duty), 3 spindle
+// off, 4 spindle speed (duty), 5 mist on, 6 flood on, 7 coolant off, 8 output on
+// (value = output 0 .. 3), 9 output off, 10 pause, 11 tool change, 12 program end
+// (spindle and coolant off); other codes are ignored.  A duty below 0 counts as 0,
+// above 65535 as 65535.  `pause` strobes for codes 10 and 11 (the controller holds).
+// `off` (abort, alarm) switches spindle and coolant off at once; the outputs keep.
+// PWM: a counter runs over `period` clocks (0 counts as 1); `pwm` is high while the
+// counter is below duty * period / 65536 (duty 65535: always high), and low while the
+// spindle is off.  That threshold is a product made by shift and add over 17 clocks from
+// the start of a period (a new duty or period takes effect within two periods, or 34
+// clocks if the period is shorter than 17).
+module machine_io #(
+    parameter integer W = 32        // width of the event value, signed (>= 4)
+) (
+    input  wire         clk,
+    input  wire         rst,
+    input  wire         event_valid,    // motion_top's event strobe
+    input  wire [7:0]   event_code,
+    input  wire [W-1:0] event_value,    // signed
+    input  wire         off,            // spindle and coolant off (abort, alarm)
+    input  wire [15:0]  period,         // PWM period, clocks
+    output reg          spindle_on,
+    output reg          spindle_ccw,
+    output reg  [15:0]  duty,           // 0 .. 65535
+    output wire         spindle_pwm,
+    output reg          mist,
+    output reg          flood,
+    output reg  [3:0]   dout,
+    output wire         pause           // strobe: a pause or tool-change event
+);
+    initial begin
+        if (W < 4) $error("%m: W must be at least 4");
+    end
+
+    localparam [7:0] SPINDLE_CW = 8'd1, SPINDLE_CCW = 8'd2, SPINDLE_OFF = 8'd3, SPINDLE_SPEED = 8'd4,
+                     MIST_ON = 8'd5, FLOOD_ON = 8'd6, COOLANT_OFF = 8'd7, OUTPUT_ON = 8'd8,
+                     OUTPUT_OFF = 8'd9, PAUSE = 8'd10, TOOL_CHANGE = 8'd11, PROGRAM_END = 8'd12;
+
+    // the value as a duty: clamped to 0 .. 65535
+    wire        negative = event_value[W-1];
+    wire        above;              // above 65535
+    wire [15:0] low;                // the value's bits 15:0 (zero-extended if W < 16)
+    generate
+        if (W > 17) begin : g_wide
+            assign above = |event_value[W-2:16];
+            assign low   = event_value[15:0];
+        end else if (W == 17) begin : g_17
+            assign above = 1'b0;
+            assign low   = event_value[15:0];
+        end else begin : g_narrow
+            assign above = 1'b0;
+            assign low   = {{(17 - W){1'b0}}, event_value[W-2:0]};
+        end
+    endgenerate
+    wire [15:0] clamped  = negative ? 16'd0 : above ? 16'hFFFF : low;
+    wire [3:0]  select   = 4'd1 << event_value[1:0];
+    wire        output_number = event_value[W-1:2] == {(W-2){1'b0}};   // 0 .. 3
+
+    assign pause = event_valid & (event_code == PAUSE || event_code == TOOL_CHANGE);
+
+    always @(posedge clk) begin
+        if (rst) begin
+            spindle_on  <= 1'b0;
+            spindle_ccw <= 1'b0;
+            duty        <= 16'd0;
+            mist        <= 1'b0;
+            flood       <= 1'b0;
+            dout        <= 4'd0;
+        end else if (off) begin
+            spindle_on <= 1'b0;
+            mist       <= 1'b0;
+            flood      <= 1'b0;
+        end else if (event_valid) begin
+            case (event_code)
+                SPINDLE_CW:    begin spindle_on <= 1'b1; spindle_ccw <= 1'b0; duty <= clamped; end
+                SPINDLE_CCW:   begin spindle_on <= 1'b1; spindle_ccw <= 1'b1; duty <= clamped; end
+                SPINDLE_OFF:   spindle_on <= 1'b0;
+                SPINDLE_SPEED: duty <= clamped;
+                MIST_ON:       mist <= 1'b1;
+                FLOOD_ON:      flood <= 1'b1;
+                COOLANT_OFF:   begin mist <= 1'b0; flood <= 1'b0; end
+                OUTPUT_ON:     if (output_number) dout <= dout | select;
+                OUTPUT_OFF:    if (output_number) dout <= dout & ~select;
+                PROGRAM_END:   begin spindle_on <= 1'b0; mist <= 1'b0; flood <= 1'b0; end
+                default:       ;
+            endcase
+        end
+    end
+
+    // ---------------- PWM ----------------
+    reg  [15:0] counter, threshold;
+    reg  [31:0] product;            // duty * period, made by shift and add
+    reg  [15:0] multiplier;         // duty bits still to add (lowest first)
+    reg  [31:0] multiplicand;       // period shifted
+    reg  [4:0]  round;              // 17 .. 1 while the product is made, 0 idle
+    wire [15:0] last = (period == 16'd0 ? 16'd1 : period) - 1'b1;
+    wire        wrap = counter >= last;
+
+    always @(posedge clk) begin
+        if (rst) begin
+            counter      <= 16'd0;
+            threshold    <= 16'd0;
+            product      <= 32'd0;
+            multiplier   <= 16'd0;
+            multiplicand <= 32'd0;
+            round        <= 5'd0;
+        end else begin
+            counter <= wrap ? 16'd0 : counter + 1'b1;
+            if (round == 5'd0) begin
+                if (wrap) begin
+                    product      <= 32'd0;
+                    multiplier   <= duty;
+                    multiplicand <= {16'd0, period};
+                    round        <= 5'd17;
+                end
+            end else if (round == 5'd1) begin
+                threshold <= product[31:16];
+                round     <= 5'd0;
+            end else begin
+                if (multiplier[0])
+                    product <= product + multiplicand;
+                multiplier   <= multiplier >> 1;
+                multiplicand <= multiplicand << 1;
+                round        <= round - 1'b1;
+            end
+        end
+    end
+
+    assign spindle_pwm = spindle_on & (duty == 16'hFFFF || counter < threshold);
+endmodule
+`default_nettype wire

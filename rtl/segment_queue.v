@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: Apache-2.0
+`default_nettype none
+// Segment queue of the controller: a byte FIFO of 2^AW bytes in block RAM (one write
+// port, one synchronous read port with a read enable, as iCE40 / ECP5 block RAM is
+// inferred), first-word-fall-through at its output.
+// `in_valid` & `in_ready` writes `in_data`; `out_data` shows the oldest byte while
+// `out_valid` is high and `out_ready` takes it.  The byte at the output sits in the
+// RAM's read register, so a byte written into an empty queue shows at the output two
+// cycles later; after that one byte per cycle flows through.  `level` counts every
+// byte held (the one at the output included), `free` = 2^AW - level; `in_ready` is
+// low when the queue holds 2^AW bytes.  `flush` empties the queue (like rst).
+module segment_queue #(
+    parameter integer AW = 12       // address width: the queue holds 2^AW bytes (4 .. 15)
+) (
+    input  wire          clk,
+    input  wire          rst,
+    input  wire          flush,     // empty the queue now
+    input  wire          in_valid,
+    input  wire [7:0]    in_data,
+    output wire          in_ready,  // room for a byte
+    output wire          out_valid, // a byte at the output
+    output wire [7:0]    out_data,  // the oldest byte
+    input  wire          out_ready, // take the byte at the output
+    output wire [AW:0]   level,     // bytes held (0 .. 2^AW)
+    output wire [AW:0]   free       // 2^AW - level
+);
+    initial begin
+        if (AW < 4 || AW > 15) $error("%m: AW must be 4 .. 15");
+    end
+
+    localparam [AW:0] SIZE = {1'b1, {AW{1'b0}}};
+
+    reg  [7:0]  memory [0:(1 << AW) - 1];
+    reg  [7:0]  read_data;
+    reg  [AW:0] write_pointer, read_pointer;    // one bit more than the address: full vs empty
+    reg         held;                           // read_data holds a byte not yet taken
+
+    wire [AW:0] stored = write_pointer - read_pointer;     // bytes in the RAM
+    wire        write  = in_valid & in_ready;
+    wire        take   = held & out_ready;
+    wire        fetch  = stored != {(AW+1){1'b0}} & (~held | out_ready);
+
+    assign level     = stored + {{AW{1'b0}}, held};
+    assign free      = SIZE - level;
+    assign in_ready  = level != SIZE;
+    assign out_valid = held;
+    assign out_data  = read_data;
+
+    // the RAM: written and read in separate always blocks, as the FPGA tools infer it
+    always @(posedge clk) begin
+        if (write)
+            memory[write_pointer[AW-1:0]] <= in_data;
+    end
+
+    always @(posedge clk) begin
+        if (fetch)
+            read_data <= memory[read_pointer[AW-1:0]];
+    end
+
+    always @(posedge clk) begin
+        if (rst | flush) begin
+            write_pointer <= {(AW+1){1'b0}};
+            read_pointer  <= {(AW+1){1'b0}};
+            held          <= 1'b0;
+        end else begin
+            if (write)
+                write_pointer <= write_pointer + 1'b1;
+            if (fetch)
+                read_pointer <= read_pointer + 1'b1;
+            if (fetch)
+                held <= 1'b1;
+            else if (take)
+                held <= 1'b0;
+        end
+    end
+endmodule
+`default_nettype wire
