@@ -15,6 +15,7 @@ module top #(
     parameter integer PLL_DIVF   = 47,        // PLL feedback divider - 1 (0 .. 127)
     parameter integer PLL_DIVQ   = 5,         // PLL output divider: 2^PLL_DIVQ (1 .. 6)
     parameter integer BAUD       = 115200,    // UART bit rate (host side: interp send --baud)
+    parameter integer CURVES     = 0,         // curve core (kind 3): 0 leaves it out (kind 3 refused with error 1), to save area
     parameter integer RESET_BITS = 4          // reset lasts 2^RESET_BITS - 1 clocks after lock (1 .. 24)
 ) (
     input  wire       clk_12mhz,
@@ -42,10 +43,13 @@ module top #(
         if (CLK_HZ != VCO_HZ / (1 << PLL_DIVQ) || CLK_HZ * (1 << PLL_DIVQ) != VCO_HZ)
             $error("%m: CLK_HZ must be exactly 12 MHz * (PLL_DIVF + 1) / 2^PLL_DIVQ");
         if (BAUD < 1 || BAUD * 4 > CLK_HZ) $error("%m: BAUD must be 1 .. CLK_HZ / 4");
+        if (CURVES != 0 && CURVES != 1) $error("%m: CURVES must be 0 or 1");
         if (RESET_BITS < 1 || RESET_BITS > 24) $error("%m: RESET_BITS must be 1 .. 24");
     end
 
     wire clk, locked;
+    // PLLOUTCORE (the same clock on local routing) and SDO stay open.
+    /* verilator lint_off PINCONNECTEMPTY */
     SB_PLL40_CORE #(
         .FEEDBACK_PATH("SIMPLE"),
         .DIVR(4'd0),
@@ -66,6 +70,7 @@ module top #(
         .SCLK(1'b0),
         .SDO()
     );
+    /* verilator lint_on PINCONNECTEMPTY */
 
     // Reset: until the PLL locks (LOCK synchronized by two flip-flops), then
     // 2^RESET_BITS - 1 clocks.  The FPGA loads these registers with zeros / the
@@ -83,7 +88,7 @@ module top #(
         rst_q <= ~&por_q;
     end
 
-    uart_controller #(.CLK_HZ(CLK_HZ), .BAUD(BAUD)) u_controller (
+    uart_controller #(.CLK_HZ(CLK_HZ), .BAUD(BAUD), .CURVES(CURVES)) u_controller (
         .clk(clk), .rst(rst_q),
         .uart_rx(uart_rx), .uart_tx(uart_tx),
         .step(step), .dir(dir), .enable(enable),

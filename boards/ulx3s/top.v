@@ -13,6 +13,7 @@
 module top #(
     parameter integer CLK_HZ     = 25000000,  // system clock in Hz: the oscillator's 25 MHz
     parameter integer BAUD       = 115200,    // UART bit rate (host side: interp send --baud)
+    parameter integer CURVES     = 1,         // curve core (kind 3): 1 present, 0 left out (kind 3 refused with error 1)
     parameter integer RESET_BITS = 4          // power-on reset lasts 2^RESET_BITS - 1 clocks (1 .. 24)
 ) (
     input  wire       clk_25mhz,
@@ -36,6 +37,7 @@ module top #(
     initial begin
         if (CLK_HZ != 25000000) $error("%m: CLK_HZ must be 25000000 (the oscillator, no PLL)");
         if (BAUD < 1 || BAUD * 4 > CLK_HZ) $error("%m: BAUD must be 1 .. CLK_HZ / 4");
+        if (CURVES != 0 && CURVES != 1) $error("%m: CURVES must be 0 or 1");
         if (RESET_BITS < 1 || RESET_BITS > 24) $error("%m: RESET_BITS must be 1 .. 24");
     end
 
@@ -55,7 +57,7 @@ module top #(
     end
     always @(posedge clk) rst_q <= ~&por_q;
 
-    uart_controller #(.CLK_HZ(CLK_HZ), .BAUD(BAUD)) u_controller (
+    uart_controller #(.CLK_HZ(CLK_HZ), .BAUD(BAUD), .CURVES(CURVES)) u_controller (
         .clk(clk), .rst(rst_q),
         .uart_rx(ftdi_txd), .uart_tx(ftdi_rxd),
         .step(step), .dir(dir), .enable(enable),

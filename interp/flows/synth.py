@@ -254,7 +254,7 @@ def relative(path: Path, workdir: Path) -> str:
 
 def read_script(target: Target, files: list[Path], workdir: Path) -> str:
     """Yosys commands that read the sources (paths relative to `workdir`) and set the parameters."""
-    lines = [f"read_verilog -defer {' '.join(relative(f, workdir) for f in files)}"]
+    lines = [f"read_verilog -defer -I{relative(RTL, workdir)} {' '.join(relative(f, workdir) for f in files)}"]
     chparams = " ".join(f"-chparam {k} {v}" for k, v in target.parameters.items())
     lines.append(f"hierarchy -top {target.toplevel} {chparams}".rstrip())
     return "; ".join(lines)
@@ -550,10 +550,10 @@ BOARDS = {
     # iCE40: SB_PLL40_CORE 12 MHz -> 18 MHz (12 MHz x 48 / 32; no PLL setting gives 16 MHz exactly)
     "hx8k_breakout": Board("hx8k_breakout", "ice40", ["--hx8k", "--package", "ct256"],
                            "hx8k_breakout.pcf", "--pcf", "yowasp-icepack", ".bin",
-                           {"CLK_HZ": 18_000_000, "PLL_DIVF": 47, "PLL_DIVQ": 5}),
+                           {"CLK_HZ": 18_000_000, "PLL_DIVF": 47, "PLL_DIVQ": 5, "CURVES": 0}),
     # ECP5: the 25 MHz oscillator directly
     "ulx3s": Board("ulx3s", "ecp5", ["--25k", "--package", "CABGA381"],
-                   "ulx3s.lpf", "--lpf", "yowasp-ecppack", ".bit", {"CLK_HZ": 25_000_000}),
+                   "ulx3s.lpf", "--lpf", "yowasp-ecppack", ".bit", {"CLK_HZ": 25_000_000, "CURVES": 1}),
 }
 BOARD_TOP = "top"               # the module in boards/<name>/top.v
 BOARD_DESIGN = "uart_controller"  # the portable design the tops wrap (rtl/)
