@@ -594,8 +594,10 @@ def bitstream(name: str, out: Path, log=print, force: bool = False) -> tuple[Pat
     work = BUILD / f"board_{name}"
     result = out.resolve() / f"{name}{board.ext}"
     h = hashlib.sha1(json.dumps([name, board.parameters, board.device, board.pins]).encode())
-    for f in files + [board.top.parent / board.pins]:
+    for f in files:
         h.update(f.read_bytes())
+    # the pin file without its comments (the docs' pin tables read them)
+    h.update(re.sub(r"#[^\n]*", "", (board.top.parent / board.pins).read_text()).encode())
     key = h.hexdigest()
     cached = work / "result.json"
     if not force and cached.exists():
