@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..cores import UsageError
-from ..simulation.runner import ROOT, RTL, verilator_bin
+from ..simulation.runner import ROOT, RTL
 
 BUILD = ROOT / "build" / "synth"
 WIDTH = 32
