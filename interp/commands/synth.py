@@ -6,6 +6,10 @@ target, LUTs of the device's, FFs, block RAMs, seeds); `--csv FILE` writes the
 rows as CSV.  A bad request (unknown core, a parameter the module does not
 declare, a design that does not lint) stops before any tool runs, with one
 line and exit status 2; a failed build is one line and exit status 1.
+`--bitstream DIR` builds the boards instead (boards/<board>/top.v): one line per
+board, `--csv FILE` then writes board,family,device,clock_mhz,fmax_mhz,luts,
+lut_capacity,ffs,brams,note; a board that does not fit or misses its clock keeps
+its row (note) and makes the exit status 1.
 """
 from __future__ import annotations
 
