@@ -595,7 +595,7 @@ def bitstream(name: str, out: Path, log=print, force: bool = False) -> tuple[Pat
     result = out.resolve() / f"{name}{board.ext}"
     # Two keys: the netlist's (sources, parameters) and the whole build's (+ device, pins),
     # so that a new device or pin file re-runs nextpnr only.
-    n = hashlib.sha1(json.dumps([name, board.family, board.parameters]).encode())
+    n = hashlib.sha1(json.dumps([name, board.family, board.parameters, fam.synth, "-noflatten"]).encode())
     for f in files:
         n.update(f.read_bytes())
     netlist_key = n.hexdigest()
@@ -624,9 +624,12 @@ def bitstream(name: str, out: Path, log=print, force: bool = False) -> tuple[Pat
     log(f"bitstream: {name} ..." + (" (netlist cached)" if reuse else ""))
     row = board_row(board)
     if not reuse:
+        # -noflatten: the modules keep their boundaries (nextpnr flattens on load): stat.txt
+        # gives the area per module, and ABC maps module by module (the flat design's
+        # one ABC run on the whole controller takes far longer).
         yosys(f"{read_script(Target(name, BOARD_TOP, board.parameters), files, work)}; "
-              f"{fam.synth.format(top=BOARD_TOP, json='board.json')}; "
-              f"tee -q -o stat.json stat -json", work)
+              f"{fam.synth.format(top=BOARD_TOP, json='board.json')} -noflatten; "
+              f" tee -q -o stat.json stat -json; tee -q -o stat.txt stat", work)
         (work / "netlist.key").write_text(netlist_key)
     for stale in ("result.json", f"board{board.ext}", "report.json"):
         (work / stale).unlink(missing_ok=True)
