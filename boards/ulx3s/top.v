@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 `default_nettype none
-// ULX3S (ECP5 LFE5U-25F) board top: the portable controller design
+// ULX3S board top (ECP5 CABGA381; the build targets the LFE5U-85F variant, the
+// only one large enough for the controller): the portable controller design
 // rtl/uart_controller.v (UART link + controller) on the board's pins
 // (boards/ulx3s/ulx3s.lpf).
 //   clock ....... the 25 MHz oscillator, used directly (CLK_HZ = 25 MHz)
