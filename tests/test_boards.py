@@ -71,7 +71,7 @@ def test_bitstream_csv_and_failure_row(tmp_path, monkeypatch, capsys):
         row.update(fmax_mhz=30.0, luts=20000, lut_capacity=24288, ffs=9000, brams=3)
         return out / f"{name}.bit", row
     monkeypatch.setattr(synth, "bitstream", fake)
-    out = tmp_path / "boards.csv"
+    out = tmp_path / "new" / "boards.csv"          # its folder is made
     assert main(["synth", "--bitstream", str(tmp_path), "--csv", str(out)]) == 1
     rows = list(csv.reader(open(out, newline="")))
     assert rows[0] == synth.BOARD_CSV_HEADER

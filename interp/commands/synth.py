@@ -98,6 +98,7 @@ def run(args) -> int:
 
 
 def write_csv(path: str, header: list[str], rows: list[dict]) -> None:
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, header, extrasaction="ignore")
         w.writeheader()
