@@ -553,12 +553,13 @@ BOARDS = {
     "hx8k_breakout": Board("hx8k_breakout", "ice40", "iCE40HX8K-CT256", ["--hx8k", "--package", "ct256"],
                            "hx8k_breakout.pcf", "--pcf", "yowasp-icepack", ".bin", 7680,
                            {"CLK_HZ": 18_000_000, "PLL_DIVF": 47, "PLL_DIVQ": 5, "CURVES": 0}),
-    # ECP5: the 25 MHz oscillator directly.  The ULX3S with the 85F: the controller needs
+    # ECP5: EHXPLLL 25 MHz -> 10 MHz (the design reaches about 16 MHz).  The ULX3S with the 85F: the controller needs
     # about 45500 LUT4s, more than the 25F (24288) and the 45F (43848) have; the
     # variants share the package and the pins.
     "ulx3s": Board("ulx3s", "ecp5", "LFE5U-85F-CABGA381", ["--85k", "--package", "CABGA381"],
                    "ulx3s.lpf", "--lpf", "yowasp-ecppack", ".bit", 83640,
-                   {"CLK_HZ": 25_000_000, "CURVES": 1}),
+                   {"CLK_HZ": 10_000_000, "PLL_CLKI_DIV": 5, "PLL_CLKFB_DIV": 2, "PLL_CLKOP_DIV": 60,
+                    "CURVES": 1}),
 }
 BOARD_TOP = "top"               # the module in boards/<name>/top.v
 BOARD_DESIGN = "uart_controller"  # the portable design the tops wrap (rtl/)
