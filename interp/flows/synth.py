@@ -554,7 +554,7 @@ BOARDS = {
                            "hx8k_breakout.pcf", "--pcf", "yowasp-icepack", ".bin", 7680,
                            {"CLK_HZ": 18_000_000, "PLL_DIVF": 47, "PLL_DIVQ": 5, "CURVES": 0}),
     # ECP5: EHXPLLL 25 MHz -> 10 MHz (the design reaches about 16 MHz).  The ULX3S with the 85F: the controller needs
-    # about 45500 LUT4s, more than the 25F (24288) and the 45F (43848) have; the
+    # about 45400 LUT4s, more than the 25F (24288) and the 45F (43848) have; the
     # variants share the package and the pins.
     "ulx3s": Board("ulx3s", "ecp5", "LFE5U-85F-CABGA381", ["--85k", "--package", "CABGA381"],
                    "ulx3s.lpf", "--lpf", "yowasp-ecppack", ".bit", 83640,
