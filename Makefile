@@ -61,9 +61,10 @@ synth: fpga-deps
 	@mkdir -p out
 	$(INTERP) synth --csv out/synth.csv $(SYNTH_ARGS)
 
-# Bitstreams of the board wrapper (constraints/): iCE40-HX8K breakout, ULX3S.
+# Bitstreams of the boards (boards/<board>/top.v around rtl/uart_controller.v): iCE40-HX8K
+# breakout, ULX3S; out/bitstream/boards.csv: clock, Fmax, LUTs, FFs, BRAMs per board.
 bitstream: fpga-deps
-	$(INTERP) synth --bitstream out/bitstream
+	$(INTERP) synth --bitstream out/bitstream --csv out/bitstream/boards.csv
 
 # Cocotb benches re-run on the Yosys netlists (Icarus: iCE40 cells; Verilator: generic gates).
 test-synth: fpga-deps

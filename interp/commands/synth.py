@@ -6,6 +6,10 @@ target, LUTs of the device's, FFs, block RAMs, seeds); `--csv FILE` writes the
 rows as CSV.  A bad request (unknown core, a parameter the module does not
 declare, a design that does not lint) stops before any tool runs, with one
 line and exit status 2; a failed build is one line and exit status 1.
+`--bitstream DIR` builds the boards instead (boards/<board>/top.v): one line per
+board, `--csv FILE` then writes board,family,device,clock_mhz,fmax_mhz,luts,
+lut_capacity,ffs,brams,note; a board that does not fit or misses its clock keeps
+its row (note) and makes the exit status 1.
 """
 from __future__ import annotations
 
@@ -36,10 +40,12 @@ def add_parser(sub) -> None:
     p.add_argument("--force", action="store_true", help="re-run even where a cached result is current")
     p.add_argument("--csv", metavar="FILE", help="also write the rows as CSV "
                    "(core,family,device,fmax_mhz,luts,ffs,target_mhz,lut_capacity,brams,"
-                   "bram_capacity,seeds,parameters,note)")
+                   "bram_capacity,seeds,parameters,note; with --bitstream: "
+                   "board,family,device,clock_mhz,fmax_mhz,luts,lut_capacity,ffs,brams,note)")
     p.add_argument("--list", action="store_true", help="list the cores and their parameters; run nothing")
-    p.add_argument("--bitstream", metavar="DIR", help="instead: build the board wrapper's bitstreams "
-                   "(iCE40-HX8K breakout, ULX3S 25F) into DIR")
+    p.add_argument("--bitstream", metavar="DIR", help="instead: build the boards' bitstreams "
+                   "(boards/hx8k_breakout: iCE40-HX8K breakout; boards/ulx3s: ULX3S 25F) into DIR, "
+                   "one line per board")
     p.set_defaults(func=run)
 
 
@@ -58,20 +64,26 @@ def run(args) -> int:
         raise UsageError("--width must be at least 2")
     params = synth.parse_params(args.param)
     if args.bitstream:
-        if args.core or args.param or args.width is not None:
-            raise UsageError("--bitstream builds the board wrapper only: no --core, --param or --width")
+        if args.core or args.param or args.width is not None or args.seeds is not None:
+            raise UsageError("--bitstream builds the boards (boards/*/top.v) only: "
+                             "no --core, --param, --width or --seeds")
         need_tools(synth)
-        failed = 0
-        for board, (family, *_) in synth.BOARDS.items():
-            if args.family and family not in args.family:
+        rows, failed = [], 0
+        for name, board in synth.BOARDS.items():
+            if args.family and board.family not in args.family:
                 continue
             try:
-                path, row = synth.bitstream(board, Path(args.bitstream), log=progress)
+                path, row = synth.bitstream(name, Path(args.bitstream), log=progress, force=args.force)
             except synth.FlowError as exc:
                 print(f"synth: failed: {str(exc).splitlines()[0]}", file=sys.stderr)
                 failed += 1
                 continue
-            print(synth.summary(row) + f"  -> {path}", flush=True)
+            rows.append(row)
+            print(synth.board_summary(row) + (f"  -> {path}" if path else ""), flush=True)
+            if path is None:
+                failed += 1
+        if args.csv:
+            write_csv(args.csv, synth.BOARD_CSV_HEADER, rows)
         return 1 if failed else 0
     # Check the request (names, parameters, lint) before the tools are needed.
     chosen = synth.targets(args.core, params, args.width, args.seeds, args.family)
@@ -79,13 +91,18 @@ def run(args) -> int:
     rows, failures = synth.table(args.core, args.family, args.force, log=progress, chosen=chosen,
                                  on_row=lambda row: print(synth.summary(row), flush=True))
     if args.csv:
-        with open(args.csv, "w", newline="") as f:
-            w = csv.DictWriter(f, synth.CSV_HEADER, extrasaction="ignore")
-            w.writeheader()
-            w.writerows(rows)
+        write_csv(args.csv, synth.CSV_HEADER, rows)
     for failure in failures:
         print(f"synth: failed: {failure}", file=sys.stderr)
     return 1 if failures else 0
+
+
+def write_csv(path: str, header: list[str], rows: list[dict]) -> None:
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, header, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
 
 
 def need_tools(synth) -> None:

