@@ -202,3 +202,22 @@ def test_delivery_sweep(noise):
         seed = SEED + k
         print(f"noise {noise} seed {seed}")
         delivery_case(noise, seed, 4 if noise >= 0.01 else 30, 9, 500.0)
+
+
+def test_nak_4_repeated_is_one_line_error():
+    """A frame the controller keeps refusing as malformed (NAK 4, CRC good) stops the driver
+    with one LinkError instead of retransmitting for ever; NAK 3 goes back without shrinking."""
+    model = DeviceModel(clock_hz=50_000_000, baud=115200)
+    driver = Driver(model, baud=model.baud)
+    driver.connect()
+    driver.start_stream(bytes(200))
+    driver._send_some()
+    assert driver.sent
+    size = driver.payload
+    assert driver._handle(p.Nak(seq=driver.base, reason=p.NAK_CREDIT, free=0)) == "credit"
+    driver.recover(shrink=False)
+    assert driver.payload == size
+    with pytest.raises(LinkError, match="refused a frame"):
+        for _ in range(20):
+            driver._send_some()
+            driver._handle(p.Nak(seq=driver.base, reason=p.NAK_TYPE, free=4096))

@@ -79,6 +79,8 @@ def test_clock_mismatch_exit_2(capsys, program, monkeypatch):
     (["--port", "loop://", "--line-noise", "0.1"], "--line-noise goes with --sim"),
     (["--port", "loop://", "--baud", "0"], "--baud 0"),
     (["--port"], "expected one argument"),
+    (["--sim", "--baud", "9600"], "the link runs at 115200 .. 3000000 baud"),      # before any build
+    (["--sim", "--baud", "3000000", "--pause-seconds", "-1"], "--pause-seconds -1"),
 ])
 def test_usage_errors(capsys, program, argv, word):
     code, out, err = run(capsys, "send", program, *argv)

@@ -57,15 +57,17 @@ def open_transport(args, machine: Machine):
 
         baud = args.baud or DEFAULT_BAUD
         return DeviceModel(clock_hz=round(machine.clock_hz), baud=baud, line_noise=args.line_noise or 0.0,
-                           seed=args.seed, records_per_second=args.sim_model_rate,
+                           seed=1 if args.seed is None else args.seed, records_per_second=args.sim_model_rate,
                            fail_at=args.sim_model_fail), baud
-    try:
-        from ..link.simlink import SimLink
-    except ImportError:
-        raise LinkError("interp send --sim: the simulator is not built (interp.link.simlink is missing)") from None
-    kwargs = {"baud": args.baud} if args.baud else {}
+    from ..link.simlink import SimLink, baud_problem, default_baud
+
+    clock = round(machine.clock_hz)
+    baud = args.baud or default_baud(clock)
+    problem = baud_problem(baud, clock)
+    if problem:                     # before the simulator is built
+        raise UsageError(f"--sim: {problem}" + ("" if args.baud else " (give --baud)"))
     link = SimLink(steps=getattr(args, "steps", None), line_noise=getattr(args, "line_noise", None) or 0.0,
-                   seed=args.seed, machine=machine, **kwargs)
+                   seed=1 if args.seed is None else args.seed, machine=machine, baud=baud)
     return link, link.baud
 
 
@@ -79,7 +81,8 @@ def check_link_args(args) -> None:
     if args.port:
         if args.baud is None:
             args.baud = DEFAULT_BAUD
-        for flag, value in (("--steps", getattr(args, "steps", None)), ("--line-noise", getattr(args, "line_noise", None))):
+        for flag, value in (("--steps", getattr(args, "steps", None)), ("--line-noise", getattr(args, "line_noise", None)),
+                            ("--seed", args.seed)):
             if value is not None:
                 raise UsageError(f"{flag} goes with --sim, not --port")
     pause = getattr(args, "pause_seconds", 0.0)
@@ -185,6 +188,8 @@ def cmd_send(args) -> int:
     build = compile_build()
     stream = encode_program(compiled.commands, build)
     records = len(compiled.commands)
+    if not records:
+        print("interp: warning: the program has no command to send", file=sys.stderr)
     try:
         transport, baud = open_transport(args, machine)
     except LinkError as err:
@@ -253,11 +258,11 @@ def add_link_options(p_, sim_help: str) -> None:
     import argparse
 
     p_.add_argument("--port", metavar="DEVICE", help="serial device or pyserial URL (loop://, socket://HOST:PORT)")
-    p_.add_argument("--baud", type=int, metavar="B", help=f"bits per second (default {DEFAULT_BAUD}; --sim: the "
-                    "simulator's)")
+    p_.add_argument("--baud", type=int, metavar="B", help=f"bits per second, 115200 .. 3000000 (default {DEFAULT_BAUD}; "
+                    "--sim: 3000000, or the fastest the machine's clock allows at 4 clocks a bit)")
     p_.add_argument("--sim", action="store_true", help=sim_help)
     p_.add_argument("--machine", metavar="FILE.toml", help="machine file (default: the shipped default machine)")
-    p_.add_argument("--seed", type=int, default=1, help="--sim: the line noise's seed (default 1)")
+    p_.add_argument("--seed", type=int, help="--sim: the line noise's seed (default 1)")
     # the Python model of the controller's link (interp.link.devicemodel), for tests
     p_.add_argument("--sim-model", action="store_true", help=argparse.SUPPRESS)
     p_.add_argument("--sim-model-rate", type=float, default=2000.0, help=argparse.SUPPRESS)

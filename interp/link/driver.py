@@ -24,6 +24,7 @@ from . import protocol as p
 from .records import DEFAULT_BUILD, Build, record_bytes
 
 REG = p.REGISTER_ADDRESSES
+MAX_REFUSALS = 8            # NAK 4 in a row without progress before the driver gives up
 
 
 class LinkError(Exception):
@@ -103,7 +104,7 @@ class Driver:
         self.values: dict[int, int] = {}
         self.fresh: set[int] = set()
         # counters
-        self.frames_sent = self.recoveries = self.naks = self.timeouts = 0
+        self.frames_sent = self.recoveries = self.naks = self.timeouts = self.refusals = 0
         self._waiting = False
         self.next_probe = 0.0
 
@@ -152,6 +153,7 @@ class Driver:
         self.sent -= d
         self.free = free
         if d:
+            self.refusals = 0
             self.progress_time = self.clock()
             self.streak += d
             if self.streak >= self.grow_after and self.payload < self.lmax:
@@ -173,9 +175,17 @@ class Driver:
                 self._waiting = False
             return None
         self.naks += 1
-        self._advance(reply.seq, reply.free)
-        if not recovering and reply.reason in (p.NAK_CRC, p.NAK_GAP, p.NAK_CREDIT) and self.sent:
+        if self._advance(reply.seq, reply.free) and reply.reason == p.NAK_TYPE:
+            # a frame that passed the CRC but that the controller cannot take: a host bug (or, very
+            # rarely, a CRC collision on a noisy line): go back, and give up if it keeps coming
+            self.refusals += 1
+            if self.refusals > MAX_REFUSALS:
+                raise LinkError(f"the controller refused a frame {self.refusals} times: "
+                                f"{p.NAK_TEXT[p.NAK_TYPE]} (a protocol mismatch)")
+        if not recovering and self.sent and reply.reason in (p.NAK_CRC, p.NAK_GAP, p.NAK_TYPE):
             return "error"
+        if not recovering and self.sent and reply.reason == p.NAK_CREDIT:
+            return "credit"                 # the line is fine: resend when the credit allows, same size
         return None
 
     def _rto(self) -> float:
@@ -243,9 +253,11 @@ class Driver:
         """Send what the window and credit allow, read the replies, recover from errors."""
         self._send_some()
         self._poll_reads()
-        error = False
+        error = credit = False
         for reply in self._receive():
-            error = self._handle(reply) == "error" or error
+            answer = self._handle(reply)
+            error = answer == "error" or error
+            credit = answer == "credit" or credit
         now = self.clock()
         if (not self.sent and self.stream_pos < len(self.stream) and now >= self.next_probe
                 and self.read_pending is None):
@@ -258,15 +270,16 @@ class Driver:
         if not error and self.sent and now - self.progress_time > self._rto():
             self.timeouts += 1
             error = True
-        if error:
-            self.recover()
+        if error or credit:
+            self.recover(shrink=error)
         self._check_dead()
 
-    def recover(self) -> None:
+    def recover(self, shrink: bool = True) -> None:
         """Go back N: wait until the line is quiet, learn E with HELLO, re-cut what is not
-        acknowledged into smaller frames."""
+        acknowledged (into smaller frames after a line error; NAK 3 keeps the size)."""
         self.recoveries += 1
-        self.payload = max(self.min_payload, self.payload * 3 // 4)
+        if shrink:
+            self.payload = max(self.min_payload, self.payload * 3 // 4)
         self.streak = 0
         quiet = max(self.clock(), self.line_free) + 40 * self.byte_time + self.margin
         while self.clock() < quiet:

@@ -29,9 +29,10 @@ from pathlib import Path
 
 from ..simulation.runner import RTL
 
-__all__ = ["SimLink", "SimLinkError", "DEFAULT_BAUD"]
+__all__ = ["SimLink", "SimLinkError", "DEFAULT_BAUD", "baud_problem", "default_baud"]
 
 DEFAULT_BAUD = 3_000_000
+MIN_BAUD, MAX_BAUD = 115_200, 3_000_000     # uart_link's BAUD range
 BLOCK_SECONDS = 60.0        # a read with timeout None gives up after this much simulated time
 
 
@@ -54,6 +55,21 @@ def _clock_hz(machine) -> int:
     return int(clock)
 
 
+def baud_problem(baud: int, clock_hz: int) -> str | None:
+    """Why uart_link cannot run at `baud` with this clock (its parameter checks), or None."""
+    if not MIN_BAUD <= baud <= MAX_BAUD:
+        return f"baud {baud}: the link runs at {MIN_BAUD} .. {MAX_BAUD} baud"
+    if (clock_hz + baud // 2) // baud < 4:
+        return (f"baud {baud}: the link needs 4 clocks a bit, so at most {clock_hz // 4} baud at "
+                f"controller.clock_hz = {clock_hz}")
+    return None
+
+
+def default_baud(clock_hz: int) -> int:
+    """3 Mbaud, or the fastest whole 115200-multiple the clock allows (4 clocks a bit)."""
+    return DEFAULT_BAUD if clock_hz >= 4 * DEFAULT_BAUD else max(MIN_BAUD, clock_hz // 4 // MIN_BAUD * MIN_BAUD)
+
+
 class SimLink:
     """pyserial-like transport to the simulated controller (see the module text)."""
 
@@ -66,8 +82,9 @@ class SimLink:
             raise SimLinkError(f"line noise {line_noise} is out of 0 .. 1")
         self.clock_hz = _clock_hz(machine)
         self.baud = int(baud)
-        if not 1 <= self.baud * 2 <= self.clock_hz:
-            raise SimLinkError(f"baud {baud} must be at most half of the clock ({self.clock_hz} Hz)")
+        problem = baud_problem(self.baud, self.clock_hz)
+        if problem:
+            raise SimLinkError(problem)
         self.timeout = timeout
         self.line_noise = float(line_noise)
         self.seed = int(seed)
