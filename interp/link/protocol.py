@@ -20,6 +20,8 @@ from dataclasses import dataclass
 
 import crcmod.predefined
 
+from . import registers as _registers
+
 SYNC = 0xA5
 LMAX = 128
 HEADER = 4                  # SYNC LEN TYPE SEQ
@@ -187,21 +189,15 @@ class FrameParser:
         return frames
 
 
-# ---------------- register addresses (docs/registers.md; interp/link/registers.py is the
-# generated source of truth, these are the contract's addresses the driver needs) ----------------
+# ---------------- register addresses: from the generated map (regs/controller.rdl) ----------------
 
-REGISTER_ADDRESSES = {
-    "ID": 0x00, "VERSION": 0x04, "BUILD0": 0x08, "BUILD1": 0x0C, "CLOCK_HZ": 0x10, "QUEUE_SIZE": 0x14,
-    "STATUS": 0x18, "ERROR": 0x1C, "QUEUE_FREE": 0x20, "POS_X": 0x24, "POS_Y": 0x28, "POS_Z": 0x2C,
-    "PROBE_X": 0x30, "PROBE_Y": 0x34, "PROBE_Z": 0x38, "INPUTS": 0x3C, "CONTROL": 0x40, "OVERRIDE": 0x44,
-    "PULSE_WIDTH": 0x48, "DIR_SETUP": 0x4C, "DIR_HOLD": 0x50, "QUANTUM_LO": 0x54, "QUANTUM_HI": 0x58,
-    "MOTION": 0x5C, "INPUT_INVERT": 0x60, "SPINDLE_PERIOD": 0x64, "OUTPUTS": 0x68, "LINK_FRAMES": 0x6C,
-    "LINK_ERRORS": 0x70, "CMD_DATA": 0x74, "EXECUTED": 0x78,
-}
+REGISTER_ADDRESSES = dict(_registers.REGISTERS)
 ID_VALUE = 0x494E5450          # "INTP"
-STATE_NAMES = {0: "IDLE", 1: "RUN", 2: "HOLDING", 3: "HELD", 4: "ALARM"}
-IDLE, RUN, HOLDING, HELD, ALARM = range(5)
-CONTROL_HOLD, CONTROL_ABORT, CONTROL_CLEAR, CONTROL_PROBE_ARM, CONTROL_ENABLE = 1, 2, 4, 8, 16
+STATE_NAMES = dict(_registers.ENUMS["STATUS.state"])
+IDLE, RUN, HOLDING, HELD, ALARM = (next(k for k, v in STATE_NAMES.items() if v == name)
+                                   for name in ("IDLE", "RUN", "HOLDING", "HELD", "ALARM"))
+CONTROL_HOLD, CONTROL_ABORT, CONTROL_CLEAR, CONTROL_PROBE_ARM, CONTROL_ENABLE = (
+    1 << _registers.FIELDS[f"CONTROL.{name}"][0] for name in ("hold", "abort", "clear", "probe_arm", "enable"))
 # ERROR codes beyond motion_top's 1..9
 ERROR_TEXT = {16: "e-stop", 17: "limit switch", 18: "record error (a bad record reached the unpacker)"}
 
