@@ -23,7 +23,7 @@ from ..gcode import compile as gc
 from ..gcode.machine import Machine, load_machine
 from ..link import protocol as p
 from ..link.driver import Driver, LinkError, MachineError, MismatchError, check_controller, configure, run_program
-from ..link.records import Build, encode_program
+from ..link.records import DEFAULT_BUILD, Build, encode_program
 from .gcode import compile_text, read_program
 
 DEFAULT_BAUD = 115200
@@ -33,8 +33,8 @@ KEYS_HELP = "keys: ! hold, ~ resume, Ctrl-X abort"
 
 
 def compile_build() -> Build:
-    """The build the compiler's commands are for (interp/gcode/compile.py's constants)."""
-    return Build(W=gc.W, FEED_W=gc.FEED_W, FRAC=gc.FRAC, NW=gc.NW, PF=gc.PF, LEN_W=gc.LEN_W, ZW=gc.ZW, MW=gc.MW)
+    """The build the compiler's commands are for (records.Build's defaults)."""
+    return DEFAULT_BUILD
 
 
 # ---------------- the transports (tests replace open_transport) ----------------

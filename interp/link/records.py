@@ -18,6 +18,8 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass
 
+from ..gcode import compile as _gc
+
 # the 16 fields of a command, in record order (head = kind + plane)
 FIELD_NAMES = ("kind", "plane", "feed", "x", "y", "z", "i", "j", "k", "l",
                "limit", "exit", "rate", "cost", "length", "budget")
@@ -26,17 +28,17 @@ SIGNED = ("x", "y", "z", "i", "j", "k", "l")
 
 @dataclass(frozen=True)
 class Build:
-    """The controller's build widths (defaults: the CLI build of `interp gcode`,
-    interp/gcode/compile.py)."""
+    """The controller's build widths (defaults: the build the G-code compiler emits
+    commands for, interp/gcode/compile.py's constants)."""
 
-    W: int = 32
-    FEED_W: int = 50
-    FRAC: int = 48
-    NW: int = 40
-    PF: int = 24
-    LEN_W: int = 82
-    ZW: int = 108
-    MW: int = 12
+    W: int = _gc.W
+    FEED_W: int = _gc.FEED_W
+    FRAC: int = _gc.FRAC
+    NW: int = _gc.NW
+    PF: int = _gc.PF
+    LEN_W: int = _gc.LEN_W
+    ZW: int = _gc.ZW
+    MW: int = _gc.MW
     TW: int = 16
     POS_W: int = 32
 
