@@ -428,8 +428,9 @@ def plan_exits(segments: list[Segment], quantum: int, pf: int,
                underrun_safe: bool = False) -> list[Segment]:
     """A reference backward pass (the host's job, here for tests): each segment's
     exit speed in quanta is the highest n <= both cruise speeds from which the rest
-    of the queue can still be stopped, n^2 + 3 n <= Z0' / 2^PF + f' (f' + 1)
-    (R(n, u) <= n^2 + n - f^2 - f + 2 n), the last exit 0.  Barriers stop.
+    of the queue can still be stopped, n^2 + 5 n <= Z0' / 2^PF + f' (f' + 1)
+    (R(n, u) <= n^2 + n - f^2 - f + 2 n, and the successor enters with up to one clock
+    at n already travelled: up to 2 n less budget), the last exit 0.  Barriers stop.
     `underrun_safe`: f' = 1, every segment can stop within itself (a queue that runs
     dry, or a successor set up late, still ends in a braked stop)."""
     out = list(segments)
@@ -445,7 +446,7 @@ def plan_exits(segments: list[Segment], quantum: int, pf: int,
             nxt = out[i + 1]
             room = (nxt.budget >> pf) + (2 if underrun_safe else nxt_floor_sq)
             n = max(0, int((room) ** 0.5))
-            while n > 0 and n * n + 3 * n > room:
+            while n > 0 and n * n + 5 * n > room:
                 n -= 1
             exit_n = min(n, seg.feed // quantum, nxt.feed // quantum)
         out[i] = Segment(seg.feed, seg.limit, exit_n, seg.rate, seg.length, seg.budget)
