@@ -6,6 +6,10 @@
 // `push` and a `pop` in the same cycle are both taken, also when full.  A push
 // into a full queue without a pop is refused: nothing stored is touched and
 // `overflow` is high in that cycle.
+// The entries are a memory with one write port and an asynchronous read, and
+// reset does not clear them (they start at zero): synthesis may map them to
+// distributed RAM (ECP5: TRELLIS_DPR16X4) instead of WIDTH x DEPTH flip-flops
+// and a DEPTH-way read multiplexer.  While empty, `dout` is zero.
 module sync_fifo #(
     parameter integer WIDTH = 8,    // bits per entry (>= 1)
     parameter integer DEPTH = 4,    // number of entries (>= 1, any value)
@@ -16,7 +20,7 @@ module sync_fifo #(
     input  wire             push,
     input  wire [WIDTH-1:0] din,
     input  wire             pop,        // ignored while empty
-    output wire [WIDTH-1:0] dout,       // oldest entry
+    output wire [WIDTH-1:0] dout,       // oldest entry (zero while empty)
     output wire             valid,      // not empty
     output wire             full,
     output wire [LW-1:0]    level,      // entries stored
@@ -40,7 +44,7 @@ module sync_fifo #(
     wire   take     = pop & valid;
     wire   put      = push & (~full | take);
     assign overflow = push & ~put;
-    assign dout     = mem[rd_q];
+    assign dout     = valid ? mem[rd_q] : {WIDTH{1'b0}};
     assign level    = level_q;
 
     function [PW-1:0] next_ptr(input [PW-1:0] p);
@@ -48,18 +52,22 @@ module sync_fifo #(
     endfunction
 
     integer i;
+    initial
+        for (i = 0; i < (1 << PW); i = i + 1)
+            mem[i] = {WIDTH{1'b0}};
+
+    always @(posedge clk)
+        if (put & ~rst)
+            mem[wr_q] <= din;
+
     always @(posedge clk) begin
         if (rst) begin
             rd_q    <= {PW{1'b0}};
             wr_q    <= {PW{1'b0}};
             level_q <= {LW{1'b0}};
-            for (i = 0; i < DEPTH; i = i + 1)
-                mem[i] <= {WIDTH{1'b0}};
         end else begin
-            if (put) begin
-                mem[wr_q] <= din;
-                wr_q      <= next_ptr(wr_q);
-            end
+            if (put)
+                wr_q <= next_ptr(wr_q);
             if (take)
                 rd_q <= next_ptr(rd_q);
             if (put & ~take)

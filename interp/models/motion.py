@@ -67,7 +67,7 @@ def path_length(steps) -> float:
 
 
 class SyncFifo(CycleModel):
-    """rtl/sync_fifo.v (entries as integers; stale entries stay visible on dout)."""
+    """rtl/sync_fifo.v (entries as integers; dout is zero while empty)."""
 
     watch = {"dout": False, "valid": False, "full": False, "level": False, "overflow": False}
 
@@ -76,7 +76,7 @@ class SyncFifo(CycleModel):
         self.reset()
 
     def reset(self) -> None:
-        self.mem = [0] * (1 << self.lw)
+        self.mem = [0] * (1 << self.lw)             # stale after a reset in the RTL, never shown
         self.rd = self.wr = self.level = 0
         self.inputs: Mapping[str, int] = {}
 
@@ -93,7 +93,7 @@ class SyncFifo(CycleModel):
 
     @property
     def dout(self) -> int:
-        return self.mem[self.rd]
+        return self.mem[self.rd] if self.valid else 0
 
     def transfer(self, push: int, pop: int) -> tuple[bool, bool]:
         take = bool(pop) and self.valid
