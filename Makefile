@@ -62,9 +62,11 @@ synth: fpga-deps
 	$(INTERP) synth --csv out/synth.csv $(SYNTH_ARGS)
 
 # Bitstreams of the boards (boards/<board>/top.v around rtl/uart_controller.v): iCE40-HX8K
-# breakout, ULX3S; out/bitstream/boards.csv: clock, Fmax, LUTs, FFs, BRAMs per board.
+# breakout, ULX3S; out/bitstream/boards.csv: clock, Fmax, LUTs, FFs, BRAMs per board;
+# out/bitstream/board_area.csv: LUTs and FFs per module of each board's netlist.
 bitstream: fpga-deps
-	$(INTERP) synth --bitstream out/bitstream --csv out/bitstream/boards.csv
+	$(INTERP) synth --bitstream out/bitstream --csv out/bitstream/boards.csv; status=$$?; \
+	$(PY) -m interp.flows.board_area out/bitstream/board_area.csv; exit $$status
 
 # Cocotb benches re-run on the Yosys netlists (Icarus: iCE40 cells; Verilator: generic gates).
 test-synth: fpga-deps

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from interp.cli import main
-from interp.flows import board_docs, synth
+from interp.flows import board_area, board_docs, synth
 
 CONTRACT_HEADER = ["board", "family", "device", "clock_mhz", "fmax_mhz", "luts", "lut_capacity", "ffs", "brams"]
 BOARD_NAMES = sorted(synth.BOARDS)
@@ -98,6 +98,25 @@ def test_docs_tables_match_pin_files_and_csv():
         assert r["family"] == b.family and r["device"] == b.part
         if r["fmax_mhz"]:
             assert float(r["fmax_mhz"]) >= float(r["clock_mhz"]), "a bitstream that misses its clock"
+
+
+def test_area_rows_include_submodules_and_count_instances():
+    """A top with two instances of one leaf (two parameterizations) and a child holding a
+    third: every row is the module's own cells plus everything below it."""
+    leaf_a = {"num_cells_by_type": {"LUT4": 10, "TRELLIS_FF": 4}}
+    leaf_b = {"num_cells_by_type": {"LUT4": 3, "CCU2C": 2}}
+    mid = {"num_cells_by_type": {"LUT4": 1, "$paramod$f00\\leaf": 1}}
+    top = {"num_cells_by_type": {"LUT4": 5, "TRELLIS_FF": 1, "$paramod$f00\\leaf": 1,
+                                 "$paramod\\leaf\\W=8": 1, "mid": 2}}
+    stat = {"modules": {"\\top": top, "$paramod$f00\\leaf": leaf_a, "$paramod\\leaf\\W=8": leaf_b,
+                        "\\mid": mid}}
+    got = {r["module"]: (r["depth"], r["instances"], r["luts"], r["ffs"])
+           for r in board_area.rows(stat, "ulx3s", "ecp5")}
+    assert got == {"top": (0, 1, 5 + 10 + 7 + 2 * 11, 1 + 4 + 2 * 4),
+                   "top/mid": (1, 2, 22, 8), "top/mid/leaf": (2, 2, 20, 8),
+                   "top/leaf": (1, 2, 17, 4)}
+    text = board_area.table([{**r, "depth": str(r["depth"])} for r in board_area.rows(stat, "b", "ecp5")])
+    assert text.splitlines()[2] == "| `top` | 44 | 13 |" and "| · `leaf` × 2 | 17 | 4 |" in text
 
 
 def test_docs_link_and_flash_commands():

@@ -507,13 +507,13 @@ def test_path_modes_give_stops_and_tolerances():
 
 
 def test_scurve_shifts():
-    # window >= accel / jerk: 500 / 20000 s = 1.25e6 cycles at 50 MHz -> 2^21 = 2^12 blocks of 2^9
+    # window >= 2 accel / jerk: 2 x 500 / 20000 s = 2.5e6 cycles at 50 MHz -> 2^22 = 2^12 blocks of 2^10
     out = compile_program(Program([Line((0, 0, 0), (10, 0, 0), 600, 1)]), MACHINE, profile="scurve")
-    assert (out.settings["jerk_shift"], out.settings["block_shift"]) == (12, 9) and out.profile == "scurve"
+    assert (out.settings["jerk_shift"], out.settings["block_shift"]) == (12, 10) and out.profile == "scurve"
     check_profile(out)
-    slow = load_machine(clock_hz=50e3)          # 1250 cycles: 2^11, all in the filter
+    slow = load_machine(clock_hz=50e3)          # 2500 cycles: 2^12, all in the filter
     out = compile_program(Program([Line((0, 0, 0), (10, 0, 0), 600, 1)]), slow, profile="scurve")
-    assert (out.settings["jerk_shift"], out.settings["block_shift"]) == (11, 0)
+    assert (out.settings["jerk_shift"], out.settings["block_shift"]) == (12, 0)
     with pytest.raises(CompileError, match="S-curve's window"):
         compile_program(Program([Line((0, 0, 0), (10, 0, 0), 600, 1)]),
                         load_machine(sets=["motion.jerk_mm_s3=0.001"]), profile="scurve")

@@ -108,7 +108,7 @@ def fuzz(tmp_path, capsys, sim: str, profile: str, programs: int, moves: tuple[i
 @pytest.mark.parametrize("profile, clock", [("trapezoid", CLOCK_HZ), ("scurve", CLOCK_HZ), ("scurve", 1_000_000)])
 def test_random_holds_and_overrides_lose_no_step(tmp_path, capsys, profile, clock):
     """Verilator: two programs of 2 to 4 moves at 50 kHz; the S-curve also at 1 MHz, where its
-    window needs blocks of 2^3 clocks (block_shift 3, jerk_shift 12)."""
+    window needs blocks of 2^4 clocks (block_shift 4, jerk_shift 12)."""
     fuzz(tmp_path, capsys, "verilator", profile, 2, (2, 4), clock)
 
 

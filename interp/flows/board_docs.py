@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The generated tables of docs/boards.md: each board's pins (from its pin file)
-and the resources (from docs/boards.csv, a copy of `make bitstream`'s
-out/bitstream/boards.csv).
+"""The generated tables of docs/boards.md: each board's pins (from its pin file),
+the resources (from docs/boards.csv, a copy of `make bitstream`'s
+out/bitstream/boards.csv) and the area per module (from docs/board_area.csv, a
+copy of out/bitstream/board_area.csv: see board_area.py).
 
     python -m interp.flows.board_docs            rewrite the tables in docs/boards.md
     python -m interp.flows.board_docs --check    exit 1 if a table is stale
@@ -19,6 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..simulation.runner import ROOT
+from . import board_area
 from .synth import BOARD_CSV_HEADER, BOARDS, BOARDS_DIR
 
 DOC = ROOT / "docs" / "boards.md"
@@ -108,6 +110,8 @@ def render(text: str) -> str:
     blocks = {f"pins-{b}": pin_table(b) for b in BOARDS}
     blocks["resources"] = resources_table(read_rows()) if CSV.exists() else \
         "_No figures yet: run `make bitstream` and copy out/bitstream/boards.csv to docs/boards.csv._"
+    blocks["area"] = board_area.table(board_area.read_rows()) if board_area.CSV.exists() else \
+        "_No figures yet: run `make bitstream` and copy out/bitstream/board_area.csv to docs/._"
     for name, table in blocks.items():
         begin, end = section(name)
         if begin not in text or end not in text:

@@ -555,9 +555,9 @@ BOARDS = {
     "hx8k_breakout": Board("hx8k_breakout", "ice40", "iCE40HX8K-CT256", ["--hx8k", "--package", "ct256"],
                            "hx8k_breakout.pcf", "--pcf", "yowasp-icepack", ".bin", 7680,
                            {"CLK_HZ": 18_000_000, "PLL_DIVF": 47, "PLL_DIVQ": 5, "CURVES": 0}),
-    # ECP5: EHXPLLL 25 MHz -> 10 MHz (the design reaches about 16 MHz).  The ULX3S with the 85F: the controller needs
-    # about 45400 LUT4s, more than the 25F (24288) and the 45F (43848) have; the
-    # variants share the package and the pins.
+    # ECP5: EHXPLLL 25 MHz -> 10 MHz (the routed design reaches about 19 MHz).  The ULX3S with the 85F:
+    # the controller needs about 32500 LUT4s, more than the 25F has (24288; the 45F would hold
+    # it); the variants share the package and the pins.
     "ulx3s": Board("ulx3s", "ecp5", "LFE5U-85F-CABGA381", ["--85k", "--package", "CABGA381"],
                    "ulx3s.lpf", "--lpf", "yowasp-ecppack", ".bit", 83640,
                    {"CLK_HZ": 10_000_000, "PLL_CLKI_DIV": 5, "PLL_CLKFB_DIV": 2, "PLL_CLKOP_DIV": 60,

@@ -471,16 +471,21 @@ class Compiler:
     # ---------------- the speed profile ----------------
     def shifts(self, accel_mm_s2: float) -> tuple[int, int]:
         """(block_shift, jerk_shift): 0, 0 for the trapezoid; for the S-curve the smallest
-        window 2^(jerk_shift + block_shift) clocks >= accel / J seconds, jerk_shift <= MW."""
+        window 2^(jerk_shift + block_shift) clocks >= 2 accel / J seconds, jerk_shift <= MW.
+
+        The moving average over W turns a step of the acceleration from a to a' into a
+        jerk of |a - a'| / W: a / W where a ramp meets a cruise, 2 a / W where an
+        acceleration turns straight into a deceleration (a short move, a hold).  The
+        window 2 a / J keeps both within J."""
         if self.profile_name == "trapezoid":
             return 0, 0
         jerk = self.machine.values["motion"]["jerk_mm_s3"]
-        cycles = accel_mm_s2 / jerk * self.clock
+        cycles = 2 * accel_mm_s2 / jerk * self.clock
         total = max(0, math.ceil(math.log2(cycles) - 1e-12)) if cycles > 1 else 0
         jerk_shift = min(MW, total)
         block_shift = total - jerk_shift
         if block_shift > BLOCK_SHIFT_MAX:
-            raise CompileError(f"the S-curve's window accel / jerk = {accel_mm_s2:g} / {jerk:g} s is "
+            raise CompileError(f"the S-curve's window 2 accel / jerk = 2 x {accel_mm_s2:g} / {jerk:g} s is "
                                f"{cycles:.4g} clock cycles, beyond the hardware's 2^{MW + BLOCK_SHIFT_MAX}: "
                                f"raise motion.jerk_mm_s3 or lower the clock")
         return block_shift, jerk_shift

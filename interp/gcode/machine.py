@@ -48,7 +48,7 @@ SCHEMA: dict[str, dict[str, tuple]] = {
     "motion": {
         "junction_deviation_mm": ("float>", 0.01, 0, 1e3, "mm", "cornering tolerance (the planner's junction speeds)"),
         "profile": ("choice", "trapezoid", ("trapezoid", "scurve"), None, "", "speed profile of the hardware (--profile overrides it)"),
-        "jerk_mm_s3": ("float>", 20000.0, 0, 1e12, "mm/s^3", "jerk limit of the S-curve profile (its filter window >= accel / jerk)"),
+        "jerk_mm_s3": ("float>", 20000.0, 0, 1e12, "mm/s^3", "jerk limit of the S-curve profile (its filter window >= 2 accel / jerk)"),
     },
     "output": {
         "pulse_ns": ("float>", 1000.0, 0, 1e9, "ns", "step pulse width"),

@@ -130,7 +130,8 @@ async def drop_inside_a_block(dut):
             late = rng.randint(1, size - 1)
             ups = rng.randint(1, 6)           # ends at 1 quantum or more: the late drop happens
             plan = [1] * ups + [0] * rng.randint(0, 9) + [-1] * rng.randint(0, ups - 1)
-            inputs = ramp(rng, rng.randint(1, 500), jerk_shift, block_shift, 0, lead=2,
+            # top = ups: a lower top would cap the climb and let the plan end at 0 (no late drop)
+            inputs = ramp(rng, rng.randint(1, 500), jerk_shift, block_shift, 0, top=ups, lead=2,
                           plan=plan, late=late)
             context = f"late drop J {jerk_shift} block_shift {block_shift} late {late}"
             samples = await tb.run(inputs, context=context)
