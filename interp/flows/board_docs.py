@@ -123,7 +123,11 @@ def render(text: str) -> str:
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     text = DOC.read_text()
-    new = render(text)
+    try:
+        new = render(text)
+    except (ValueError, KeyError, OSError) as exc:     # a missing block, a bad CSV or pin file
+        print(f"board_docs: {exc}", file=sys.stderr)
+        return 1
     if CSV.exists():
         header = next(csv.reader(open(CSV, newline="")))
         if header != BOARD_CSV_HEADER:
