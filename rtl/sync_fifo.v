@@ -8,8 +8,9 @@
 // `overflow` is high in that cycle.
 // The entries are a memory with one write port and an asynchronous read, and
 // reset does not clear them (they start at zero): synthesis may map them to
-// distributed RAM (ECP5: TRELLIS_DPR16X4) instead of WIDTH x DEPTH flip-flops
-// and a DEPTH-way read multiplexer.  While empty, `dout` is zero.
+// distributed RAM (ECP5) or, the read address being a register, to block RAM
+// (iCE40) instead of WIDTH x DEPTH flip-flops and a DEPTH-way read multiplexer.
+// While empty, `dout` is zero.
 module sync_fifo #(
     parameter integer WIDTH = 8,    // bits per entry (>= 1)
     parameter integer DEPTH = 4,    // number of entries (>= 1, any value)

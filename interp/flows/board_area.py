@@ -95,6 +95,7 @@ def collect() -> list[dict]:
 
 
 def read_rows(path: Path = CSV) -> list[dict]:
+    """The rows of a CSV file (this module's or docs/boards.csv) as dicts of strings."""
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
 

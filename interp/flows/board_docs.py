@@ -85,8 +85,7 @@ def pin_table(board: str) -> str:
 
 
 def read_rows(path: Path = CSV) -> list[dict]:
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+    return board_area.read_rows(path)
 
 
 def resources_table(rows: list[dict]) -> str:
