@@ -245,7 +245,17 @@ NOT_SYNTHESIZED = {"sync_fifo": "the synthesis flow does not build it on its own
 def module_of(core: str) -> str | None:
     base = core.split("/")[0].replace("-", "_")
     base = ALIASES.get(base, base)
-    return base if base in MODULES else None
+    return base if base in MODULES or (RTL / f"{base}.v").exists() else None
+
+
+def resource_pages(pages: Path = PAGES) -> list[tuple[str, Path]]:
+    """(module, page) for every datasheet with a resources table: the indexed modules'
+    pages and any other page that carries the markers (named like its module)."""
+    found = {m: pages / f"{m}.md" for m in MODULES if (pages / f"{m}.md").exists()}
+    for page in sorted(pages.glob("*.md")):
+        if page.stem not in found and RES_BEGIN in page.read_text():
+            found[page.stem] = page
+    return list(found.items())
 
 
 def read_resources(path: Path = RESOURCES_CSV) -> list[dict]:
@@ -287,14 +297,12 @@ def with_resources(text: str, module: str, rows: list[dict]) -> str:
 
 def update_resources(csv_path: Path = RESOURCES_CSV) -> list[Path]:
     rows, changed = read_resources(csv_path), []
-    for module in MODULES:
-        page = PAGES / f"{module}.md"
-        if page.exists():
-            text = page.read_text()
-            new = with_resources(text, module, rows)
-            if new != text:
-                page.write_text(new)
-                changed.append(page)
+    for module, page in resource_pages():
+        text = page.read_text()
+        new = with_resources(text, module, rows)
+        if new != text:
+            page.write_text(new)
+            changed.append(page)
     return changed
 
 
@@ -670,12 +678,10 @@ def stale_svgs(waves: Path = WAVES) -> list[str]:
 
 def stale_resources(csv_path: Path = RESOURCES_CSV, pages: Path = PAGES) -> list[str]:
     rows, lines = read_resources(csv_path), []
-    for module in MODULES:
-        page = pages / f"{module}.md"
-        if page.exists():
-            text = page.read_text()
-            if with_resources(text, module, rows) != text:
-                lines.append(f"{_rel(page)}: resources table differs from what docs/resources.csv gives (make docs)")
+    for module, page in resource_pages(pages):
+        text = page.read_text()
+        if with_resources(text, module, rows) != text:
+            lines.append(f"{_rel(page)}: resources table differs from what docs/resources.csv gives (make docs)")
     return lines
 
 

@@ -24,6 +24,10 @@
 // clocks (restoring division by shifts).  Cap: v <= min(feed * override / 100,
 // limit), compared as 100 v <= feed * override (the product recomputed every 9
 // clocks), lowered at the DDA ticks when exceeded.  hold lowers n at every tick to 0.
+// Timing: the decision starts at registers only (the block end, the refinement's
+// quotient bit and the set-up's `known` are formed a clock ahead; the thresholds use
+// n * acc as the tick leaves it, na + p - n 2^PF) and compares floor(Zx / 2^bs) >= R,
+// which for an integer R is Zx >= R << bs, so one shifter serves both thresholds.
 module speed_ramp #(
     parameter integer FEED_W = 16,  // speed word: path units per clock (>= 2)
     parameter integer NW     = 16,  // speed in quanta n (2 .. 64)
@@ -80,6 +84,7 @@ module speed_ramp #(
 
     reg  [14:0]     bc;          // clock in the block
     reg  [3:0]      bs_q;        // block_shift
+    reg             bend;        // this clock ends a block (bc >= 2^bs_q - 1, formed a clock ahead)
     reg  [PF-1:0]   acc;         // DDA phase
     reg  [NW-1:0]   n;
     reg  [QW-1:0]   q;           // n (n + 1)
@@ -101,7 +106,6 @@ module speed_ramp #(
     reg  [7:0]      bar_count;   // finished barriers not yet passed
     reg             hold_q;
 
-    wire [14:0] mask = (15'd1 << bs_q) - 15'd1;
     wire        head      = next_valid & ~next_pop;
     wire        move_head = head & ~next_barrier;
     wire        bar_head  = head & next_barrier;
@@ -122,7 +126,8 @@ module speed_ramp #(
     wire [7:0]  ovr = override == 8'd0 ? 8'd1 : override > 8'd200 ? 8'd200 : override;
 
     // block, DDA, and n * acc after this block
-    wire          bend    = bc >= mask;
+    wire [14:0]   bc_n    = bend ? 15'd0 : bc + 15'd1;
+    wire [14:0]   mask_n  = (15'd1 << block_shift) - 15'd1;
     assign block = bend;
     wire [PF:0]   acc_sum = {1'b0, acc} + rate;
     wire          dtick   = bend & acc_sum[PF];
@@ -131,23 +136,27 @@ module speed_ramp #(
                             (dtick ? {1'b0, n, {PF{1'b0}}} : {(NAW+1){1'b0}});
     wire [NAW-1:0] na1    = bend ? na_sum[NAW-1:0] : na;
 
-    // the budget after this clock, with the refinement's quotient bit
-    wire ref_hit = (ref_count != 8'd0) & (ref_r >= {1'b0, ref_d});
-    wire signed [ZXW-1:0] zx1 = budget_x - $signed({{(ZXW-PW-1){1'b0}}, p, 1'b0}) +
-                                (ref_hit ? $signed({{(ZXW-PW-1){1'b0}}, ref_m}) : {ZXW{1'b0}});
+    // the budget after this clock, with the refinement's quotient bit (added last)
+    reg  ref_hit;                // ref_count != 0 and ref_r >= ref_d, formed a clock ahead
+    wire [MW-1:0] ref_r_less = ref_r - {1'b0, ref_d};
+    wire [MW-2:0] ref_d_half = ref_d >> 1;
+    wire signed [ZXW-1:0] zx_base = budget_x - $signed({{(ZXW-PW-1){1'b0}}, p, 1'b0});
+    wire signed [ZXW-1:0] zx1 = zx_base + (ref_hit ? $signed({{(ZXW-PW-1){1'b0}}, ref_m}) : {ZXW{1'b0}});
 
-    // the thresholds for keeping n and for n + 1
+    // the thresholds for keeping n and for n + 1, used at a DDA tick only, where
+    // na1 = na + p - n 2^PF and acc_n = acc_sum: formed from registers alone.
+    // Zx >= R << bs  <=>  floor(Zx / 2^bs) >= R  (R an integer), so Zx is shifted once.
     wire [QW-1:0]  q_up  = q + {{(QW-NW-1){1'b0}}, n, 1'b0} + {{(QW-2){1'b0}}, 2'd2};
     wire [PW-1:0]  p_up  = p + {{(PW-PF-1){1'b0}}, rate};
-    wire [NAW-1:0] na_up = na1 + {{NW{1'b0}}, acc_n};
+    wire [NAW-1:0] na_t  = na + {{(NAW-PW){1'b0}}, p} - {n, {PF{1'b0}}};
+    wire [NAW-1:0] na_t_up = na_t + {{NW{1'b0}}, acc_sum[PF-1:0]};
     wire signed [RW-1:0] r_hold = $signed({{(RW-QW){1'b0}}, q} - {{(RW-QW){1'b0}}, f_sq}) <<< PF;
     wire signed [RW-1:0] r_up   = $signed({{(RW-QW){1'b0}}, q_up} - {{(RW-QW){1'b0}}, f_sq}) <<< PF;
-    wire signed [RW-1:0] r_hold_t = r_hold + $signed({{(RW-PW-1){1'b0}}, p, 1'b0}) - $signed({{(RW-NAW-1){1'b0}}, na1, 1'b0});
-    wire signed [RW-1:0] r_up_t   = r_up + $signed({{(RW-PW-1){1'b0}}, p_up, 1'b0}) - $signed({{(RW-NAW-1){1'b0}}, na_up, 1'b0});
-    wire signed [ZXW-1:0] r_hold_x = $signed({{(ZXW-RW){r_hold_t[RW-1]}}, r_hold_t}) <<< bs_q;
-    wire signed [ZXW-1:0] r_up_x   = $signed({{(ZXW-RW){r_up_t[RW-1]}}, r_up_t}) <<< bs_q;
-    wire ok_hold = (n <= floor_n) | (zx1 >= r_hold_x);
-    wire ok_up   = ({1'b0, n} + 1'b1 <= {1'b0, floor_n}) | (zx1 >= r_up_x);
+    wire signed [RW-1:0] r_hold_t = r_hold + $signed({{(RW-PW-1){1'b0}}, p, 1'b0}) - $signed({{(RW-NAW-1){1'b0}}, na_t, 1'b0});
+    wire signed [RW-1:0] r_up_t   = r_up + $signed({{(RW-PW-1){1'b0}}, p_up, 1'b0}) - $signed({{(RW-NAW-1){1'b0}}, na_t_up, 1'b0});
+    wire signed [ZXW-1:0] zx1_s  = zx1 >>> bs_q;
+    wire ok_hold = (n <= floor_n) | (zx1_s >= $signed({{(ZXW-RW){r_hold_t[RW-1]}}, r_hold_t}));
+    wire ok_up   = (n < floor_n) | (zx1_s >= $signed({{(ZXW-RW){r_up_t[RW-1]}}, r_up_t}));
 
     // the cap: 100 v against feed * override, and the limit
     wire [FEED_W+7:0] v100  = {2'd0, speed, 6'd0} + {3'd0, speed, 5'd0} + {6'd0, speed, 2'd0};
@@ -181,7 +190,9 @@ module speed_ramp #(
     wire bar_pop  = bar_head & ~seg & (n == {NW{1'b0}}) & ((bar_count != 8'd0) | barrier_done);
     wire pop      = switch_s | load | bar_pop;
     wire [NW-1:0] n_d = st_up ? n + ONE_N : st_dn ? n - ONE_N : n;
-    wire late_n   = crossing & (exit_zero ? n > ONE_N : n_d > floor_n);
+    wire [NW-1:0] n_less  = n - ONE_N;                         // st_dn only with n >= 1
+    wire late_n   = crossing & (exit_zero ? n > ONE_N :
+                                st_up ? n >= floor_n : st_dn ? n_less > floor_n : n > floor_n);
     wire [MW+SW-1:0] rem_ext = {{MW{1'b0}}, remaining};    // S > 0 at a switch
     // a load carries S = c <= 0: charged as K quanta-clocks, K = 1 if c > -A, else
     // 2^NW - 1, and 2 p' floor((K A + c) / A) given back by the refinement
@@ -191,6 +202,8 @@ module speed_ramp #(
     wire        carry_small = rem_wide + a_wide > 0;
     wire signed [SW+NW:0] load_r = rem_wide + (carry_small ? a_wide : a_k);
     wire [MW+SW+NW:0] load_r_ext = {{MW{1'b0}}, load_r};
+    wire [MW-1:0] ref_load_r  = switch_s ? rem_ext[MW-1:0] : load_r[SW+NW] ? {MW{1'b0}} : load_r_ext[MW-1:0];
+    wire          ref_load_hit = ref_load_r >= {1'b0, speed_quantum, {(NW-1){1'b0}}};
     wire signed [ZXW-1:0] budget_next = $signed({{(ZXW-ZW){1'b0}}, next_budget}) <<< bs_q;
 
     // the cap's feed * override, recomputed all the time
@@ -199,20 +212,21 @@ module speed_ramp #(
     speed_ramp_mul #(.AW(FEED_W), .BW(8)) u_mul_fo (
         .clk(clk), .rst(rst), .start(~mo_busy), .a(feed), .b(ovr),
         .busy(mo_busy), .done(mo_done), .product(mo_product));
-    wire [NW-1:0] n_next = final_q ? {NW{1'b0}} : n_d;
     speed_ramp_setup #(.FEED_W(FEED_W), .NW(NW), .PF(PF)) u_setup (
-        .clk(clk), .rst(rst), .pop(pop), .move_head(move_head), .n(n), .n_next(n_next),
+        .clk(clk), .rst(rst), .pop(pop), .move_head(move_head), .n(n),
+        .n_up(st_up & ~final_q), .n_down(st_dn & ~final_q), .n_zero(final_q),
         .next_rate(next_rate), .next_exit(next_exit), .next_feed(next_feed), .ovr(ovr),
         .known(known), .p_sh(p_sh), .f_pre(f_pre), .fo_next(fo_next), .fn_valid(fn_valid));
 
     always @(posedge clk) begin
         if (rst) begin
-            bc <= 15'd0; bs_q <= 4'd0; acc <= {PF{1'b0}};
+            bc <= 15'd0; bs_q <= 4'd0; bend <= 1'b1; acc <= {PF{1'b0}};
             n <= {NW{1'b0}}; speed <= {FEED_W{1'b0}}; q <= {QW{1'b0}}; p <= {PW{1'b0}}; na <= {NAW{1'b0}};
             remaining <= {SW{1'b0}}; budget_x <= {ZXW{1'b0}};
             seg <= 1'b0; rate <= {(PF+1){1'b0}}; feed <= {FEED_W{1'b0}}; limit <= {FEED_W{1'b0}};
             exit_cur <= {NW{1'b0}}; f_sq_cur <= {QW{1'b0}};
-            ref_count <= 8'd0; ref_r <= {MW{1'b0}}; ref_d <= {(MW-1){1'b0}}; ref_m <= {(PW+1){1'b0}};
+            ref_count <= 8'd0; ref_r <= {MW{1'b0}}; ref_d <= {(MW-1){1'b0}}; ref_m <= {(PW+1){1'b0}}; ref_hit <= 1'b0;
+
             fo <= {(FEED_W+8){1'b0}}; fo_valid <= 1'b0; fo_ok <= 1'b0; bar_count <= 8'd0;
             up <= 1'b0; down <= 1'b0; next_pop <= 1'b0; late <= 1'b0; hold_q <= 1'b0;
         end else begin
@@ -223,7 +237,7 @@ module speed_ramp #(
                 n     <= n_d;
                 speed <= st_up ? va[FEED_W-1:0] : st_dn ? speed - speed_quantum : speed;
                 q     <= st_up ? q_up : st_dn ? q - {{(QW-NW-1){1'b0}}, n, 1'b0} : q;
-                na    <= st_up ? na_up : st_dn ? na1 - {{NW{1'b0}}, acc_n} : na1;
+                na    <= st_up ? na_t_up : st_dn ? na_t - {{NW{1'b0}}, acc_sum[PF-1:0]} : na1;
                 if (switch_s)
                     p <= st_up ? p_sh + {{(PW-PF-1){1'b0}}, next_rate} :
                          st_dn ? p_sh - {{(PW-PF-1){1'b0}}, next_rate} : p_sh;
@@ -237,8 +251,9 @@ module speed_ramp #(
             late     <= late_n;
             next_pop <= pop;
             acc      <= acc_n;
-            bc       <= bend ? 15'd0 : bc + 15'd1;
+            bc       <= bc_n;
             bs_q     <= block_shift;
+            bend     <= bc_n >= mask_n;
             hold_q   <= hold;
             bar_count <= bar_count + {7'd0, barrier_done} - {7'd0, bar_pop};
             // the segment
@@ -267,26 +282,35 @@ module speed_ramp #(
             end
             // refinement: + 2 p' floor(S / A), one quotient bit a clock, MSB first
             if (switch_s && n != {NW{1'b0}}) begin
-                ref_r <= rem_ext[MW-1:0]; ref_d <= {speed_quantum, {(NW-1){1'b0}}};
+                ref_r <= ref_load_r; ref_d <= {speed_quantum, {(NW-1){1'b0}}};
                 ref_m <= {next_rate, {NW{1'b0}}}; ref_count <= NW8;
             end else if (load) begin
-                ref_r <= load_r[SW+NW] ? {MW{1'b0}} : load_r_ext[MW-1:0];
+                ref_r <= ref_load_r;
                 ref_d <= {speed_quantum, {(NW-1){1'b0}}};
                 ref_m <= {next_rate, {NW{1'b0}}}; ref_count <= NW8;
             end else if (crossing) begin
                 ref_count <= 8'd0;
             end else if (ref_count != 8'd0) begin
-                if (ref_hit) ref_r <= ref_r - {1'b0, ref_d};
-                ref_d <= ref_d >> 1; ref_m <= ref_m >> 1; ref_count <= ref_count - 8'd1;
+                if (ref_hit) ref_r <= ref_r_less;
+                ref_d <= ref_d_half; ref_m <= ref_m >> 1; ref_count <= ref_count - 8'd1;
             end
+            // the next clock's quotient bit: the divisor halves, the remainder loses it or not
+            if (switch_s || load)
+                ref_hit <= ~(switch_s && n == {NW{1'b0}}) & ref_load_hit;
+            else if (crossing || ref_count <= 8'd1)
+                ref_hit <= 1'b0;
+            else
+                ref_hit <= (ref_hit ? ref_r_less : ref_r) >= {1'b0, ref_d_half};
         end
     end
 
 `ifdef FORMAL
     // (formal/speed_ramp.sby) n moves only at a DDA tick and by one quantum, except
     // the last quantum at the clock a segment ends at rest (from n = 1, else `late`);
-    // the registers kept by adders equal their products; the successor's set-up too
-    // (the harness holds the head until it is popped).
+    // the registers kept by adders equal their products, those formed a clock ahead
+    // their definitions; the successor's set-up too (the harness holds the head until
+    // it is popped).
+    wire [NW-1:0] n_next = final_q ? {NW{1'b0}} : n_d;
     reg f_past_valid = 1'b0;
     always @(posedge clk) f_past_valid <= 1'b1;
     wire [QW-1:0]  f_q  = {{NW{1'b0}}, n} * ({{NW{1'b0}}, n} + {{(QW-1){1'b0}}, 1'b1});
@@ -299,6 +323,8 @@ module speed_ramp #(
         assert (rate <= {1'b1, {PF{1'b0}}});
         if (!seg) assert (n == {NW{1'b0}});
         assert (q == f_q);
+        assert (bend == (bc >= (15'd1 << bs_q) - 15'd1));
+        assert (ref_hit == ((ref_count != 8'd0) && (ref_r >= {1'b0, ref_d})));
         assert (p == f_p);
         assert (na == f_na);
     end

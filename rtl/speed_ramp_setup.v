@@ -5,7 +5,9 @@
 // current one runs, with shift-and-add multipliers only (speed_ramp_mul):
 //   p_sh  = next_rate * n_sh, started with n_sh = n (NW clocks), then following n after
 //           every edge by up to two steps of +- next_rate a clock (n moves by one at
-//           most), so it is next_rate * n once `known`;
+//           most, or to 0), so it is next_rate * n once `known`; the distance n - n_sh is
+//           formed from registers, n's move of this edge (n_up, n_down, n_zero) only
+//           selects among the candidates;
 //   f_pre = f (f + 1), f = max(next_exit, 1) (NW clocks);
 //   fo_next = next_feed * override (8 clocks, recomputed all the time), `fn_valid`
 //           once a product of this head is in.
@@ -20,7 +22,9 @@ module speed_ramp_setup #(
     input  wire                  pop,        // the head is taken at this edge
     input  wire                  move_head,  // a move (not a barrier) is at the head
     input  wire [NW-1:0]         n,          // the generator's speed now
-    input  wire [NW-1:0]         n_next,     // ... after this edge
+    input  wire                  n_up,       // ... and at this edge: n + 1
+    input  wire                  n_down,     //                       n - 1
+    input  wire                  n_zero,     //                       0
     input  wire [PF:0]           next_rate,
     input  wire [NW-1:0]         next_exit,
     input  wire [FEED_W-1:0]     next_feed,
@@ -45,7 +49,8 @@ module speed_ramp_setup #(
     reg  [1:0]    pre;
     reg  [NW-1:0] n_sh;          // the n that p_sh belongs to
     reg           fn_ok;         // the running feed * override is this head's
-    assign known = (pre == DONE) & (n_sh == n);
+    reg           same;          // n_sh == n (formed a clock ahead)
+    assign known = (pre == DONE) & same;
 
     wire [NW-1:0] fx = next_exit == {NW{1'b0}} ? ONE_N : next_exit;
     wire          mp_busy, mp_done, mf_busy, mf_done, mn_busy, mn_done;
@@ -63,16 +68,27 @@ module speed_ramp_setup #(
         .clk(clk), .rst(rst), .start(~mn_busy), .a(next_feed), .b(ovr),
         .busy(mn_busy), .done(mn_done), .product(mn_product));
 
-    wire [NW:0] gap_full = {1'b0, n_next} - {1'b0, n_sh};   // n after this edge - n_sh, signed
-    wire signed [2:0] gap = $signed(gap_full) > 2 ? 3'sd2 : $signed(gap_full) < -2 ? -3'sd2 : gap_full[2:0];
+    // gap = n after this edge - n_sh, clamped to -2 .. 2: n - n_sh clamped to -4 .. 4
+    // first (n moves by one at most, or to 0), so that |moved| > 2 whenever the true
+    // distance after the edge is
+    wire [NW:0] apart_full = {1'b0, n} - {1'b0, n_sh};
+    wire signed [3:0] apart = $signed(apart_full) > 4 ? 4'sd4 : $signed(apart_full) < -4 ? -4'sd4 : apart_full[3:0];
+    wire signed [3:0] moved = apart + (n_up ? 4'sd1 : 4'sd0) - (n_down ? 4'sd1 : 4'sd0);
+    wire signed [2:0] to_zero = n_sh > {{(NW-2){1'b0}}, 2'd1} ? -3'sd2 : n_sh == ONE_N ? -3'sd1 : 3'sd0;
+    wire          far = n_zero ? n_sh > {{(NW-2){1'b0}}, 2'd2} : (moved > 4'sd2) | (moved < -4'sd2);
+    wire signed [2:0] gap = n_zero ? to_zero : moved > 4'sd2 ? 3'sd2 : moved < -4'sd2 ? -3'sd2 : moved[2:0];
+    // n_sh == n after this edge, for each way n_sh moves
+    wire          stays  = n_zero ? n_sh == {NW{1'b0}} : moved == 4'sd0;  // n_sh kept
+    wire          still  = n_zero ? n == {NW{1'b0}} : ~n_up & ~n_down;    // n_sh <= n
     wire [PW-1:0] rate1 = {{(PW-PF-1){1'b0}}, next_rate};
     wire [PW-1:0] rate2 = {{(PW-PF-2){1'b0}}, next_rate, 1'b0};
 
     always @(posedge clk) begin
         if (rst) begin
-            pre <= IDLE; n_sh <= {NW{1'b0}}; p_sh <= {PW{1'b0}}; f_pre <= {QW{1'b0}};
+            pre <= IDLE; n_sh <= {NW{1'b0}}; same <= 1'b1; p_sh <= {PW{1'b0}}; f_pre <= {QW{1'b0}};
             fo_next <= {(FEED_W+8){1'b0}}; fn_valid <= 1'b0; fn_ok <= 1'b0;
         end else begin
+            same <= pop ? stays : pre_start ? still : pre == DONE ? ~far : stays;
             if (pop) pre <= IDLE;
             else if (pre_start) begin
                 pre <= BUSY; n_sh <= n;
@@ -100,9 +116,10 @@ module speed_ramp_setup #(
     always @(*) if (!rst) begin
         if (pre != IDLE) assert (move_head);
         if (pre == DONE) assert (p_sh == f_ps);
+        assert (same == (n_sh == n));
     end
 `endif
 
-    wire unused = &{1'b0, mf_busy, mf_done, mp_product[PW], mf_product[QW], gap_full[NW:3]};
+    wire unused = &{1'b0, mf_busy, mf_done, mp_product[PW], mf_product[QW], apart_full[NW:4]};
 endmodule
 `default_nettype wire

@@ -153,6 +153,23 @@ def test_resources_check_catches_a_changed_figure(tmp_path):
     assert len(docs.stale_resources(table, pages)) == 1
 
 
+def test_resources_check_covers_pages_outside_the_index(tmp_path):
+    """A datasheet that is not in the index (speed_ramp) but carries the markers is
+    checked too, by the module named like the page."""
+    pages = tmp_path / "cores"
+    pages.mkdir()
+    (pages / "speed_ramp.md").write_text(f"# speed_ramp\n{docs.RES_BEGIN}\nhand-copied\n{docs.RES_END}\n")
+    (pages / "notes.md").write_text("# no table here\n")
+    table = tmp_path / "resources.csv"
+    table.write_text("core,family,device,fmax_mhz,luts,ffs\nspeed_ramp,ecp5,LFE5U-25F,29.4,9263,1932\n")
+    assert [m for m, _ in docs.resource_pages(pages)] == ["speed_ramp"]
+    assert len(docs.stale_resources(table, pages)) == 1
+    page = pages / "speed_ramp.md"
+    page.write_text(docs.with_resources(page.read_text(), "speed_ramp", docs.read_resources(table)))
+    assert "| 29.4 | — | 9263 | 1932 |" in page.read_text()
+    assert docs.stale_resources(table, pages) == []
+
+
 # ---------------------------------------------------------------- (d) pages and links
 
 def test_every_module_has_a_page():

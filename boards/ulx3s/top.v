@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 `default_nettype none
-// ULX3S board top (ECP5 CABGA381; the build targets the LFE5U-85F variant, the
-// only one large enough for the controller): the portable controller design
-// rtl/uart_controller.v (UART link + controller) on the board's pins
-// (boards/ulx3s/ulx3s.lpf).
+// ULX3S board top (ECP5 CABGA381; the build targets the LFE5U-25F variant, where
+// the controller fits without the curve core; the 45F and 85F hold it with
+// CURVES 1): the portable controller design rtl/uart_controller.v (UART link +
+// controller) on the board's pins (boards/ulx3s/ulx3s.lpf).
 //   clock ....... EHXPLLL from the 25 MHz oscillator (feedback from CLKOP):
 //                 CLK_HZ = 25 MHz * PLL_CLKFB_DIV / PLL_CLKI_DIV, VCO = CLK_HZ * PLL_CLKOP_DIV
 //                 (400 .. 800 MHz).  10 MHz: the controller at the compiler's widths
-//                 reaches about 16 MHz on the ECP5, not the oscillator's 25 MHz
+//                 reaches about 30 MHz routed on the 25F
 //   reset ....... held until the PLL locks, then 2^RESET_BITS - 1 clocks, and
 //                 while the FIRE1 button is pressed (LOCK and the button
 //                 synchronized by two flip-flops)
@@ -20,7 +20,7 @@ module top #(
     parameter integer PLL_CLKFB_DIV = 2,      // PLL feedback divider (1 .. 128)
     parameter integer PLL_CLKOP_DIV = 60,     // PLL output divider: VCO / CLK_HZ (1 .. 128)
     parameter integer BAUD       = 115200,    // UART bit rate (host side: interp send --baud)
-    parameter integer CURVES     = 1,         // curve core (kind 3): 1 present, 0 left out (kind 3 refused with error 1)
+    parameter integer CURVES     = 0,         // curve core (kind 3): 1 present (45F, 85F), 0 left out (kind 3 refused with error 1)
     parameter integer RESET_BITS = 4          // power-on reset lasts 2^RESET_BITS - 1 clocks (1 .. 24)
 ) (
     input  wire       clk_25mhz,

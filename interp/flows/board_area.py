@@ -1,17 +1,19 @@
 # SPDX-License-Identifier: Apache-2.0
 """Area per module of the board builds: docs/board_area.csv and the table of docs/boards.md.
 
-`make bitstream` keeps Yosys's statistics of each board's netlist (synthesized
-with -noflatten, so every module keeps its cells) in build/synth/board_<board>/
-stat.json.  This module turns them into one row per module instance of the
-hierarchy, with its LUTs and flip-flops including everything below it:
+`make bitstream` keeps Yosys's statistics of each board's design synthesized
+module by module (-noflatten, so every module keeps its cells) in
+build/synth/board_<board>/modules.json.  This module turns them into one row per
+module instance of the hierarchy, with its LUTs and flip-flops including
+everything below it:
 
-    python -m interp.flows.board_area [CSV]   build/synth/board_*/stat.json -> CSV
+    python -m interp.flows.board_area [CSV]   build/synth/board_*/modules.json -> CSV
                                               (default docs/board_area.csv)
 
 LUTs count as `interp synth` counts them: iCE40 SB_LUT4, ECP5 LUT4 plus 2 per
-CCU2C carry cell (before nextpnr packs them, so the top's figure differs a little
-from the placed count in docs/boards.csv).  Instances of one module under one
+CCU2C carry cell.  The bitstream is built from the flat netlist, which Yosys
+optimizes across module boundaries, so the placed count in docs/boards.csv is
+smaller than the top's row here.  Instances of one module under one
 parent (several parameterizations included) are one row, `name x N`.
 """
 from __future__ import annotations
@@ -85,10 +87,10 @@ def rows(stat: dict, board: str, family: str) -> list[dict]:
 
 
 def collect() -> list[dict]:
-    """Rows of every board whose build has a stat.json."""
+    """Rows of every board whose build has a modules.json."""
     out = []
     for name, board in BOARDS.items():
-        stat = BUILD / f"board_{name}" / "stat.json"
+        stat = BUILD / f"board_{name}" / "modules.json"
         if stat.exists():
             out += rows(json.loads(stat.read_text()), name, board.family)
     return out
@@ -135,7 +137,7 @@ def main(argv: list[str] | None = None) -> int:
     path = Path(argv[0]) if argv else CSV
     found = collect()
     if not found:
-        print("board_area: no build/synth/board_*/stat.json: run `make bitstream` first", file=sys.stderr)
+        print("board_area: no build/synth/board_*/modules.json: run `make bitstream` first", file=sys.stderr)
         return 1
     # a board not built here keeps its rows
     kept = [r for r in (read_rows(path) if path.exists() else [])

@@ -555,13 +555,14 @@ BOARDS = {
     "hx8k_breakout": Board("hx8k_breakout", "ice40", "iCE40HX8K-CT256", ["--hx8k", "--package", "ct256"],
                            "hx8k_breakout.pcf", "--pcf", "yowasp-icepack", ".bin", 7680,
                            {"CLK_HZ": 18_000_000, "PLL_DIVF": 47, "PLL_DIVQ": 5, "CURVES": 0}),
-    # ECP5: EHXPLLL 25 MHz -> 10 MHz (the routed design reaches about 19 MHz).  The ULX3S with the 85F:
-    # the controller needs about 32500 LUT4s, more than the 25F has (24288; the 45F would hold
-    # it); the variants share the package and the pins.
-    "ulx3s": Board("ulx3s", "ecp5", "LFE5U-85F-CABGA381", ["--85k", "--package", "CABGA381"],
-                   "ulx3s.lpf", "--lpf", "yowasp-ecppack", ".bit", 83640,
+    # ECP5: EHXPLLL 25 MHz -> 10 MHz (the routed design reaches about 30 MHz).  The ULX3S with the
+    # 25F: the controller without the curve core fills about 92 % of its 24288 LUT4s.  The 45F and
+    # 85F variants share the package and the pins: their `part`, `device`, `capacity` here, and
+    # CURVES 1 (the curve core: about 2100 LUT4s more).
+    "ulx3s": Board("ulx3s", "ecp5", "LFE5U-25F-CABGA381", ["--25k", "--package", "CABGA381"],
+                   "ulx3s.lpf", "--lpf", "yowasp-ecppack", ".bit", 24288,
                    {"CLK_HZ": 10_000_000, "PLL_CLKI_DIV": 5, "PLL_CLKFB_DIV": 2, "PLL_CLKOP_DIV": 60,
-                    "CURVES": 1}),
+                    "CURVES": 0}),
 }
 BOARD_TOP = "top"               # the module in boards/<name>/top.v
 BOARD_DESIGN = "uart_controller"  # the portable design the tops wrap (rtl/)
@@ -602,7 +603,7 @@ def bitstream(name: str, out: Path, log=print, force: bool = False) -> tuple[Pat
     result = out.resolve() / f"{name}{board.ext}"
     # Two keys: the netlist's (sources, parameters) and the whole build's (+ device, pins),
     # so that a new device or pin file re-runs nextpnr only.
-    n = hashlib.sha1(json.dumps([name, board.family, board.parameters, fam.synth, "-noflatten"]).encode())
+    n = hashlib.sha1(json.dumps([name, board.family, board.parameters, fam.synth, "flat + modules"]).encode())
     for f in files:
         n.update(f.read_bytes())
     netlist_key = n.hexdigest()
@@ -631,12 +632,14 @@ def bitstream(name: str, out: Path, log=print, force: bool = False) -> tuple[Pat
     log(f"bitstream: {name} ..." + (" (netlist cached)" if reuse else ""))
     row = board_row(board)
     if not reuse:
-        # -noflatten: the modules keep their boundaries (nextpnr flattens on load): stat.txt
-        # gives the area per module, and ABC maps module by module (the flat design's
-        # one ABC run on the whole controller takes far longer).
-        yosys(f"{read_script(Target(name, BOARD_TOP, board.parameters), files, work)}; "
-              f"{fam.synth.format(top=BOARD_TOP, json='board.json')} -noflatten; "
-              f" tee -q -o stat.json stat -json; tee -q -o stat.txt stat", work)
+        # The build's netlist is flat: Yosys optimizes across module boundaries (the
+        # controller comes out smaller than synthesized module by module).  A second run with -noflatten gives the area per module instance
+        # (modules.json, for interp.flows.board_area); its netlist is not used.
+        script = read_script(Target(name, BOARD_TOP, board.parameters), files, work)
+        yosys(f"{script}; {fam.synth.format(top=BOARD_TOP, json='board.json')}; "
+              f"tee -q -o stat.json stat -json; tee -q -o stat.txt stat", work)
+        yosys(f"{script}; {fam.synth.replace(' -json {json}', '').format(top=BOARD_TOP)} -noflatten; "
+              f"tee -q -o modules.json stat -json", work, log="yosys_modules.log")
         (work / "netlist.key").write_text(netlist_key)
     for stale in ("result.json", f"board{board.ext}", "report.json"):
         (work / stale).unlink(missing_ok=True)
