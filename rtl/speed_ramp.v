@@ -226,7 +226,6 @@ module speed_ramp #(
             seg <= 1'b0; rate <= {(PF+1){1'b0}}; feed <= {FEED_W{1'b0}}; limit <= {FEED_W{1'b0}};
             exit_cur <= {NW{1'b0}}; f_sq_cur <= {QW{1'b0}};
             ref_count <= 8'd0; ref_r <= {MW{1'b0}}; ref_d <= {(MW-1){1'b0}}; ref_m <= {(PW+1){1'b0}}; ref_hit <= 1'b0;
-
             fo <= {(FEED_W+8){1'b0}}; fo_valid <= 1'b0; fo_ok <= 1'b0; bar_count <= 8'd0;
             up <= 1'b0; down <= 1'b0; next_pop <= 1'b0; late <= 1'b0; hold_q <= 1'b0;
         end else begin

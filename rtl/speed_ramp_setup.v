@@ -74,8 +74,8 @@ module speed_ramp_setup #(
     wire [NW:0] apart_full = {1'b0, n} - {1'b0, n_sh};
     wire signed [3:0] apart = $signed(apart_full) > 4 ? 4'sd4 : $signed(apart_full) < -4 ? -4'sd4 : apart_full[3:0];
     wire signed [3:0] moved = apart + (n_up ? 4'sd1 : 4'sd0) - (n_down ? 4'sd1 : 4'sd0);
-    wire signed [2:0] to_zero = n_sh > {{(NW-2){1'b0}}, 2'd1} ? -3'sd2 : n_sh == ONE_N ? -3'sd1 : 3'sd0;
-    wire          far = n_zero ? n_sh > {{(NW-2){1'b0}}, 2'd2} : (moved > 4'sd2) | (moved < -4'sd2);
+    wire signed [2:0] to_zero = n_sh > ONE_N ? -3'sd2 : n_sh == ONE_N ? -3'sd1 : 3'sd0;
+    wire          far = n_zero ? n_sh > ONE_N + ONE_N : (moved > 4'sd2) | (moved < -4'sd2);
     wire signed [2:0] gap = n_zero ? to_zero : moved > 4'sd2 ? 3'sd2 : moved < -4'sd2 ? -3'sd2 : moved[2:0];
     // n_sh == n after this edge, for each way n_sh moves
     wire          stays  = n_zero ? n_sh == {NW{1'b0}} : moved == 4'sd0;  // n_sh kept
