@@ -633,8 +633,9 @@ def bitstream(name: str, out: Path, log=print, force: bool = False) -> tuple[Pat
     row = board_row(board)
     if not reuse:
         # The build's netlist is flat: Yosys optimizes across module boundaries (the
-        # controller comes out smaller than synthesized module by module).  A second run with -noflatten gives the area per module instance
-        # (modules.json, for interp.flows.board_area); its netlist is not used.
+        # controller comes out smaller than synthesized module by module).  A second
+        # run with -noflatten gives the area per module instance (modules.json, for
+        # interp.flows.board_area); its netlist is not used.
         script = read_script(Target(name, BOARD_TOP, board.parameters), files, work)
         yosys(f"{script}; {fam.synth.format(top=BOARD_TOP, json='board.json')}; "
               f"tee -q -o stat.json stat -json; tee -q -o stat.txt stat", work)
