@@ -13,7 +13,9 @@
 // (which resets motion_top) keeps them.  Any error latched in ERROR puts the controller in
 // ALARM: motion_top held in reset (steps stop at once), queue and partial record flushed,
 // incoming record bytes taken and dropped, spindle and coolant off, until CONTROL.clear.
-// CONTROL.abort does the same for one clock (no error).  rst (synchronous, active high)
+// CONTROL.abort does the same for one clock (no error).  CONTROL.fill holds motion_top in
+// reset and the records in the queue (the unpacker sees motion_top full), so a run starts
+// from a filled queue as from a reset.  rst (synchronous, active high)
 // returns everything to IDLE with positions 0.
 module controller #(
     parameter integer CLK_HZ   = 50000000,  // clock frequency, Hz (CLOCK_HZ register, reset timings)
@@ -85,7 +87,7 @@ module controller #(
     reg  [7:0]  error_code;
     reg  [2:0]  error_limits;
     wire        alarm = error_code != 8'd0;
-    wire        abort, clear, probe_arm, hold, hold_set, enabled;
+    wire        abort, clear, probe_arm, hold, hold_set, enabled, fill;
     wire        flush = abort | alarm;          // queue, partial record, motion_top
 
     // ---------------- record bytes: link stream or CMD_DATA words ----------------
@@ -139,7 +141,7 @@ module controller #(
         .cmd_valid(m_valid), .cmd_kind(m_kind), .cmd_plane(m_plane), .cmd_feed(m_feed),
         .cmd_x(m_x), .cmd_y(m_y), .cmd_z(m_z), .cmd_i(m_i), .cmd_j(m_j), .cmd_k(m_k), .cmd_l(m_l),
         .cmd_limit(m_limit), .cmd_exit(m_exit), .cmd_rate(m_rate), .cmd_cost(m_cost),
-        .cmd_length(m_length), .cmd_budget(m_budget), .cmd_full(m_full),
+        .cmd_length(m_length), .cmd_budget(m_budget), .cmd_full(m_full | fill),
         .record_error(record_error), .taken(taken), .assembling(assembling)
     );
 
@@ -177,7 +179,7 @@ module controller #(
     motion_top #(.W(W), .FEED_W(FEED_W), .FRAC(FRAC), .NW(NW), .PF(PF), .LEN_W(LEN_W), .ZW(ZW),
                  .MW(MW), .QDEPTH(QDEPTH), .QLW(QLW), .SDEPTH(SDEPTH), .TW(TW), .POS_W(POS_W),
                  .CURVES(CURVES)) u_motion (
-        .clk(clk), .rst(rst | flush),
+        .clk(clk), .rst(rst | flush | fill),
         .cmd_valid(m_valid), .cmd_kind(m_kind), .cmd_plane(m_plane), .cmd_feed(m_feed),
         .cmd_x(m_x), .cmd_y(m_y), .cmd_z(m_z), .cmd_i(m_i), .cmd_j(m_j), .cmd_k(m_k), .cmd_l(m_l),
         .cmd_limit(m_limit), .cmd_exit(m_exit), .cmd_rate(m_rate), .cmd_cost(m_cost),
@@ -270,7 +272,8 @@ module controller #(
     wire [31:0] executed = consumed - {{(32 - QLW){1'b0}}, m_level};
 
     wire        busy = m_busy | q_level != {(QUEUE_AW+1){1'b0}} | assembling | ~data_ready;
-    wire [2:0]  state = alarm ? 3'd4 : hold ? (stopped ? 3'd3 : 3'd2) : busy ? 3'd1 : 3'd0;
+    wire        halted = stopped | (hold & fill);       // in hold: motion_top at rest, or kept at reset
+    wire [2:0]  state = alarm ? 3'd4 : hold ? (halted ? 3'd3 : 3'd2) : busy ? 3'd1 : 3'd0;
     assign status_state = {5'd0, state};
     assign status_error = error_code;
     assign enable = enabled;
@@ -281,7 +284,7 @@ module controller #(
                       .CURVES(CURVES), .RECORD_BYTES(RECORD_BYTES)) u_regs (
         .clk(clk), .rst(rst), .wb_adr(wb_adr), .wb_dat_w(wb_dat_w), .wb_dat_r(wb_dat_r), .wb_we(wb_we),
         .wb_sel(wb_sel), .wb_stb(wb_stb), .wb_cyc(wb_cyc), .wb_ack(wb_ack),
-        .state(state), .busy(busy), .stopped(stopped), .probe_valid(probe_valid),
+        .state(state), .busy(busy), .stopped(halted), .probe_valid(probe_valid),
         .records(records > 16'd255 ? 8'd255 : records[7:0]), .error_code(error_code),
         .error_limits(error_limits), .free_bytes(queue_free), .free_records(free_records),
         .pos_x(pos_x), .pos_y(pos_y), .pos_z(pos_z), .probe_x(probe_x), .probe_y(probe_y),
@@ -289,7 +292,7 @@ module controller #(
         .outputs({8'd0, dout, flood, mist, spindle_ccw, spindle_on}), .duty(duty),
         .link_frames(link_frames), .link_duplicates(link_duplicates), .link_errors(link_errors),
         .link_gaps(link_gaps), .executed(executed), .hold_set(hold_set),
-        .hold(hold), .enable(enabled), .abort_strobe(abort), .clear_strobe(clear), .arm_strobe(probe_arm),
+        .hold(hold), .enable(enabled), .fill(fill), .abort_strobe(abort), .clear_strobe(clear), .arm_strobe(probe_arm),
         .override_percent(override_percent), .pulse_width(pulse_width), .dir_setup(dir_setup),
         .dir_hold(dir_hold), .quantum(quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
         .input_invert(input_invert), .spindle_period(spindle_period),

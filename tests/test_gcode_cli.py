@@ -29,7 +29,7 @@ PROGRAM = Program(moves=[Line((0, 0, 0), (10, 0, 5), None, 2), Event("spindle_cw
 
 
 def fake_harness(commands_path, sim, *, steps_path, timing, max_cycles, progress, vcd, settings, controls,
-                 shift=(0, 0, 0), errors=()):
+                 push_interval=1, shift=(0, 0, 0), errors=()):
     """An ideal motion_top: the command file's moves by the step models, each event at the time
     the command's trapezoid (its profile fields) covers it; one event per EVENT."""
     from interp.models.motion import Command, command_steps
@@ -178,6 +178,7 @@ def test_event_codes_in_the_commands(fakes, nc, tmp_path):
     (["gcode", "{nc}", "--events", "/proc/x.csv"], "cannot write /proc/x.csv"),
     (["gcode", "{nc}", "--json"], "--json goes with --check"),
     (["gcode", "{nc}", "--pause-seconds", "-1"], "--pause-seconds"),
+    (["gcode", "{nc}", "--push-interval", "0"], "--push-interval must be 1 .. 65536"),
     (["gcode", "{nc}", "--sim", "questa"], "invalid choice"),
     (["gcode", "{nc}", "--profile", "jerky"], "invalid choice"),
     (["gcode", "{nc}", "--resume-at", "1"], "--resume-at without a --hold-at"),
@@ -222,6 +223,7 @@ def test_controls_reach_the_harness_in_cycles(fakes, nc, tmp_path, capsys):
     assert seen["controls"] == [(250000, "override", 50), (500000, "hold", 0), (750000, "resume", 0),
                                 (1000000, "hold", 0), (1500000, "resume", 0)]
     assert seen["settings"]["override"] == 150 and seen["settings"]["jerk_shift"] > 0
+    assert seen["push_interval"] == 85                  # the record unpacker's pace (84-byte records)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "monitor: " in capsys.readouterr().out
 

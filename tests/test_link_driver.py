@@ -118,15 +118,29 @@ def test_bad_record_latches_error_18():
 
 
 def test_hold_resume_abort_keys():
+    """The run starts with the queue filled (CONTROL.fill, then a write clearing it); the keys
+    while it runs: hold, resume, abort; a key while it fills keeps the fill bit set."""
     cmds = commands(40)
     model = DeviceModel(records_per_second=100)
-    script = iter(["", "", "!", "", "", "", "~"] + [""] * 30 + ["\x18"])
+    script = iter([""] * 200 + ["!", "", "", "", "~"] + [""] * 30 + ["\x18"])      # a key a pump, ~2 ms
     _, outcome = run(model, cmds, keys=lambda: next(script, ""))
     controls = [v for name, v in model.writes if name == "CONTROL"]
-    assert controls[1:] == [p.CONTROL_HOLD | p.CONTROL_ENABLE, p.CONTROL_ENABLE,
-                            p.CONTROL_ABORT | p.CONTROL_ENABLE]
+    enable, fill = p.CONTROL_ENABLE, p.CONTROL_FILL
+    assert controls == [p.CONTROL_ABORT | p.CONTROL_CLEAR | enable | fill, enable, p.CONTROL_HOLD | enable,
+                        enable, p.CONTROL_ABORT | enable]
     assert outcome.status == "aborted" and 0 < outcome.executed < 40
     assert executed_fields(model, cmds) == cmds[:len(model.executed)]
+    # a hold key while the queue fills: the fill stays on until the release, which keeps the hold
+    model = DeviceModel(records_per_second=100)
+    script = iter(["!"])
+    driver = Driver(model)
+    driver.connect()
+    outcome = run_program(driver, b"".join(encode(c) for c in cmds), len(cmds), keys=lambda: next(script, ""),
+                          max_seconds=0.5)
+    controls = [v for name, v in model.writes if name == "CONTROL"]
+    assert controls[:3] == [p.CONTROL_ABORT | p.CONTROL_CLEAR | enable | fill, p.CONTROL_HOLD | enable | fill,
+                            p.CONTROL_HOLD | enable]
+    assert outcome.status == "timeout" and len(model.executed) == 0     # held from the start
 
 
 class Silent:

@@ -108,12 +108,13 @@ def end_point(rows) -> list[int]:
     return pos
 
 
-def both(tmp_path, rows, max_cycles=2_000_000, name="job", timing=TIMING, settings=SETTINGS, controls=()):
+def both(tmp_path, rows, max_cycles=2_000_000, name="job", timing=TIMING, settings=SETTINGS, controls=(),
+         push_interval=1):
     """The result of one job (rows of 10 fields get bench profiles), natively, natively
     without skipping (--exact) and on Icarus: the same steps CSV and the same results."""
     commands = tmp_path / f"{name}.txt"
     write_commands(commands, profiled(rows) if rows and len(rows[0]) == 10 else rows)
-    extra = {"settings": settings, "controls": controls}
+    extra = {"settings": settings, "controls": controls, "push_interval": push_interval}
     got = run_native(commands, steps_path=tmp_path / f"{name}_native.csv", timing=timing,
                      max_cycles=max_cycles, parameters=PARAMS, **extra)
     exact = run_native(commands, steps_path=tmp_path / f"{name}_exact.csv", timing=timing,
@@ -141,6 +142,24 @@ def test_random_jobs_native_equals_icarus(native, tmp_path):
     assert got["position"] == end_point(rows)
     if "events" in FEATURES:
         assert len(got["events"]) == sum(r[0] == 5 for r in rows)
+
+
+def test_paced_pushes_native_equals_icarus(native, tmp_path):
+    """push_interval 85 (the controller's record unpacker at the default build): natively,
+    without skipping and on Icarus the same steps and results; the moves end where they do
+    unpaced; a burst of events is pushed, and so run, exactly 85 cycles apart."""
+    rng, _ = seeded_random()
+    rows = random_job(rng, 40)
+    paced, free = both(tmp_path, rows, name="paced", push_interval=85), both(tmp_path, rows, name="free")
+    assert paced["position"] == free["position"] == end_point(rows)
+    assert paced["steps"] == free["steps"] and paced["cycles"] >= free["cycles"]
+    if "events" in FEATURES:
+        burst = [(5, 0, 0, 200 + k, 0, 0, 0, 0, 0, 0) for k in range(4)]
+        cycles = [e[0] for e in both(tmp_path, burst, name="burst", push_interval=85)["events"]]
+        assert [b - a for a, b in zip(cycles, cycles[1:])] == [85] * 3, cycles
+    with pytest.raises(UsageError, match="push-interval"):
+        run_native(tmp_path / "paced.txt", steps_path=tmp_path / "s.csv", timing=TIMING, max_cycles=100,
+                   parameters=PARAMS, push_interval=0)
 
 
 def slow(feed):

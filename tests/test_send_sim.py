@@ -9,13 +9,15 @@ through its UART pins in simulated time.
   * the input pins (set_pin): INPUTS, a limit switch's ERROR and ALARM;
   * a tiny built-in program: `interp send --sim --steps A` equals `interp gcode --steps B`
     byte for byte; the end position registers equal the programmed end;
-  * line noise 0.01 (most frames corrupted): the run completes, the steps in order and
-    the end position are those of `interp gcode`, nothing ran twice;
+  * line noise 0.01 (most frames corrupted): the run completes and its steps CSV equals
+    `interp gcode`'s byte for byte (the driver fills the queue before the run starts),
+    the end position registers show the programmed end, nothing ran twice;
   * determinism: the same seed, the same frames and figures;
   * bad input: one line, no traceback;
   * a program pause (M0, M6) is released after --pause-seconds without a terminal;
   * a short corpus program that starts with an event (slow; skipped without
-    ../shared/gcode): the same steps and end, every cycle later by one constant.
+    ../shared/gcode), without noise and at line noise 0.01: the steps CSV equals
+    `interp gcode`'s byte for byte.
 
 The machine file of these tests runs the controller at 12 MHz (the lowest clock for
 3 Mbaud: the link needs 4 clocks a bit) so that the simulated seconds cost few cycles.
@@ -200,16 +202,15 @@ def signed(value: int) -> int:
 
 
 def test_line_noise_completes_with_the_same_steps(files, gcode_steps):
-    """--line-noise 0.01: the steps in order and the end position are the gcode run's; the
-    registers show the programmed end, every record executed once, frames repeated."""
+    """--line-noise 0.01: the steps CSV is the gcode run's, cycles included (the program fits
+    the queue, which the driver fills before the run starts); the registers show the
+    programmed end, every record executed once, frames repeated."""
     steps = files / "noise.csv"
     _, seed = seeded_random("line noise 0.01")
     outcome, regs, result, compiled = run_driver(files, steps, 0.01, seed=seed)
     assert outcome.status == "done", outcome
     assert result["flipped_to_device"] > 0 and result["flipped_from_device"] > 0
-    sequence = [row.split(",", 1)[1] for row in steps.read_text().splitlines()[1:]]
-    reference = [row.split(",", 1)[1] for row in gcode_steps.splitlines()[1:]]
-    assert sequence == reference
+    assert steps.read_text() == gcode_steps
     end = tuple(signed(regs[n]) for n in ("POS_X", "POS_Y", "POS_Z"))
     assert end == tuple(compiled.end_steps) == PROGRAM_END
     assert tuple(result["position"]) == PROGRAM_END
@@ -262,19 +263,17 @@ def test_bad_input_one_line(files, capsys):
 @pytest.mark.slow
 @pytest.mark.skipif(not os.path.isdir(CORPUS), reason="no G-code corpus beside the repository (../shared/gcode)")
 def test_corpus_program_steps_equal_gcode(files, tmp_path, capsys):
-    """A short corpus program (ugs_window.nc: 24 records, 11 s of machine time) streamed
-    through the simulated link: the steps in order and the end position are `interp gcode`'s,
-    and the cycles are too, shifted by one constant: the program starts with an event
-    (M3), so its first move's record comes a frame time after the first push (measured:
-    5313 clocks at 12 MHz, 3 Mbaud)."""
+    """A short corpus program (ugs_window.nc: 24 records, 11 s of machine time, starting with
+    an event, M3) streamed through the simulated link, without noise and at line noise 0.01
+    (seeded): both steps CSVs equal `interp gcode`'s byte for byte, and both runs end at the
+    programmed position."""
     program = os.path.join(CORPUS, "ugs_window.nc")
     machine = str(files / "machine.toml")
-    a, b = tmp_path / "send.csv", tmp_path / "gcode.csv"
-    assert main(["gcode", program, "--machine", machine, "--steps", str(b)]) == 0
-    assert main(["send", program, "--sim", "--machine", machine, "--steps", str(a)]) == 0
-    assert "end (0, 0, 1000) steps" in capsys.readouterr().out
-    sent = [row.split(",", 1) for row in a.read_text().splitlines()[1:]]
-    reference = [row.split(",", 1) for row in b.read_text().splitlines()[1:]]
-    assert [r[1] for r in sent] == [r[1] for r in reference]
-    shifts = {int(s[0]) - int(r[0]) for s, r in zip(sent, reference)}
-    assert len(shifts) == 1 and 0 < shifts.pop() < 6000          # one frame time: 134 * 10 * 4 clocks
+    reference = tmp_path / "gcode.csv"
+    assert main(["gcode", program, "--machine", machine, "--steps", str(reference)]) == 0
+    _, seed = seeded_random("corpus program at line noise 0.01")
+    for name, noise in (("clean", []), ("noisy", ["--line-noise", "0.01", "--seed", str(seed)])):
+        sent = tmp_path / f"{name}.csv"
+        assert main(["send", program, "--sim", "--machine", machine, "--steps", str(sent), *noise]) == 0
+        assert "end (0, 0, 1000) steps" in capsys.readouterr().out
+        assert sent.read_text() == reference.read_text(), name

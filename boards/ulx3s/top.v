@@ -6,8 +6,9 @@
 // controller) on the board's pins (boards/ulx3s/ulx3s.lpf).
 //   clock ....... EHXPLLL from the 25 MHz oscillator (feedback from CLKOP):
 //                 CLK_HZ = 25 MHz * PLL_CLKFB_DIV / PLL_CLKI_DIV, VCO = CLK_HZ * PLL_CLKOP_DIV
-//                 (400 .. 800 MHz).  10 MHz: the controller at the compiler's widths
-//                 reaches about 30 MHz routed on the 25F
+//                 (400 .. 800 MHz).  15 MHz (25 MHz x 3 / 5, VCO 600 MHz): the controller
+//                 at the compiler's widths reaches about 30 MHz routed on the 25F, and a
+//                 bit at 3 Mbaud is exactly 5 clocks (at 25 MHz it would be 8.33)
 //   reset ....... held until the PLL locks, then 2^RESET_BITS - 1 clocks, and
 //                 while the FIRE1 button is pressed (LOCK and the button
 //                 synchronized by two flip-flops)
@@ -15,10 +16,10 @@
 //   machine ..... step/dir/enable, inputs, spindle, coolant, digital outputs on
 //                 the GPIO headers; the LEDs show uart_controller's led[7:0]
 module top #(
-    parameter integer CLK_HZ     = 10000000,  // system clock in Hz, = 25 MHz * PLL_CLKFB_DIV / PLL_CLKI_DIV
-    parameter integer PLL_CLKI_DIV  = 5,      // PLL reference divider (1 .. 128)
-    parameter integer PLL_CLKFB_DIV = 2,      // PLL feedback divider (1 .. 128)
-    parameter integer PLL_CLKOP_DIV = 60,     // PLL output divider: VCO / CLK_HZ (1 .. 128)
+    parameter integer CLK_HZ     = 15000000,  // system clock in Hz, = 25 MHz * PLL_CLKFB_DIV / PLL_CLKI_DIV
+    parameter integer PLL_CLKI_DIV  = 5,      // PLL reference divider (1 .. 8: the phase detector needs >= 3.125 MHz)
+    parameter integer PLL_CLKFB_DIV = 3,      // PLL feedback divider (1 .. 128)
+    parameter integer PLL_CLKOP_DIV = 40,     // PLL output divider: VCO / CLK_HZ (1 .. 128)
     parameter integer BAUD       = 115200,    // UART bit rate (host side: interp send --baud)
     parameter integer CURVES     = 0,         // curve core (kind 3): 1 present (45F, 85F), 0 left out (kind 3 refused with error 1)
     parameter integer RESET_BITS = 4          // power-on reset lasts 2^RESET_BITS - 1 clocks (1 .. 24)
@@ -42,8 +43,8 @@ module top #(
     output wire [3:0] dout
 );
     initial begin
-        if (PLL_CLKI_DIV < 1 || PLL_CLKI_DIV > 128 || PLL_CLKFB_DIV < 1 || PLL_CLKFB_DIV > 128
-            || PLL_CLKOP_DIV < 1 || PLL_CLKOP_DIV > 128) $error("%m: the PLL dividers must be 1 .. 128");
+        if (PLL_CLKI_DIV < 1 || PLL_CLKI_DIV > 8 || PLL_CLKFB_DIV < 1 || PLL_CLKFB_DIV > 128
+            || PLL_CLKOP_DIV < 1 || PLL_CLKOP_DIV > 128) $error("%m: PLL_CLKI_DIV must be 1 .. 8, the other PLL dividers 1 .. 128");
         if (CLK_HZ * PLL_CLKI_DIV != 25000000 * PLL_CLKFB_DIV)
             $error("%m: CLK_HZ must be exactly 25 MHz * PLL_CLKFB_DIV / PLL_CLKI_DIV");
         if (CLK_HZ / 1000 * PLL_CLKOP_DIV < 400000 || CLK_HZ / 1000 * PLL_CLKOP_DIV > 800000)

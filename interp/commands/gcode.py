@@ -26,6 +26,7 @@ from pathlib import Path
 from ..cores import UsageError
 from ..gcode.compile import EVENT_NAMES, Compiled, compile_program, write_commands
 from ..gcode.machine import AXES, Machine, load_machine
+from ..link.records import unpack_interval
 from ..simulation.output import check_outputs, ensure_dir
 
 SIMS = ("verilator", "icarus")
@@ -72,16 +73,17 @@ def compile_text(text: str, machine: Machine | None = None, pause_seconds: float
 
 
 def run_simulation(commands_path: str, sim: str, *, steps_path, timing: dict, max_cycles: int,
-                   progress, vcd, settings: dict, controls: list) -> dict:
+                   progress, vcd, settings: dict, controls: list, push_interval: int = 1) -> dict:
     """motion_top on the command file (interface 3) with the profile settings and the
-    hold / resume / override schedule [(cycle, kind, value)]; the harness's result dict."""
+    hold / resume / override schedule [(cycle, kind, value)], a command pushed at least
+    push_interval cycles after the previous one; the harness's result dict."""
     try:
         from ..simulation import native
     except ImportError as err:
         raise RuntimeError(f"the simulation harness is not available: {err}") from None
     arguments = {"steps_path": steps_path, "timing": (timing["pulse_width"], timing["setup"], timing["hold"]),
                  "max_cycles": max_cycles, "progress": progress, "vcd": vcd, "settings": settings,
-                 "controls": controls}
+                 "controls": controls, "push_interval": push_interval}
     if sim == "verilator":
         return native.run_native(commands_path, **arguments)
     return native.run_cocotb_job(commands_path, sim=sim, **arguments)
@@ -327,6 +329,8 @@ def cmd_gcode(args) -> int:
         raise UsageError("--pause-seconds must be 0 or more")
     if args.max_seconds is not None and not args.max_seconds > 0:
         raise UsageError("--max-seconds must be positive")
+    if args.push_interval is not None and not 1 <= args.push_interval <= 65536:
+        raise UsageError("--push-interval must be 1 .. 65536")
     machine = load_machine(args.machine, args.set, args.clock_hz)
     override, controls, holds = controls_of(args, machine.clock_hz)
     if args.check and (controls or args.plot_speed or override != 100):
@@ -375,7 +379,8 @@ def simulate_program(args, program, compiled: Compiled, machine: Machine, contro
         try:
             result = run_simulation(str(commands_path), args.sim, steps_path=steps_path,
                                     timing=machine.timing(), max_cycles=max_cycles, progress=progress,
-                                    vcd=args.vcd, settings=dict(compiled.settings), controls=list(controls))
+                                    vcd=args.vcd, settings=dict(compiled.settings), controls=list(controls),
+                                    push_interval=args.push_interval or unpack_interval())
         finally:
             progress.close()
         worst = None
@@ -439,6 +444,9 @@ def add_parser(sub) -> None:
     p.add_argument("--max-seconds", type=float, metavar="S",
                    help="machine-time limit (default 2 x the estimate / the slowest override, + the holds + 10 s)")
     p.add_argument("--vcd", metavar="FILE", help="waveform file")
+    p.add_argument("--push-interval", type=int, metavar="N",
+                   help="clocks from one command's push into motion_top to the next, at least (default: "
+                        "RECORD_BYTES + 1, the controller's record unpacker; 1: motion_top fed directly)")
     p.add_argument("--plot", metavar="FILE.png", help="PNG of the stepped XY path over the programmed one")
     p.add_argument("--profile", choices=PROFILES, help="speed profile (default: the machine file's motion.profile)")
     p.add_argument("--hold-at", action="append", type=float, default=[], metavar="S",

@@ -61,6 +61,7 @@ class DeviceModel:
         self.hold = False
         self.hold_since = 0.0
         self.enabled = False
+        self.fill = False
         self.regs = {"OVERRIDE": 100, "PULSE_WIDTH": 25, "DIR_SETUP": 25, "DIR_HOLD": 25, "QUANTUM_LO": 1,
                      "QUANTUM_HI": 0, "MOTION": 0, "INPUT_INVERT": 0, "SPINDLE_PERIOD": clock_hz // 20000}
         self.writes: list[tuple[str, int]] = []     # register writes executed, in order
@@ -260,7 +261,7 @@ class DeviceModel:
         return p.RUN if self.busy or len(self.queue) >= self.record_len else p.IDLE
 
     def _can_execute(self) -> bool:
-        return (not self.error and not self.hold and len(self.queue) >= self.record_len
+        return (not self.error and not self.hold and not self.fill and len(self.queue) >= self.record_len
                 and not (self.busy and self.running_until > self.t))
 
     def _execute(self) -> None:
@@ -309,7 +310,7 @@ class DeviceModel:
             a["QUEUE_FREE"]: (free & 0xFFFF) | (free // self.record_len) << 16,
             a["POS_X"]: self.position[0] & 0xFFFFFFFF, a["POS_Y"]: self.position[1] & 0xFFFFFFFF,
             a["POS_Z"]: self.position[2] & 0xFFFFFFFF,
-            a["CONTROL"]: int(self.hold) | int(self.enabled) << 4,
+            a["CONTROL"]: int(self.hold) | int(self.enabled) << 4 | int(self.fill) << 5,
             a["LINK_FRAMES"]: (self.frames & 0xFFFF) | (self.duplicates & 0xFFFF) << 16,
             a["LINK_ERRORS"]: (self.errors & 0xFFFF) | (self.gaps & 0xFFFF) << 16,
             a["EXECUTED"]: len(self.executed) & 0xFFFFFFFF,
@@ -330,6 +331,7 @@ class DeviceModel:
                 self.hold_since = self.t
             self.hold = bool(value & p.CONTROL_HOLD)
             self.enabled = bool(value & p.CONTROL_ENABLE)
+            self.fill = bool(value & p.CONTROL_FILL)        # records wait in the queue
             if value & p.CONTROL_ABORT:
                 self.queue.clear()
                 self.busy = False

@@ -443,18 +443,27 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     typed since the last call ('!' hold, '~' resume, Ctrl-X abort).
     A program pause (M0, M1, M6: the controller holds by itself) is released
     pause_resume seconds after the machine has stopped, or, with None, by the '~' key;
-    on_pause(Snapshot) is told once per pause."""
+    on_pause(Snapshot) is told once per pause.
+    The run starts from a filled queue: CONTROL.fill is set while the first bytes go out
+    (the whole program, or all but LMAX bytes of the queue's room) and cleared by a
+    WRITE sequenced after them, so motion_top starts as from a reset with its records
+    there: the steps come at the cycles `interp gcode` gives while the link keeps up."""
     start = driver.clock()
     # a stale partial record or a latched error of an earlier run: flush and clear
     status = driver.read_register("STATUS")
     if field(status, 3, 1) and field(status, 0, 3) != p.ALARM:
         raise LinkError(f"the controller is busy ({p.STATE_NAMES.get(field(status, 0, 3), '?')}): "
                         "wait for its program to end or abort it")
-    driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_CLEAR | p.CONTROL_ENABLE)
+    driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_CLEAR | p.CONTROL_ENABLE | p.CONTROL_FILL)
     base = driver.read_register("EXECUTED")
+    fill_bytes = max(1, min(len(stream), driver.free - driver.lmax))
     driver.start_stream(stream)
     snap = Snapshot(records=records, total_bytes=len(stream))
     held = aborted = paused = False
+    filling = True
+
+    def control(bits: int) -> None:         # hold / resume / abort keep the fill bit while filling
+        driver.queue_write("CONTROL", bits | p.CONTROL_ENABLE | (p.CONTROL_FILL if filling else 0))
     paused_since = None
     next_round, polling = driver.clock(), False
     while True:
@@ -464,18 +473,21 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
             next_round, polling = driver.clock() + driver.poll_seconds, True
         fresh_round = polling and all(REG[n] in driver.fresh for n in POLLED)
         driver.pump()
+        if filling and (driver.stream_pos >= fill_bytes or aborted):
+            filling = False                     # sequenced after the bytes cut so far
+            control(p.CONTROL_HOLD if held else 0)
         if keys is not None:
             for key in keys():
                 if key == "!" and not held:
-                    driver.queue_write("CONTROL", p.CONTROL_HOLD | p.CONTROL_ENABLE)
+                    control(p.CONTROL_HOLD)
                     held = True
                 elif key == "~" and (held or paused):
-                    driver.queue_write("CONTROL", p.CONTROL_ENABLE)
+                    control(0)
                     held = paused = False
                     paused_since = None
                 elif key == "\x18" and not aborted:
                     driver.drop_stream()
-                    driver.queue_write("CONTROL", p.CONTROL_ABORT | p.CONTROL_ENABLE)
+                    control(p.CONTROL_ABORT)
                     aborted = True
         if not fresh_round:
             continue
@@ -500,7 +512,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
         if paused and snap.state == p.HELD and pause_resume is not None:
             paused_since = driver.clock() if paused_since is None else paused_since
             if driver.clock() - paused_since >= pause_resume:
-                driver.queue_write("CONTROL", p.CONTROL_ENABLE)
+                control(0)
                 paused, paused_since = False, None
         busy = field(v["STATUS"], 3, 1)
         if aborted and driver.stream_done() and not busy:

@@ -196,8 +196,8 @@ ID_VALUE = 0x494E5450          # "INTP"
 STATE_NAMES = dict(_registers.ENUMS["STATUS.state"])
 IDLE, RUN, HOLDING, HELD, ALARM = (next(k for k, v in STATE_NAMES.items() if v == name)
                                    for name in ("IDLE", "RUN", "HOLDING", "HELD", "ALARM"))
-CONTROL_HOLD, CONTROL_ABORT, CONTROL_CLEAR, CONTROL_PROBE_ARM, CONTROL_ENABLE = (
-    1 << _registers.FIELDS[f"CONTROL.{name}"][0] for name in ("hold", "abort", "clear", "probe_arm", "enable"))
+CONTROL_HOLD, CONTROL_ABORT, CONTROL_CLEAR, CONTROL_PROBE_ARM, CONTROL_ENABLE, CONTROL_FILL = (
+    1 << _registers.FIELDS[f"CONTROL.{name}"][0] for name in ("hold", "abort", "clear", "probe_arm", "enable", "fill"))
 # ERROR codes beyond motion_top's 1..9
 ERROR_TEXT = {16: "e-stop", 17: "limit switch", 18: "record error (a bad record reached the unpacker)"}
 

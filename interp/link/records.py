@@ -78,6 +78,13 @@ def record_bytes(build=None) -> int:
     return 1 + sum(nbytes(bits) for _, bits in layout(build))
 
 
+def unpack_interval(build=None) -> int:
+    """Clocks between two records the controller's record unpacker hands to motion_top
+    from a filled queue: RECORD_BYTES clocks to take the bytes (one a clock) and one to
+    push (85 at the default build).  interp gcode pushes its commands no faster."""
+    return record_bytes(build) + 1
+
+
 def fields_of(command) -> dict[str, int]:
     """A command as the dict encode() takes: a dict (returned as is), an object with
     fields() / row() (interp.gcode.compile.Cmd, interp.models.motion.Command: the

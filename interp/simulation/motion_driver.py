@@ -3,7 +3,8 @@
 
 The job is a JSON file whose path is in $INTERP_JOB_FILE: the commands, the
 output-stage timing (port values), max_cycles and the output files.  Commands
-are pushed whenever the previous cycle's sample showed cmd_full low; inputs
+are pushed whenever the previous cycle's sample showed cmd_full low (and, with
+"push_interval" K in the job, at least K cycles after the previous push); inputs
 are driven and outputs sampled at the falling edge, the first cycle after
 reset counts 1 (the native harness, interp/simulation/native/motion_main.cpp,
 counts the same way).  Two kinds of job:
@@ -61,6 +62,7 @@ async def run_commands(dut):
     pending, next_index = commands, 0
     pulses, rows, errors, events, stops = [], [], [], [], []
     prev_step, cycle, stopped, next_control, awaiting, hold = 0, 0, False, 0, False, 0
+    push_interval, last_push = int(job.get("push_interval", 1)), 0
     steps_file = open(job["steps"], "w") if native else None
     if steps_file:
         steps_file.write("cycle,dx,dy,dz\n")
@@ -79,8 +81,10 @@ async def run_commands(dut):
                     awaiting = False
                 hold = int(kind == "hold")
                 tb.drive({"hold": hold})
-            push = next_index < len(pending) and not int(dut.cmd_full.value)
+            paced = next_index != 0 and cycle + 1 < last_push + push_interval
+            push = next_index < len(pending) and not int(dut.cmd_full.value) and not paced
             if push:
+                last_push = cycle + 1
                 tb.drive({**pending[next_index], "cmd_valid": 1})
                 next_index += 1
             else:

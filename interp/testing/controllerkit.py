@@ -26,7 +26,7 @@ REG = {name: 4 * n for n, name in enumerate(
      "POS_X", "POS_Y", "POS_Z", "PROBE_X", "PROBE_Y", "PROBE_Z", "INPUTS", "CONTROL", "OVERRIDE",
      "PULSE_WIDTH", "DIR_SETUP", "DIR_HOLD", "QUANTUM_LO", "QUANTUM_HI", "MOTION", "INPUT_INVERT",
      "SPINDLE_PERIOD", "OUTPUTS", "LINK_FRAMES", "LINK_ERRORS", "CMD_DATA", "EXECUTED"))}
-HOLD, ABORT, CLEAR, PROBE_ARM, ENABLE = 1, 2, 4, 8, 16
+HOLD, ABORT, CLEAR, PROBE_ARM, ENABLE, FILL = 1, 2, 4, 8, 16, 32
 IDLE, RUN, HOLDING, HELD, ALARM = range(5)
 
 
@@ -106,6 +106,7 @@ class ControllerBench:
         self.rb = record_bytes(self.build)
         self.steps = StepLog()
         self.pushes: list[dict] = []
+        self.push_cycles: list[int] = []        # the cycle of each push
 
     async def start(self):
         from cocotbext.wishbone.driver import WishboneMaster
@@ -151,6 +152,7 @@ class ControllerBench:
             await RisingEdge(motion.cmd_valid)
             await ReadOnly()
             if int(motion.cmd_valid.value):
+                self.push_cycles.append(self.cycle())
                 self.pushes.append({"kind": int(motion.cmd_kind.value), "plane": int(motion.cmd_plane.value),
                                     **{n: int(getattr(motion, f"cmd_{n}").value) for n in (
                                         "feed", *SIGNED, "limit", "exit", "rate", "cost", "length", "budget")}})

@@ -7,7 +7,8 @@ unknown addresses; records through CMD_DATA and through the byte stream compared
 field with the commands pushed into motion_top; a line + arc + helix program ending at its
 programmed position (POS_*); e-stop and a limit switch mid-arc (the step pins low in the
 cycle the synchronized input shows it, error latched until clear); feed hold and resume
-mid-helix (no step lost); abort (mid-record too) and restart; rst at random cycles (seeded);
+mid-helix (no step lost); abort (mid-record too) and restart; CONTROL.fill (records held,
+then released at the unpacker's pace); rst at random cycles (seeded);
 events -> outputs, PWM duty; the probe latch; bad records (kind 6, 7; a curve when the
 curve core is left out).  The benches' small build (W 16, FRAC 16, CURVES 0, a 256-byte
 queue) for most; the G-code build (W 32, FRAC 48, CURVES 1) runs a compiled G-code program.
@@ -21,7 +22,7 @@ from interp.models.profile import profile_for
 from interp.simulation import motion_build
 from interp.simulation.native.build import CLI_PARAMETERS
 from interp.simulation.runner import run_cocotb
-from interp.testing.controllerkit import (ABORT, ALARM, CLEAR, ENABLE, HELD, HOLD, IDLE, PROBE_ARM, REG, RUN,
+from interp.testing.controllerkit import (ABORT, ALARM, CLEAR, ENABLE, FILL, HELD, HOLD, IDLE, PROBE_ARM, REG, RUN,
                                           ControllerBench, icarus_in_make_test, pushed_fields)
 from interp.testing.tbkit import seeded_rng
 
@@ -113,10 +114,12 @@ async def registers(dut):
         before = await tb.read(name)
         await tb.write(name, 0xFFFFFFFF ^ before)
         assert await tb.read(name) == before, f"{name} is read-only"
-    # CONTROL: hold and enable are RW, abort / clear / probe_arm read 0
+    # CONTROL: hold, enable and fill are RW, abort / clear / probe_arm read 0
     await tb.write("CONTROL", 0xFFFFFFFF)
-    assert await tb.read("CONTROL") == HOLD | ENABLE
+    assert await tb.read("CONTROL") == HOLD | ENABLE | FILL
     assert int(dut.enable.value) == 1
+    assert await tb.state() == HELD                  # hold at rest (filling): held
+    await tb.write("CONTROL", HOLD)
     assert await tb.state() == HELD                  # hold at rest: held
     await tb.write("CONTROL", 0)
     assert await tb.read("CONTROL") == 0 and int(dut.enable.value) == 0
@@ -304,6 +307,29 @@ async def abort_and_restart(dut):
 
 
 @cocotb.test()
+async def fill_then_run(dut):
+    """CONTROL.fill: the records wait in the queue (none reaches motion_top, no step, STATUS
+    counts them, RUN); cleared, the first record enters motion_top within two clocks of the
+    write's ack and the next ones exactly RECORD_BYTES + 1 clocks apart (the unpacker's pace,
+    which interp gcode keeps); the program ends at its position."""
+    tb = await Bench(dut).start()
+    await tb.write("CONTROL", ENABLE | FILL)
+    cmds = tb.profiled([Command(EVENT, 0, 200), Command(EVENT, 0, 201), Command(LINE, ONE // 2, 6, -4, 1)])
+    await tb.send(tb.records(cmds))
+    await tb.clocks(3 * tb.rb)
+    assert tb.pushes == [] and tb.steps.edges == []
+    status = await tb.read("STATUS")
+    assert status >> 8 & 0xFF == len(cmds) and status & 7 == RUN, f"STATUS {status:#x}"
+    await tb.write("CONTROL", ENABLE)
+    released = tb.cycle()
+    await tb.wait_idle()
+    assert len(tb.push_cycles) == len(cmds)
+    assert abs(tb.push_cycles[0] - released) <= 2, (released, tb.push_cycles)
+    assert [b - a for a, b in zip(tb.push_cycles, tb.push_cycles[1:])] == [tb.rb + 1] * (len(cmds) - 1)
+    assert await tb.position() == tb.end_of(cmds[2:])[0] == tb.steps.position()
+
+
+@cocotb.test()
 async def reset_at_random_cycles(dut):
     """rst at seeded random cycles while records stream in, the machine moves and the spindle
     runs: IDLE at once, pins low, positions 0, registers at reset; then a program runs exactly."""
@@ -477,8 +503,8 @@ async def gcode_program(dut):
 
 
 SMALL_TESTS = ["registers", "records_to_motion_top", "program_ends_at_its_position", "estop_and_limit_mid_arc",
-               "hold_resume_mid_helix", "abort_and_restart", "reset_at_random_cycles", "events_drive_outputs",
-               "probe_latch", "bad_records"]
+               "hold_resume_mid_helix", "abort_and_restart", "fill_then_run", "reset_at_random_cycles",
+               "events_drive_outputs", "probe_latch", "bad_records"]
 
 
 def test_controller(sim):

@@ -49,11 +49,11 @@ async def bus_and_fields(dut):
     # CMD_DATA waits for data_ready; data_write strobes once, with the word
     cycles, _, seen = await access(tb, REG["CMD_DATA"], 0xA1B2C3D4, ready_after=5)
     assert cycles == 6 and [s["data_write"] for s in seen] == [0] * 5 + [1], seen
-    # CONTROL strobes: one cycle each, hold and enable kept
-    _, _, seen = await access(tb, REG["CONTROL"], 0b11111)
+    # CONTROL strobes: one cycle each, hold, enable and fill kept
+    _, _, seen = await access(tb, REG["CONTROL"], 0b111111)
     assert [(s["abort_strobe"], s["clear_strobe"], s["arm_strobe"]) for s in seen] == [(1, 1, 1)]
-    assert int(dut.hold.value) == 1 and int(dut.enable.value) == 1
-    assert (await access(tb, REG["CONTROL"]))[1] == 0b10001
+    assert int(dut.hold.value) == 1 and int(dut.enable.value) == 1 and int(dut.fill.value) == 1
+    assert (await access(tb, REG["CONTROL"]))[1] == 0b110001
     await access(tb, REG["CONTROL"], 0)
     tb.drive({"hold_set": 1})
     await FallingEdge(dut.clk)

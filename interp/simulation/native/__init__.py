@@ -123,14 +123,16 @@ def read_commands(path) -> list[tuple[int, ...]]:
 def run_native(commands_path, *, steps_path, timing, max_cycles: int,
                progress: Callable[[int, int, int], None] | None = None, vcd=None,
                parameters: dict | None = None, rtl: Path = RTL, exact: bool = False,
-               settings: Mapping | None = None, controls=None) -> dict:
+               settings: Mapping | None = None, controls=None, push_interval: int = 1) -> dict:
     """Run a command file through the native model of motion_top (see the module text).
 
     `timing`: (pulse_width, setup, hold) cycles, or a dict with those keys (hold or hold_time);
     `progress(cycle, steps, dispatched)` is called every 2^22 cycles while it runs;
     `vcd`: a waveform file (a separate build with tracing); `parameters`: motion_top's
     (default the CLI build's); `exact`: simulate every cycle (no quiet-stretch skipping;
-    same results, for cross-checks); `settings`, `controls`: see the module text."""
+    same results, for cross-checks); `settings`, `controls`: see the module text;
+    `push_interval`: a command is pushed at least this many cycles after the previous one
+    (interp gcode: the controller's record unpacker, interp.link.records.unpack_interval)."""
     pulse_width, setup, hold = timing_values(timing)
     quantum, block_shift, jerk_shift, override = settings_values(settings)
     control_list = control_rows(controls)
@@ -145,7 +147,8 @@ def run_native(commands_path, *, steps_path, timing, max_cycles: int,
                "--result", str(result_path), "--max-cycles", str(int(max_cycles)),
                "--timing", f"{pulse_width},{setup},{hold}", "--progress-log2", str(PROGRESS_LOG2),
                "--exact", "1" if exact else "0",
-               "--settings", f"{quantum},{block_shift},{jerk_shift},{override}"]
+               "--settings", f"{quantum},{block_shift},{jerk_shift},{override}",
+               "--push-interval", str(int(push_interval))]
         if control_list:
             controls_path = Path(tmp) / "controls.txt"
             controls_path.write_text("".join(f"{c} {k} {v}\n" for c, k, v in control_list))
@@ -170,7 +173,7 @@ def run_native(commands_path, *, steps_path, timing, max_cycles: int,
 
 def run_cocotb_job(commands, sim: str, timing, steps_path, max_cycles: int, vcd=None,
                    parameters: dict | None = None, progress=None, settings: Mapping | None = None,
-                   controls=None) -> dict:
+                   controls=None, push_interval: int = 1) -> dict:
     """The same job under cocotb (Icarus or Verilator): same files, same result dict.
 
     `commands`: a command file path, or rows of 16 integers (or objects with ports())."""
@@ -182,4 +185,4 @@ def run_cocotb_job(commands, sim: str, timing, steps_path, max_cycles: int, vcd=
         rows = [command_row(c) for c in commands]
     return run(rows, sim, timing_values(timing), steps_path or os.devnull, max_cycles, vcd,
                full_parameters(parameters if parameters is not None else CLI_PARAMETERS), progress,
-               dict(zip(SETTINGS, settings_values(settings))), control_rows(controls))
+               dict(zip(SETTINGS, settings_values(settings))), control_rows(controls), int(push_interval))

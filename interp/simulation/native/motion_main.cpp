@@ -3,7 +3,7 @@
 //
 //   motion_sim --commands FILE --steps FILE --result FILE --max-cycles N
 //              --timing PULSE_WIDTH,SETUP,HOLD [--settings QUANTUM,BLOCK_SHIFT,JERK_SHIFT,OVERRIDE]
-//              [--controls FILE] [--vcd FILE] [--progress-log2 K]
+//              [--controls FILE] [--vcd FILE] [--progress-log2 K] [--push-interval K]
 //
 // Command file: one command per line, 16 decimal integers
 // "kind plane feed x y z i j k l limit exit rate cost length budget" (blank
@@ -11,7 +11,9 @@
 // motion_top as interp/simulation/motion_driver.py does under cocotb: inputs
 // change while clk is low, outputs are sampled after each rising edge; rst for
 // two rising edges, then the first cycle counts 1.  A command is pushed
-// (cmd_valid) in every cycle whose previous sample showed cmd_full low.
+// (cmd_valid) in every cycle whose previous sample showed cmd_full low and that is at
+// least --push-interval cycles (default 1) after the previous push: the controller's
+// record unpacker hands a record on every RECORD_BYTES + 1 clocks at most.
 // Settings: speed_quantum, block_shift, jerk_shift, override (default 1,0,0,100).
 // Controls file: lines "CYCLE hold|resume|override VALUE", cycles not decreasing;
 // each is applied after the sample of that cycle (cycle 0: before the first edge),
@@ -377,7 +379,7 @@ void push_fields(Vmotion_top& top, const Command& c) {
 int main(int argc, char** argv) {
     const char *commands_path = nullptr, *steps_path = nullptr, *result_path = nullptr, *vcd_path = nullptr,
                *controls_path = nullptr;
-    uint64_t max_cycles = 0, timing[3] = {1, 0, 0}, settings[4] = {1, 0, 0, 100};
+    uint64_t max_cycles = 0, timing[3] = {1, 0, 0}, settings[4] = {1, 0, 0, 100}, push_interval = 1;
     int progress_log2 = 22;
     bool exact = false;
     for (int a = 1; a < argc; ++a) {
@@ -405,6 +407,7 @@ int main(int argc, char** argv) {
         }
         else if (opt == "--max-cycles") max_cycles = number("--max-cycles", value);
         else if (opt == "--progress-log2") progress_log2 = int(number("--progress-log2", value));
+        else if (opt == "--push-interval") push_interval = number("--push-interval", value);
         else if (opt == "--timing") {
             std::string t = value;
             for (int k = 0; k < 3; ++k) {
@@ -421,6 +424,7 @@ int main(int argc, char** argv) {
     if (vcd_path) fail("this build has no VCD support (build it with trace)");
 #endif
     if (progress_log2 < 1 || progress_log2 > 62) fail("--progress-log2 must be 1 .. 62");
+    if (push_interval < 1 || push_interval > 65536) fail("--push-interval must be 1 .. 65536");
 
     const std::vector<Command> commands = read_commands(commands_path);
     const std::vector<Control> controls = read_controls(controls_path);
@@ -482,7 +486,7 @@ int main(int argc, char** argv) {
     std::vector<Event> events;
     const size_t total = commands.size();
     size_t next = 0, next_control = 0;
-    uint64_t cycle = 0, rows = 0;
+    uint64_t cycle = 0, rows = 0, last_push = 0;
     struct HoldStop {
         uint64_t hold, stopped, steps;     // steps: the row count at the hold, then the rows in between
         bool reached;
@@ -553,7 +557,10 @@ int main(int argc, char** argv) {
                 top->hold = c.kind == 0;
             }
         }
-        const bool push = next < total && !top->cmd_full;
+        // the next rising edge is cycle + 1; a push no sooner than push_interval after the last
+        const bool paced = next != 0 && next < total && cycle + 1 < last_push + push_interval;
+        const bool push = next < total && !top->cmd_full && !paced;
+        if (push) last_push = cycle + 1;
         if (push) {
             push_fields(*top, commands[next++]);
             top->cmd_valid = 1;
@@ -596,7 +603,7 @@ int main(int argc, char** argv) {
         }
 #ifdef QUIET_SKIP
         if (skip) {
-            bool active = push || rise || top->error || control_now;
+            bool active = push || paced || rise || top->error || control_now;
 #ifdef HAS_EVENTS
             active = active || top->event_valid;
 #endif
