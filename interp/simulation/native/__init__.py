@@ -15,7 +15,8 @@ cycles not decreasing, each applied after the sample of that cycle; hold_stops: 
 each hold, the cycle it came, the first cycle `stopped` was high (None if resumed
 before) and the step rows in between.  The harness
 (motion_main.cpp, built once per parameter set by build.py) pushes the
-commands whenever cmd_full is low, counts cycles as the cocotb driver
+commands whenever cmd_full is low (and push_interval cycles or more after the
+previous push), counts cycles as the cocotb driver
 interp/simulation/motion_driver.py does, writes the steps CSV
 ("cycle,dx,dy,dz") and returns the result.  `stopped` is true when it gave up
 at max_cycles (cycles = max_cycles; `pushed` / `dispatched` say how far the
