@@ -132,9 +132,9 @@ module speed_ramp #(
     wire [PF:0]   acc_sum = {1'b0, acc} + rate;
     wire          dtick   = bend & acc_sum[PF];
     wire [PF-1:0] acc_n   = bend ? acc_sum[PF-1:0] : acc;
-    wire [NAW:0]  na_sum  = {1'b0, na} + {{(NAW+1-PW){1'b0}}, p} -
-                            (dtick ? {1'b0, n, {PF{1'b0}}} : {(NAW+1){1'b0}});
-    wire [NAW-1:0] na1    = bend ? na_sum[NAW-1:0] : na;
+    wire [NAW-1:0] na_p   = na + {{(NAW-PW){1'b0}}, p};          // n * acc + n * rate
+    wire [NAW-1:0] na_t   = na_p - {n, {PF{1'b0}}};              // ... less n 2^PF at a tick
+    wire [NAW-1:0] na1    = bend ? (dtick ? na_t : na_p) : na;
 
     // the budget after this clock, with the refinement's quotient bit (added last)
     reg  ref_hit;                // ref_count != 0 and ref_r >= ref_d, formed a clock ahead
@@ -144,11 +144,10 @@ module speed_ramp #(
     wire signed [ZXW-1:0] zx1 = zx_base + (ref_hit ? $signed({{(ZXW-PW-1){1'b0}}, ref_m}) : {ZXW{1'b0}});
 
     // the thresholds for keeping n and for n + 1, used at a DDA tick only, where
-    // na1 = na + p - n 2^PF and acc_n = acc_sum: formed from registers alone.
+    // na1 = na_t = na + p - n 2^PF and acc_n = acc_sum: formed from registers alone.
     // Zx >= R << bs  <=>  floor(Zx / 2^bs) >= R  (R an integer), so Zx is shifted once.
     wire [QW-1:0]  q_up  = q + {{(QW-NW-1){1'b0}}, n, 1'b0} + {{(QW-2){1'b0}}, 2'd2};
     wire [PW-1:0]  p_up  = p + {{(PW-PF-1){1'b0}}, rate};
-    wire [NAW-1:0] na_t  = na + {{(NAW-PW){1'b0}}, p} - {n, {PF{1'b0}}};
     wire [NAW-1:0] na_t_up = na_t + {{NW{1'b0}}, acc_sum[PF-1:0]};
     wire signed [RW-1:0] r_hold = $signed({{(RW-QW){1'b0}}, q} - {{(RW-QW){1'b0}}, f_sq}) <<< PF;
     wire signed [RW-1:0] r_up   = $signed({{(RW-QW){1'b0}}, q_up} - {{(RW-QW){1'b0}}, f_sq}) <<< PF;
@@ -329,6 +328,6 @@ module speed_ramp #(
     end
 `endif
 
-    wire unused = &{1'b0, na_sum[NAW], rem_ext[MW+SW-1:MW], load_r_ext[MW+SW+NW:MW]};
+    wire unused = &{1'b0, rem_ext[MW+SW-1:MW], load_r_ext[MW+SW+NW:MW]};
 endmodule
 `default_nettype wire
