@@ -82,7 +82,6 @@ module controller #(
 
     localparam integer RECORD_BYTES = 1 + 3 * ((FEED_W + 7) / 8) + 7 * ((W + 7) / 8) + (NW + 7) / 8
                                       + (PF + 8) / 8 + (LEN_W + 7) / 8 + (ZW + 7) / 8;
-    localparam [7:0] RB = RECORD_BYTES[7:0];
 
     reg  [7:0]  error_code;
     reg  [2:0]  error_limits;
@@ -146,21 +145,18 @@ module controller #(
     );
 
     // records written and not yet taken by the unpacker (STATUS[15:8])
-    reg  [7:0]  write_at;                       // byte of the record being written
     reg  [15:0] records;
-    wire        record_in = q_write && write_at == RB - 1'b1;
+    wire        record_in;
     wire        record_out = taken & ~flush;
+    record_bounds #(.RECORD_BYTES(RECORD_BYTES)) u_bounds (
+        .clk(clk), .rst(rst), .flush(flush), .write(q_write), .data(q_in_data), .last(record_in));
     always @(posedge clk) begin
         if (rst | flush) begin
-            write_at <= 8'd0;
-            records  <= 16'd0;
-        end else begin
-            if (q_write)
-                write_at <= record_in ? 8'd0 : write_at + 1'b1;
-            if (record_in & ~record_out)
-                records <= records + 1'b1;
-            else if (record_out & ~record_in)
-                records <= records - 1'b1;
+            records <= 16'd0;
+        end else if (record_in & ~record_out) begin
+            records <= records + 1'b1;
+        end else if (record_out & ~record_in) begin
+            records <= records - 1'b1;
         end
     end
 

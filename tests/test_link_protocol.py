@@ -154,15 +154,51 @@ def test_record_round_trip(fields):
 
 
 def test_compiled_program_records():
-    """The compiler's commands (interp gcode's path) become records field for field."""
+    """The compiler's commands (interp gcode's path) become records field for field: plain,
+    and compact (what interp send sends), read back as the controller's unpacker does."""
     from interp.commands.gcode import compile_text
 
     _, compiled = compile_text("G21 G90\nM3 S1000\nG1 X1 Y2 F600\nG2 X3 Y2 I1 J0\nG4 P0.1\nM5\nM2\n")
-    stream = r.encode_program(compiled.commands)
+    stream = r.encode_program(compiled.commands, compact_records=False)
     assert len(stream) == 84 * len(compiled.commands)
-    kinds = set()
+    short = r.encode_program(compiled.commands)
+    assert len(short) < len(stream) / 2
+    reader, at, kinds = r.RecordReader(), 0, set()
     for n, cmd in enumerate(compiled.commands):
         fields = r.decode(stream[84 * n:84 * n + 84])
         assert tuple(fields[k] for k in r.FIELD_NAMES) == cmd.fields()
+        size = reader.length(short[at:])
+        assert short[at] & r.COMPACT and r.decode(reader.take(short[at:at + size])) == fields
+        at += size
         kinds.add(cmd.kind)
+    assert at == len(short) and reader.whole_records(short) == len(compiled.commands)
     assert {0, 1, 4, 5} <= kinds                                     # line, arc, dwell, event
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.fixed_dictionaries({k: st.integers(lo, hi) for k, (lo, hi) in FIELD_RANGES.items()}),
+       st.fixed_dictionaries({k: st.integers(lo, hi) for k, (lo, hi) in FIELD_RANGES.items()}),
+       st.sets(st.sampled_from(sorted(FIELD_RANGES))))
+def test_compact_round_trip(previous, fields, kept):
+    """A compact record after any previous one reads back as its plain record; unchanged
+    fields cost nothing (the table's 8 bytes and the changed fields' differences)."""
+    fields = {k: previous[k] if k in kept else v for k, v in fields.items()}
+    before, record = r.encode(previous), r.encode(fields)
+    short = r.compact(record, before)
+    reader = r.RecordReader()
+    reader.previous = before
+    assert reader.length(short) == len(short)
+    assert reader.take(short) == record
+    sizes = dict(r.layout())
+    assert len(short) <= 8 + sum(r.nbytes(sizes[k]) for k in sizes if fields[k] != previous[k])
+
+
+def test_compact_refuses_long_difference():
+    """A nibble above its field's bytes (exit: 5 bytes) is an error, like the controller's 18;
+    the record is still taken (B bytes of that field)."""
+    table = bytearray(7)
+    table[4] = 6 << 4                                                # field 9, exit
+    reader = r.RecordReader()
+    with pytest.raises(ValueError, match="longer than its field"):
+        reader.take(bytes([r.COMPACT]) + table + bytes(6))
+    assert r.compact(r.encode({}), bytes(84)) == bytes([r.COMPACT]) + bytes(7)   # all zero: 8 bytes

@@ -3,22 +3,25 @@
 
     python -m interp.benchmarks.link [--quick] [--records N] [--only TEXT]
 
-1. Records per second: the host driver (interp send's sender) streams N records that
+1. Bytes per second: the host driver (interp send's sender) streams N records that
    execute at once (coolant on / off events) through the simulated link
    (interp.link.simlink: the Verilator model of rtl/uart_controller.v, driven bit by
-   bit) at 3 Mbaud and at 115200 baud; the rate is the records over the simulated
+   bit) at 3 Mbaud and at 115200 baud; the rate is the record bytes over the simulated
    seconds from the first byte sent to the last record acknowledged.  The ceiling the
    frame format allows (DATA frames of LMAX payload bytes, 6 bytes of overhead, 10 bits
-   a byte) is given beside it.
+   a byte) is given beside it, and the records per second that rate carries at 84 bytes
+   a record (plain records).
 2. Queue level: for each corpus program (the densest first: the most records per second
-   of machine time), the planned end time of every command (interp.gcode.compile's
-   command_time: the planner's trapezoid times and the dwells) against records arriving
-   at the measured rate whenever the controller has room for them.  The controller
-   holds CAPACITY records (its segment queue, 2^QUEUE_AW bytes, plus motion_top's
-   command queue), full at the start (the driver primes it, or the program is shorter).
-   The lowest level is the fewest records waiting ahead of the running one at any
-   command's start (before the program's last CAPACITY records, where the queue drains
-   by design); 0 with waits > 0: the queue starves (the machine waits for the link).
+   of machine time), its compact records (the bytes interp send sends) at the measured
+   byte rate give its records per second; the planned end time of every command
+   (interp.gcode.compile's command_time: the planner's trapezoid times and the dwells)
+   is played against records arriving at that rate whenever the controller has room for
+   them.  The controller holds CAPACITY records (its segment queue, 2^QUEUE_AW bytes, at
+   the program's mean record size, plus motion_top's command queue), full at the start
+   (the driver fills it, or the program is shorter).  The lowest level is the fewest
+   records waiting ahead of the running one at any command's start (before the
+   program's last CAPACITY records, where the queue drains by design); 0 with waits > 0:
+   the queue starves (the machine waits for the link).
 """
 from __future__ import annotations
 
@@ -103,14 +106,16 @@ def measure_rate(baud: int, records: int, machine=None, seed: int = 1, line_nois
         executed = (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
     finally:
         result = link.close()
-    return {**result, "records": len(compiled.commands), "seconds": seconds,
-            "rate": len(compiled.commands) / seconds, "executed": executed}
+    return {**result, "records": len(compiled.commands), "bytes": len(stream), "seconds": seconds,
+            "rate": len(compiled.commands) / seconds, "byte_rate": len(stream) / seconds, "executed": executed}
 
 
 def dense_programs(only: str | None = None, count: int | None = None, machine=None):
-    """[(name, commands, machine seconds, command_time)] of the corpus programs that
-    compile, the most commands per machine second first."""
+    """[(name, commands, machine seconds, command_time, stream bytes)] of the corpus programs
+    that compile, the most commands per machine second first (stream: interp send's
+    compact records)."""
     from ..commands.gcode import compile_text
+    from ..commands.send import compile_build, encode_program
 
     machine = machine or load_machine()
     out = []
@@ -122,7 +127,8 @@ def dense_programs(only: str | None = None, count: int | None = None, machine=No
         except Exception:                  # noqa: BLE001 - a program the front end refuses
             continue
         if compiled.commands and compiled.machine_time_s > 0:
-            out.append((path.name, len(compiled.commands), compiled.machine_time_s, list(compiled.command_time)))
+            out.append((path.name, len(compiled.commands), compiled.machine_time_s, list(compiled.command_time),
+                        len(encode_program(compiled.commands, compile_build()))))
     out.sort(key=lambda row: -row[1] / row[2])
     return out[:count] if count else out
 
@@ -136,24 +142,27 @@ def tables(quick: bool, records: int | None = None, only: str | None = None):
     for baud in BAUDS:
         m = measure_rate(baud, records if baud > 200_000 else max(20, records // 5))
         rates.append((baud, m))
-    rate_rows = [[baud, m["records"], round(m["seconds"], 4), round(m["rate"], 1), round(ceiling(baud, size), 1),
-                  round(m["rate"] / ceiling(baud, size), 3), f"{m['cycles_per_second']:.3g}"] for baud, m in rates]
-    slots = capacity(size)
+    top = ceiling(1, 1)
+    rate_rows = [[baud, m["records"], m["bytes"], round(m["seconds"], 4), round(m["byte_rate"]),
+                  round(baud * top), round(m["byte_rate"] / (baud * top), 3), round(m["byte_rate"] / size, 1),
+                  f"{m['cycles_per_second']:.3g}"] for baud, m in rates]
     rows = []
-    for name, n, seconds, times in dense_programs(only, 3 if quick else 8):
-        row = [name, n, round(seconds, 2), round(n / seconds, 1)]
+    for name, n, seconds, times, stream in dense_programs(only, 3 if quick else 8):
+        mean = stream / n
+        row = [name, n, round(seconds, 2), round(n / seconds, 1), round(mean, 1)]
         for baud, m in rates:
-            low, waits = queue_low(times, m["rate"], slots)
-            row += [low, waits]
+            rate = m["byte_rate"] / mean
+            low, waits = queue_low(times, rate, capacity(round(mean)))
+            row += [round(rate), f"{low} of {capacity(round(mean))}", waits]
         rows.append(row)
-    head = ["program", "records", "machine time (s)", "records/s needed"]
+    head = ["program", "records", "machine time (s)", "records/s needed", "bytes/record"]
     for baud, _ in rates:
-        head += [f"lowest level @{baud}", f"waits @{baud}"]
-    return [("Link: records per second through the simulated UART link (host driver, simulated seconds)",
-             ["baud", "records", "seconds", "records/s", "ceiling records/s", "of ceiling", "sim cycles/s"],
-             rate_rows),
-            (f"Link: lowest queue level (records ahead of the running one, of {slots}) on the densest "
-             "corpus programs", head, rows)]
+        head += [f"records/s @{baud}", f"lowest level @{baud}", f"waits @{baud}"]
+    return [("Link: record bytes per second through the simulated UART link (host driver, simulated seconds)",
+             ["baud", "records", "bytes", "seconds", "bytes/s", "ceiling bytes/s", "of ceiling",
+              f"records/s at {size} bytes", "sim cycles/s"], rate_rows),
+            ("Link: records per second and lowest queue level (records ahead of the running one) on the "
+             "densest corpus programs, compact records", head, rows)]
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -18,7 +18,7 @@ import random
 from collections import deque
 
 from . import protocol as p
-from .records import DEFAULT_BUILD, Build, decode, record_bytes
+from .records import DEFAULT_BUILD, Build, RecordReader, decode, record_bytes
 
 
 class DeviceModel:
@@ -52,6 +52,7 @@ class DeviceModel:
         self.frames = self.duplicates = self.errors = self.gaps = 0
         # controller
         self.queue = bytearray()
+        self.reader = RecordReader(build)           # plain and compact records
         self.executed: list[dict] = []              # every record the executor took, in order
         self.running_until = 0.0
         self.busy = False
@@ -258,20 +259,26 @@ class DeviceModel:
             return p.ALARM
         if self.hold:
             return p.HELD if self.t >= self.hold_since + self.hold_seconds or not self.busy else p.HOLDING
-        return p.RUN if self.busy or len(self.queue) >= self.record_len else p.IDLE
+        return p.RUN if self.busy or self._whole() else p.IDLE
+
+    def _whole(self) -> bool:
+        """A whole record is in the queue."""
+        size = self.reader.length(self.queue)
+        return size is not None and len(self.queue) >= size
 
     def _can_execute(self) -> bool:
-        return (not self.error and not self.hold and not self.fill and len(self.queue) >= self.record_len
+        return (not self.error and not self.hold and not self.fill and self._whole()
                 and not (self.busy and self.running_until > self.t))
 
     def _execute(self) -> None:
         if self.busy and self.running_until <= self.t:
             self.busy = False
         while self._can_execute():
-            raw = bytes(self.queue[:self.record_len])
-            del self.queue[:self.record_len]
+            size = self.reader.length(self.queue)
+            raw = bytes(self.queue[:size])
+            del self.queue[:size]
             try:
-                record = decode(raw, self.build)
+                record = decode(self.reader.take(raw), self.build)
             except ValueError:
                 record = {"kind": 7}
             self.executed.append(record)
@@ -296,7 +303,7 @@ class DeviceModel:
     def read_register(self, address: int) -> int:
         b, a = self.build, p.REGISTER_ADDRESSES
         free = self.queue_size - len(self.queue)
-        records = len(self.queue) // self.record_len
+        records = self.reader.whole_records(self.queue)
         values = {
             a["ID"]: p.ID_VALUE,
             a["VERSION"]: p.PROTOCOL_VERSION | self.record_len << 8 | b.W << 16 | b.POS_W << 24,
@@ -334,6 +341,7 @@ class DeviceModel:
             self.fill = bool(value & p.CONTROL_FILL)        # records wait in the queue
             if value & p.CONTROL_ABORT:
                 self.queue.clear()
+                self.reader = RecordReader(self.build)
                 self.busy = False
             if value & p.CONTROL_CLEAR:
                 self.error, self.limits = 0, 0

@@ -13,6 +13,15 @@ bits zero; signed fields sign-extended to their bytes):
 At the default build (W 32, FEED_W 50, NW 40, PF 24, LEN_W 82, ZW 108) a record is
 1 + 7 + 28 + 7 + 5 + 4 + 7 + 11 + 14 = 84 bytes.  The order is the native harness's
 16-field command line: kind plane feed x y z i j k l limit exit rate cost length budget.
+
+A compact record (head bit 7 set) carries each of the 14 fields after the head as its
+difference from the same field of the previous record (all zero after a reset or a
+flush): the head, 7 bytes of nibbles (the difference length n of field 2t in the low
+nibble of byte t, 0 .. min(15, B)), then each field's n bytes, two's complement,
+little-endian; the controller sign-extends them and adds them to the field's bytes
+modulo 2^(8 B).  The driver sends compact records (about half the bytes of plain ones
+on CAM programs); the controller's record unpacker takes RECORD_BYTES + 8 clocks for
+one, RECORD_BYTES + 1 for a plain one.
 """
 from __future__ import annotations
 
@@ -78,11 +87,16 @@ def record_bytes(build=None) -> int:
     return 1 + sum(nbytes(bits) for _, bits in layout(build))
 
 
-def unpack_interval(build=None) -> int:
+COMPACT = 0x80                  # head bit 7: a compact record
+TABLE_BYTES = 7                 # its nibble table: 14 fields, one nibble each
+
+
+def unpack_interval(build=None, compact: bool = True) -> int:
     """Clocks between two records the controller's record unpacker hands to motion_top
-    from a filled queue: RECORD_BYTES clocks to take the bytes (one a clock) and one to
-    push (85 at the default build).  interp gcode pushes its commands no faster."""
-    return record_bytes(build) + 1
+    from a filled queue: RECORD_BYTES clocks to form the bytes (one a clock) and one to
+    push, and for a compact record (the link's) the 7 clocks of its nibble table (92 at
+    the default build; 85 for plain records).  interp gcode pushes its commands no faster."""
+    return record_bytes(build) + 1 + (TABLE_BYTES if compact else 0)
 
 
 def fields_of(command) -> dict[str, int]:
@@ -159,6 +173,105 @@ def decode(data: bytes, build=None) -> dict[str, int]:
     return out
 
 
-def encode_program(commands, build=None) -> bytes:
-    """All commands' records, concatenated (the DATA frames' byte stream)."""
-    return b"".join(encode(fields_of(c), build) for c in commands)
+def _difference_bytes(difference: int) -> int:
+    """Bytes of the shortest two's complement form of a difference (0 for 0)."""
+    if difference == 0:
+        return 0
+    n = 1
+    while not -(1 << (8 * n - 1)) <= difference < (1 << (8 * n - 1)):
+        n += 1
+    return n
+
+
+def compact(record: bytes, previous: bytes, build=None) -> bytes | None:
+    """A plain record -> its compact form after `previous` (a plain record, or zeros after a
+    reset or flush); None when a field's difference needs more than 15 bytes."""
+    b = _build(build)
+    nibbles, body, at = [], bytearray(), 1
+    for _, bits in layout(b):
+        size = nbytes(bits)
+        modulus = 1 << (8 * size)
+        difference = (int.from_bytes(record[at:at + size], "little")
+                      - int.from_bytes(previous[at:at + size], "little")) % modulus
+        if difference >= modulus >> 1:
+            difference -= modulus
+        n = _difference_bytes(difference)
+        if n > 15:
+            return None
+        nibbles.append(n)
+        body += difference.to_bytes(n, "little", signed=True)
+        at += size
+    table = bytes(nibbles[2 * t] | nibbles[2 * t + 1] << 4 for t in range(TABLE_BYTES))
+    return bytes([record[0] | COMPACT]) + table + bytes(body)
+
+
+class RecordReader:
+    """The controller's record unpacker on the host: whole plain records out of a stream of
+    plain and compact records, the previous record kept (zeros at first, as after a
+    reset or flush)."""
+
+    def __init__(self, build=None):
+        self.build = _build(build)
+        self.size = record_bytes(self.build)
+        self.previous = bytes(self.size)
+
+    def length(self, data) -> int | None:
+        """Bytes the record at the start of `data` takes; None while that is not known yet
+        (no head, or a compact record's table not all there)."""
+        if not data:
+            return None
+        if not data[0] & COMPACT:
+            return self.size
+        if len(data) < 1 + TABLE_BYTES:
+            return None
+        return 1 + TABLE_BYTES + sum((byte & 15) + (byte >> 4) for byte in data[1:1 + TABLE_BYTES])
+
+    def whole_records(self, data) -> int:
+        """Whole records at the start of `data` (the controller's STATUS.records)."""
+        count, at = 0, 0
+        while True:
+            size = self.length(data[at:at + 1 + TABLE_BYTES])
+            if size is None or at + size > len(data):
+                return count
+            count, at = count + 1, at + size
+
+    def take(self, data) -> bytes:
+        """The record that is exactly `data` -> its plain bytes (the head's bit 7 cleared),
+        kept as the previous record.  ValueError when a
+        difference is longer than its field (the controller's error 18)."""
+        data = bytes(data)
+        if not data[0] & COMPACT:
+            if len(data) != self.size:
+                raise ValueError(f"a record is {self.size} bytes, got {len(data)}")
+            self.previous = data
+            return data
+        if len(data) != self.length(data):
+            raise ValueError("a compact record's length differs from its table's")
+        out, at, body = bytearray([data[0] & ~COMPACT & 0xFF]), 1, 1 + TABLE_BYTES
+        nibbles = [data[1 + f // 2] >> (4 * (f % 2)) & 15 for f in range(2 * TABLE_BYTES)]
+        bad = False
+        for n, (_, bits) in zip(nibbles, layout(self.build)):
+            size = nbytes(bits)
+            bad |= n > size
+            n = min(n, size)                    # the unpacker takes B bytes of a longer difference
+            difference = int.from_bytes(data[body:body + n], "little", signed=True) if n else 0
+            value = (int.from_bytes(self.previous[at:at + size], "little") + difference) % (1 << (8 * size))
+            out += value.to_bytes(size, "little")
+            at, body = at + size, body + n
+        self.previous = bytes(out)
+        if bad:
+            raise ValueError("a compact record's difference is longer than its field")
+        return self.previous
+
+
+def encode_program(commands, build=None, compact_records: bool = True) -> bytes:
+    """All commands' records, concatenated (the DATA frames' byte stream): compact ones
+    (plain where a difference would need more than 15 bytes), or plain ones."""
+    b = _build(build)
+    out, previous = bytearray(), bytes(record_bytes(b))
+    for c in commands:
+        record = encode(fields_of(c), b)
+        short = compact(record, previous, b) if compact_records else None
+        out += short if short is not None else record
+        previous = record
+    return bytes(out)

@@ -3,7 +3,10 @@
 a byte stream with random gaps, against random cmd_full back-pressure: each record of kind
 0 .. 5 is pushed once with exactly its fields, only while cmd_full is low, none dropped; kinds
 6, 7 strobe record_error and are not pushed; a flush mid-record drops the partial record.
-The records come from the host's encoder (interp.link.records), checked against the local one."""
+The records come from the host's encoder (interp.link.records), checked against the local one.
+Compact records (differences from the previous record) mixed with plain ones, a flush that
+zeroes the previous record, a difference longer than its field (record_error); and the pace
+from a stream without gaps: RECORD_BYTES + 1 clocks a plain record, RECORD_BYTES + 8 a compact one."""
 import cocotb
 from cocotb.triggers import FallingEdge, ReadOnly
 
@@ -25,6 +28,11 @@ def random_command(rng, b):
                    length=rng.getrandbits(b["LEN_W"]), budget=rng.getrandbits(b["ZW"]))
 
 
+def assert_pushed(pushed, want):
+    assert pushed == want, f"{len(pushed)} pushed, want {len(want)}; first difference at " \
+        f"{next((n for n, (g, w) in enumerate(zip(pushed, want)) if g != w), min(len(pushed), len(want)))}"
+
+
 @cocotb.test()
 async def random_records(dut):
     rng = seeded_rng(dut, "random_records")
@@ -37,19 +45,63 @@ async def random_records(dut):
     cut = rng.randrange(1, 20)                       # a partial record, flushed, before record 10
     stream = [(byte, n) for n, c in enumerate(cmds) for byte in encode(c, b)]
     stream = stream[:10 * len(encode(cmds[0], b))] + [(0xEE, -1)] * cut + stream[10 * len(encode(cmds[0], b)):]
-    pushed, errors, at, flushed = [], 0, 0, False
-    full_rate = rng.choice([0.0, 0.3, 0.8])
-    for cycle in range(60_000):
-        if at >= len(stream) and not int(dut.assembling.value):
+    pushed, errors = await run_stream(tb, rng, stream, 10, 0.7, rng.choice([0.0, 0.3, 0.8]))
+    want = [pushed_fields(c, b) for c in cmds if c.kind < 6]
+    assert errors == sum(c.kind >= 6 for c in cmds)
+    assert_pushed(pushed, want)
+
+
+def changed_command(rng, b, previous):
+    """A record like a CAM program's: each field kept, moved by a random amount of random size,
+    or new at random."""
+    new = random_command(rng, b)
+
+    def field(name, bits, signed):
+        old = getattr(previous, name)
+        how = rng.random()
+        if how < 0.4:
+            return old
+        if how < 0.8:
+            size = rng.randint(1, (bits + 7) // 8)
+            value = old + rng.randint(-(1 << (8 * size - 1)), (1 << (8 * size - 1)) - 1)
+            low, high = (-(1 << (bits - 1)), (1 << (bits - 1)) - 1) if signed else (0, (1 << bits) - 1)
+            return min(max(value, low), high)
+        return getattr(new, name)
+    widths = {"feed": b["FEED_W"], "limit": b["FEED_W"], "cost": b["FEED_W"], "exit": b["NW"],
+              "rate": b["PF"] + 1, "length": b["LEN_W"], "budget": b["ZW"], **{n: b["W"] for n in "xyzijkl"}}
+    return Command(new.kind, *(field(n, widths[n], n in "xyzijkl") for n in ("feed", *"xyzijkl")),
+                   plane=new.plane, **{n: field(n, widths[n], False)
+                                       for n in ("limit", "exit", "rate", "cost", "length", "budget")})
+
+
+def compact_stream(rng, b, cmds, plain_share):
+    """The records after a reset or flush, compact (or at random plain), as (byte, record)."""
+    from interp.link import records
+    previous, out = bytes(records.record_bytes(b)), []
+    for n, c in cmds:
+        record = encode(c, b)
+        short = records.compact(record, previous, b)
+        out += [(byte, n) for byte in (record if short is None or rng.random() < plain_share else short)]
+        previous = record
+    return out
+
+
+async def run_stream(tb, rng, stream, flush_before, valid_share, full_rate):
+    """Drive (byte, record) pairs; flush once when the stream reaches the first byte of record
+    `flush_before` (None: never); the pushed fields and the record_error count."""
+    dut = tb.dut
+    pushed, errors, at, flushed, idle = [], 0, 0, flush_before is None, 0
+    for cycle in range(200_000):
+        if at >= len(stream) and (not int(dut.assembling.value) or idle > 400):
             break
+        idle = idle + 1 if at >= len(stream) else 0
         await FallingEdge(dut.clk)
-        flush = at < len(stream) and stream[at][1] >= 10 and not flushed
-        if flush:                                   # the partial record's bytes are in: flush it
-            flushed = True
-        valid = at < len(stream) and not flush and rng.random() < 0.7
+        flush = at < len(stream) and not flushed and stream[at][1] == flush_before
+        flushed |= flush
+        valid = at < len(stream) and not flush and rng.random() < valid_share
         tb.drive({"in_valid": int(valid), "in_data": stream[at][0] if valid else 0, "flush": int(flush),
                   "cmd_full": int(rng.random() < full_rate)})
-        await ReadOnly()                            # what the next rising edge takes
+        await ReadOnly()
         if int(dut.cmd_valid.value):
             assert not int(dut.cmd_full.value), "pushed while motion_top is full"
             pushed.append({"kind": int(dut.cmd_kind.value), "plane": int(dut.cmd_plane.value),
@@ -58,10 +110,63 @@ async def random_records(dut):
         assert int(dut.taken.value) == int(dut.cmd_valid.value) | int(dut.record_error.value)
         if valid and int(dut.in_ready.value):
             at += 1
+    assert at == len(stream), "the stream was not all taken"
+    assert not int(dut.assembling.value), "a record is left half assembled"
+    return pushed, errors
+
+
+@cocotb.test()
+async def compact_records(dut):
+    from interp.link import records
+    rng = seeded_rng(dut, "compact_records")
+    b = {k: int(getattr(dut, k).value) for k in BUILD_PARAMETERS if hasattr(dut, k)}
+    tb = TB(dut)
+    await tb.reset({"flush": 0, "in_valid": 0, "in_data": 0, "cmd_full": 0})
+    cmds = [random_command(rng, b)]
+    for _ in range(59):
+        cmds.append(changed_command(rng, b, cmds[-1]))
+    # 20 records, a partial one flushed (the previous record is zero again), 40 more
+    partial = [(byte, 20) for byte, _ in compact_stream(rng, b, [(20, cmds[20])], 0.0)[:rng.randrange(1, 12)]]
+    stream = compact_stream(rng, b, enumerate(cmds[:20]), 0.2) + partial \
+        + compact_stream(rng, b, [(n + 21, c) for n, c in enumerate(cmds[20:])], 0.2)
+    # last, a difference longer than its field: the exit's nibble above B(NW)
+    size = records.nbytes(b["NW"])
+    table = bytearray(7)
+    table[4] = min(15, size + 1) << 4                       # field 9 (exit): the high nibble of byte 4
+    stream += [(byte, 99) for byte in bytes([records.COMPACT]) + table + bytes(size)]
+    pushed, errors = await run_stream(tb, rng, stream, 21, 0.7, rng.choice([0.0, 0.3]))
     want = [pushed_fields(c, b) for c in cmds if c.kind < 6]
-    assert errors == sum(c.kind >= 6 for c in cmds)
-    assert pushed == want, f"{len(pushed)} pushed, want {len(want)}; first difference at " \
-        f"{next((n for n, (g, w) in enumerate(zip(pushed, want)) if g != w), min(len(pushed), len(want)))}"
+    assert errors == sum(c.kind >= 6 for c in cmds) + (1 if size < 15 else 0)
+    assert_pushed(pushed, want)
+
+
+@cocotb.test()
+async def pace(dut):
+    """From a stream without gaps, motion_top never full: pushes RECORD_BYTES + 1 clocks apart
+    for plain records, RECORD_BYTES + 8 for compact ones."""
+    from interp.link import records
+    rng = seeded_rng(dut, "pace")
+    b = {k: int(getattr(dut, k).value) for k in BUILD_PARAMETERS if hasattr(dut, k)}
+    tb = TB(dut)
+    size = records.record_bytes(b)
+    for share, interval in ((1.0, size + 1), (0.0, size + 8)):
+        await tb.reset({"flush": 0, "in_valid": 0, "in_data": 0, "cmd_full": 0})
+        cmds = [random_command(rng, b)]
+        for _ in range(7):
+            cmds.append(changed_command(rng, b, cmds[-1]))
+        stream = compact_stream(rng, b, enumerate(cmds), share)
+        at, cycle, pushes = 0, 0, []
+        while len(pushes) < len(cmds) and cycle < 2000:
+            await FallingEdge(dut.clk)
+            tb.drive({"in_valid": int(at < len(stream)), "in_data": stream[at][0] if at < len(stream) else 0})
+            await ReadOnly()
+            if int(dut.cmd_valid.value) or int(dut.record_error.value):
+                pushes.append(cycle)
+            if at < len(stream) and int(dut.in_ready.value):
+                at += 1
+            cycle += 1
+        gaps = {later - earlier for earlier, later in zip(pushes, pushes[1:])}
+        assert gaps == {interval}, f"{'plain' if share else 'compact'} records: pushes {gaps} clocks apart"
 
 
 def test_record_unpack(sim):

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: Apache-2.0
+`default_nettype none
+// Record bounds of the controller's command record stream, on the side that writes the
+// segment queue: `last` marks the byte that ends a record, so that the controller counts
+// the whole records waiting (STATUS.records).  A record whose head has bit 7 clear is
+// RECORD_BYTES bytes; a compact one (bit 7 set, see record_unpack) is the head, 7 bytes
+// of nibbles, and as many more bytes as its nibbles add up to.  `flush` (and rst) make
+// the next byte a head.
+module record_bounds #(
+    parameter integer RECORD_BYTES = 84    // bytes of a whole record (9 .. 255)
+) (
+    input  wire       clk,
+    input  wire       rst,
+    input  wire       flush,      // the next byte is a head
+    input  wire       write,      // a byte of the stream is written ...
+    input  wire [7:0] data,       // ... this one
+    output wire       last        // ... and it ends a record
+);
+    initial begin
+        if (RECORD_BYTES < 9 || RECORD_BYTES > 255) $error("%m: RECORD_BYTES must be 9 .. 255");
+    end
+
+    localparam [31:0] RB32 = RECORD_BYTES;
+
+    reg  [7:0] at;                // bytes of this record written
+    reg  [7:0] length;            // its length as known so far
+    reg        compact;
+    wire       head     = at == 8'd0;
+    wire       in_table = compact & (at != 8'd0) & (at <= 8'd7);
+    wire [7:0] length_now = head ? (data[7] ? 8'd8 : RB32[7:0])
+                          : length + (in_table ? {4'd0, data[3:0]} + {4'd0, data[7:4]} : 8'd0);
+    assign last = write & (at + 8'd1 == length_now);
+
+    always @(posedge clk) begin
+        if (rst | flush) begin
+            at <= 8'd0; length <= 8'd0; compact <= 1'b0;
+        end else if (write) begin
+            at     <= last ? 8'd0 : at + 8'd1;
+            length <= length_now;
+            if (head) compact <= data[7];
+        end
+    end
+endmodule
+`default_nettype wire
