@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from interp.link import protocol as p
 from interp.link.devicemodel import DeviceModel
 from interp.link.driver import (Driver, LinkError, MismatchError, check_controller, configure, run_program)
-from interp.link.records import Build, encode
+from interp.link.records import Build, encode, encode_program
 
 SEED = int(os.environ.get("SEED", random.randrange(1 << 30)))
 
@@ -105,6 +105,19 @@ def test_machine_error_names_the_record():
     model = DeviceModel(fail_at=5, fail_code=17)
     _, outcome = run(model, cmds)
     assert (outcome.status, outcome.error, outcome.limits, outcome.executed) == ("error", 17, 1, 5)
+    assert not model.queue and model.reader.previous == bytes(84)    # ALARM flushes, as the controller
+
+
+def test_compact_records_through_the_model():
+    """interp send's compact stream: every record executed once, with its fields."""
+    cmds = commands(40)
+    model = DeviceModel()
+    driver = Driver(model, baud=model.baud)
+    driver.connect()
+    stream = encode_program(cmds)
+    assert len(stream) < 84 * len(cmds)
+    outcome = run_program(driver, stream, len(cmds))
+    assert outcome.status == "done" and executed_fields(model, cmds) == cmds
 
 
 def test_bad_record_latches_error_18():

@@ -223,7 +223,8 @@ class DeviceModel:
                 self.expected = (self.expected + 1) % 256
                 self.frames += 1
                 if f.type == p.DATA:
-                    self.queue += f.payload
+                    if not self.error:                      # in ALARM the bytes are taken and dropped
+                        self.queue += f.payload
                     self._execute()
                 else:
                     address, value = int.from_bytes(f.payload[:2], "little"), int.from_bytes(f.payload[2:], "little")
@@ -291,8 +292,10 @@ class DeviceModel:
                 self.error = self.fail_code
                 if self.fail_code == 17:
                     self.limits = 1
-            if self.error:
+            if self.error:                          # ALARM flushes the queue and the previous record
                 self.busy = False
+                self.queue.clear()
+                self.reader = RecordReader(self.build)
                 return
             if record["kind"] == 0:
                 for axis, name in enumerate("xyz"):
