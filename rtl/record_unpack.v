@@ -102,7 +102,7 @@ module record_unpack #(
     reg             carry, sign;    // the field's byte-serial sum: carry, difference sign
     reg             bad_length;     // a difference longer than its field
     wire            whole    = count == RECORD_BYTES[CW-1:0];
-    wire            bad      = (cmd_kind[2] & cmd_kind[1]) | bad_length;   // kind 6, 7
+    wire            bad      = (cmd_kind[2] & cmd_kind[1]) | bad_length;   // kind 6, 7, a long difference
     wire            in_table = compact & (count == {{(CW-1){1'b0}}, 1'b1}) & (table_count != TB3);
     wire            body     = compact & (count != {CW{1'b0}}) & ~in_table & ~whole;
 

@@ -142,9 +142,10 @@ def tables(quick: bool, records: int | None = None, only: str | None = None):
     for baud in BAUDS:
         m = measure_rate(baud, records if baud > 200_000 else max(20, records // 5))
         rates.append((baud, m))
-    top = ceiling(1, 1)
+    per_baud = ceiling(1, 1)                # the frame format's payload bytes/s per baud
     rate_rows = [[baud, m["records"], m["bytes"], round(m["seconds"], 4), round(m["byte_rate"]),
-                  round(baud * top), round(m["byte_rate"] / (baud * top), 3), round(m["byte_rate"] / size, 1),
+                  round(baud * per_baud), round(m["byte_rate"] / (baud * per_baud), 3),
+                  round(m["byte_rate"] / size, 1),
                   f"{m['cycles_per_second']:.3g}"] for baud, m in rates]
     rows = []
     for name, n, seconds, times, stream in dense_programs(only, 3 if quick else 8):

@@ -91,12 +91,12 @@ COMPACT = 0x80                  # head bit 7: a compact record
 TABLE_BYTES = 7                 # its nibble table: 14 fields, one nibble each
 
 
-def unpack_interval(build=None, compact: bool = True) -> int:
+def unpack_interval(build=None, compact_records: bool = True) -> int:
     """Clocks between two records the controller's record unpacker hands to motion_top
     from a filled queue: RECORD_BYTES clocks to form the bytes (one a clock) and one to
     push, and for a compact record (the link's) the 7 clocks of its nibble table (92 at
     the default build; 85 for plain records).  interp gcode pushes its commands no faster."""
-    return record_bytes(build) + 1 + (TABLE_BYTES if compact else 0)
+    return record_bytes(build) + 1 + (TABLE_BYTES if compact_records else 0)
 
 
 def fields_of(command) -> dict[str, int]:
@@ -237,8 +237,8 @@ class RecordReader:
 
     def take(self, data) -> bytes:
         """The record that is exactly `data` -> its plain bytes (the head's bit 7 cleared),
-        kept as the previous record.  ValueError when a
-        difference is longer than its field (the controller's error 18)."""
+        kept as the previous record.  ValueError when a difference is longer than its
+        field (the controller's error 18)."""
         data = bytes(data)
         if not data[0] & COMPACT:
             if len(data) != self.size:
