@@ -56,6 +56,19 @@ def encode(cmd: Command, build: dict) -> bytes:
     return records.encode(cmd, build)
 
 
+def mixed_records(rng, commands, build, plain_share: float) -> list[bytes]:
+    """The commands' records as a stream after a reset or flush sends them: compact ones
+    (interp.link.records.compact), each plain instead with probability plain_share."""
+    from ..link import records
+    previous, out = bytes(records.record_bytes(build)), []
+    for c in commands:
+        record = records.encode(c, build)
+        short = records.compact(record, previous, build)
+        out.append(record if short is None or rng.random() < plain_share else short)
+        previous = record
+    return out
+
+
 def local_encode(cmd: Command, build: dict) -> bytes:
     """One command -> its record (fields little-endian, signed ones sign-extended)."""
     out = bytearray([cmd.kind | cmd.plane << 4])

@@ -9,16 +9,17 @@ from cocotb.triggers import FallingEdge, ReadOnly
 from interp.link import records
 from interp.simulation import motion_build
 from interp.simulation.runner import run_cocotb
-from interp.testing.controllerkit import icarus_in_make_test
+from interp.testing.controllerkit import icarus_in_make_test, mixed_records
 from interp.testing.tbkit import TB, seeded_rng
 
 WIDTHS = ("W", "FEED_W", "NW", "PF", "LEN_W", "ZW")
+BUILDS = (records.Build(), records.Build(**{k: motion_build.PARAMETERS[k] for k in WIDTHS}))   # default, small
 
 
 def random_stream(rng, build, count):
     """`count` records of random fields, each compact or plain at random, after a reset."""
     size = records.record_bytes(build)
-    previous, out = bytes(size), []
+    previous, commands = bytes(size), []
     for _ in range(count):
         fields = {name: rng.getrandbits(bits) for name, bits in records.layout(build)}
         for name in records.SIGNED:                         # small moves: short differences
@@ -26,19 +27,16 @@ def random_stream(rng, build, count):
         fields.update(kind=rng.randint(0, 5), plane=rng.randint(0, 3))
         if rng.random() < 0.5:
             fields.update({name: records.decode(previous, build)[name] for name in ("limit", "rate")})
-        record = records.encode(fields, build)
-        short = records.compact(record, previous, build)
-        out.append(record if short is None or rng.random() < 0.3 else short)
-        previous = record
-    return out
+        commands.append(fields)
+        previous = records.encode(fields, build)
+    return mixed_records(rng, commands, build, 0.3)
 
 
 @cocotb.test()
 async def bounds(dut):
     rng = seeded_rng(dut, "bounds")
     size = int(dut.RECORD_BYTES.value)
-    build = next(b for b in (records.Build(), records.Build(**{k: motion_build.PARAMETERS[k] for k in WIDTHS}))
-                 if records.record_bytes(b) == size)
+    build = next(b for b in BUILDS if records.record_bytes(b) == size)
     tb = TB(dut)
     await tb.reset({"flush": 0, "write": 0, "data": 0})
     recs = random_stream(rng, build, 30)
@@ -70,6 +68,6 @@ async def bounds(dut):
 
 def test_record_bounds(sim):
     icarus_in_make_test(sim)
-    for build in (records.Build(), records.Build(**{k: motion_build.PARAMETERS[k] for k in WIDTHS})):
+    for build in BUILDS:
         run_cocotb(toplevel="record_bounds", test_module="test_record_bounds", sim=sim,
                    parameters={"RECORD_BYTES": records.record_bytes(build)}, name="record_bounds")

@@ -10,10 +10,12 @@ from a stream without gaps: RECORD_BYTES + 1 clocks a plain record, RECORD_BYTES
 import cocotb
 from cocotb.triggers import FallingEdge, ReadOnly
 
+from interp.link import records
 from interp.models.motion import Command
 from interp.simulation import motion_build
 from interp.simulation.runner import run_cocotb
-from interp.testing.controllerkit import BUILD_PARAMETERS, encode, icarus_in_make_test, local_encode, pushed_fields
+from interp.testing.controllerkit import (BUILD_PARAMETERS, encode, icarus_in_make_test, local_encode,
+                                          mixed_records, pushed_fields)
 from interp.testing.tbkit import TB, seeded_rng
 
 NAMES = ("feed", "x", "y", "z", "i", "j", "k", "l", "limit", "exit", "rate", "cost", "length", "budget")
@@ -75,15 +77,10 @@ def changed_command(rng, b, previous):
 
 
 def compact_stream(rng, b, cmds, plain_share):
-    """The records after a reset or flush, compact (or at random plain), as (byte, record)."""
-    from interp.link import records
-    previous, out = bytes(records.record_bytes(b)), []
-    for n, c in cmds:
-        record = encode(c, b)
-        short = records.compact(record, previous, b)
-        out += [(byte, n) for byte in (record if short is None or rng.random() < plain_share else short)]
-        previous = record
-    return out
+    """(number, command) pairs -> their records after a reset or flush, as (byte, number)."""
+    numbered = list(cmds)
+    encoded = mixed_records(rng, [c for _, c in numbered], b, plain_share)
+    return [(byte, n) for (n, _), record in zip(numbered, encoded) for byte in record]
 
 
 async def run_stream(tb, rng, stream, flush_before, valid_share, full_rate):
@@ -117,7 +114,6 @@ async def run_stream(tb, rng, stream, flush_before, valid_share, full_rate):
 
 @cocotb.test()
 async def compact_records(dut):
-    from interp.link import records
     rng = seeded_rng(dut, "compact_records")
     b = {k: int(getattr(dut, k).value) for k in BUILD_PARAMETERS if hasattr(dut, k)}
     tb = TB(dut)
@@ -144,7 +140,6 @@ async def compact_records(dut):
 async def pace(dut):
     """From a stream without gaps, motion_top never full: pushes RECORD_BYTES + 1 clocks apart
     for plain records, RECORD_BYTES + 8 for compact ones."""
-    from interp.link import records
     rng = seeded_rng(dut, "pace")
     b = {k: int(getattr(dut, k).value) for k in BUILD_PARAMETERS if hasattr(dut, k)}
     tb = TB(dut)
