@@ -2,7 +2,7 @@
 `default_nettype none
 // CNC controller: the command record stream and a Wishbone register block around
 // motion_top, with the machine's inputs and outputs.
-//   record bytes (cmd_valid/cmd_data, or CMD_DATA register writes, 4 bytes each)
+//   record bytes (cmd_valid/cmd_data, or CMD_DATA register writes: their selected bytes)
 //     -> segment_queue (2^QUEUE_AW bytes of block RAM; queue_free gives the link its credit)
 //     -> record_unpack (RECORD_BYTES bytes -> motion_top's command fields)
 //     -> motion_top (queues, cores, path-speed profile, step/dir)
@@ -90,12 +90,13 @@ module controller #(
     wire        flush = abort | alarm;          // queue, partial record, motion_top
 
     // ---------------- record bytes: link stream or CMD_DATA words ----------------
-    reg  [31:0] word;                           // CMD_DATA bytes still to queue, lowest first
-    reg  [2:0]  word_left;
+    reg  [31:0] word;                           // a CMD_DATA write's bytes, lowest first
+    reg  [3:0]  lanes;                          // ... those still to queue (its byte selects)
     wire        data_write;
     wire [31:0] data_word;
-    wire        data_ready = word_left == 3'd0;
-    wire        q_in_valid = data_ready ? cmd_valid : 1'b1;
+    wire [3:0]  data_lanes;
+    wire        data_ready = lanes == 4'd0;
+    wire        q_in_valid = data_ready ? cmd_valid : lanes[0];
     wire [7:0]  q_in_data  = data_ready ? cmd_data : word[7:0];
     wire        q_in_ready;
     wire        q_write    = q_in_valid & q_in_ready & ~flush;
@@ -103,14 +104,14 @@ module controller #(
 
     always @(posedge clk) begin
         if (rst | flush) begin
-            word      <= 32'd0;
-            word_left <= 3'd0;
+            word  <= 32'd0;
+            lanes <= 4'd0;
         end else if (data_write) begin
-            word      <= data_word;
-            word_left <= 3'd4;
-        end else if (~data_ready & q_in_ready) begin
-            word      <= {8'd0, word[31:8]};
-            word_left <= word_left - 1'b1;
+            word  <= data_word;
+            lanes <= data_lanes;
+        end else if (~data_ready & (q_in_ready | ~lanes[0])) begin   // a lane not selected: skipped
+            word  <= {8'd0, word[31:8]};
+            lanes <= {1'b0, lanes[3:1]};
         end
     end
 
@@ -292,7 +293,7 @@ module controller #(
         .override_percent(override_percent), .pulse_width(pulse_width), .dir_setup(dir_setup),
         .dir_hold(dir_hold), .quantum(quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
         .input_invert(input_invert), .spindle_period(spindle_period),
-        .data_write(data_write), .data_word(data_word), .data_ready(data_ready)
+        .data_write(data_write), .data_word(data_word), .data_lanes(data_lanes), .data_ready(data_ready)
     );
 
     wire unused = &{1'b0, unused_pos_x, unused_pos_y, unused_pos_z, unused_speed, unused_done};

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Register block of the controller: a Wishbone B4 classic slave, 32-bit data, byte
-// addresses on wb_adr[7:0] (bits 1:0 ignored, byte selects ignored: whole words).
-// Every access is acknowledged in the cycle after it is seen (wb_ack one cycle), except a
-// write to CMD_DATA, which waits until the controller takes its 4 bytes (`data_ready`).
+// addresses on wb_adr[7:0] (bits 1:0 ignored; byte selects ignored, whole words, except
+// at CMD_DATA: the selected bytes are the record bytes).  Every access is acknowledged in
+// the cycle after it is seen (wb_ack one cycle), except a write to CMD_DATA, which waits
+// until the controller takes its bytes (`data_ready`).
 // Unknown addresses read 0 and ignore writes.  The addresses are rtl/controller_regs.vh's
 // REG_<NAME> (generated from regs/controller.rdl); the map is in docs/registers.md.
 // Read-only registers are composed here from the controller's status inputs; the
@@ -78,8 +79,9 @@ module controller_regs #(
     output reg  [3:0]        jerk_shift,
     output reg  [4:0]        input_invert,
     output reg  [15:0]       spindle_period,
-    output wire              data_write,    // strobe: data_word's 4 bytes for the queue
+    output wire              data_write,    // strobe: data_word's selected bytes for the queue
     output wire [31:0]       data_word,
+    output wire [3:0]        data_lanes,    // ... the bytes selected (wb_sel), lowest first
     input  wire              data_ready     // the controller takes a data_word now
 );
     initial begin
@@ -124,6 +126,7 @@ module controller_regs #(
 
     assign data_write = access & wb_we & is_data & data_ready;
     assign data_word  = wb_dat_w;
+    assign data_lanes = wb_sel;
     wire   control_write = write && address == REG_CONTROL[7:0];
     assign abort_strobe = control_write & wb_dat_w[1];
     assign clear_strobe = control_write & wb_dat_w[2];
@@ -224,6 +227,6 @@ module controller_regs #(
         end
     end
 
-    wire unused = &{1'b0, wb_adr[1:0], wb_sel, quantum_lo, quantum_hi, wb_dat_w};
+    wire unused = &{1'b0, wb_adr[1:0], quantum_lo, quantum_hi, wb_dat_w};
 endmodule
 `default_nettype wire

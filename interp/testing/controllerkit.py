@@ -179,11 +179,11 @@ class ControllerBench:
         self.last_ack = result[0].waitAck
         return int(result[0].datrd)
 
-    async def write(self, name_or_address, value: int) -> None:
+    async def write(self, name_or_address, value: int, sel: int = 0xF) -> None:
         from cocotbext.wishbone.driver import WBOp
 
         address = REG[name_or_address] if isinstance(name_or_address, str) else name_or_address
-        result = await self.wb.send_cycle([WBOp(address, value & 0xFFFFFFFF)])
+        result = await self.wb.send_cycle([WBOp(address, value & 0xFFFFFFFF, sel=sel)])
         self.last_ack = result[0].waitAck
 
     async def signed(self, name: str) -> int:
@@ -210,10 +210,11 @@ class ControllerBench:
         dut.cmd_valid.value = 0
 
     async def send_words(self, data: bytes) -> None:
-        """The bytes through CMD_DATA, 4 a write (zero-padded)."""
-        data = data + bytes(-len(data) % 4)
+        """The bytes through CMD_DATA, 4 a write; the last 1 .. 3 with only their byte
+        selects set (no padding: a padding byte would start a record)."""
         for at in range(0, len(data), 4):
-            await self.write("CMD_DATA", int.from_bytes(data[at:at + 4], "little"))
+            chunk = data[at:at + 4]
+            await self.write("CMD_DATA", int.from_bytes(chunk.ljust(4, b"\0"), "little"), sel=(1 << len(chunk)) - 1)
 
     def records(self, commands) -> bytes:
         return b"".join(encode(c, self.build) for c in commands)
