@@ -46,3 +46,18 @@ def test_pad_helper_refuses_bad_pads():
     with pytest.raises(ValueError, match="unknown controller parameter"):
         CNCController(None, clk_freq=1, WIDTH=3)
     assert {name for name, _, _ in PADS} >= set(PINS)
+
+
+def test_wrapper_follows_the_rtl():
+    """PADS and WIDTHS are rtl/controller.v's machine ports and parameters."""
+    import re
+
+    from interp.flows.synth import declared_parameters
+    from interp.litex import WIDTHS
+
+    text = (RTL / "controller.v").read_text()
+    assert declared_parameters(RTL / "controller.v") == set(WIDTHS) | {"CLK_HZ", "CURVES", "QUEUE_AW"}
+    ports = {name: (direction, int(msb) + 1 if msb else 1) for direction, msb, name in
+             re.findall(r"^\s*(input|output)\s+wire\s+(?:\[(\d+):0\]\s+)?(\w+)", text, re.M)}
+    for name, width, direction in PADS:
+        assert ports[name] == ({"out": "output", "in": "input"}[direction], width), name
