@@ -248,3 +248,28 @@ def test_nak_4_repeated_is_one_line_error():
         for _ in range(20):
             driver._send_some()
             driver._handle(p.Nak(seq=driver.base, reason=p.NAK_TYPE, free=4096))
+
+
+class ReleaseWatch(DeviceModel):
+    """The model, noting the bytes received (queued + executed) at each CONTROL write."""
+
+    def write_register(self, address, value):
+        if address == p.REGISTER_ADDRESSES["CONTROL"]:
+            self.received_at_control = getattr(self, "received_at_control", [])
+            self.received_at_control.append((value, len(self.queue) + self.record_len * len(self.executed)))   # plain records
+        super().write_register(address, value)
+
+
+@pytest.mark.parametrize("seed", range(SEED % 1000, SEED % 1000 + 12))
+def test_fill_release_follows_the_data_after_a_go_back(seed):
+    """A program the queue holds whole: the WRITE that clears CONTROL.fill is sequenced after all
+    of it, and stays after it when line errors make the driver go back and cut the data again
+    (a go-back used to resend the unacknowledged WRITEs first: the run started before its last
+    records were in, and their steps came late)."""
+    print(f"seed {seed} (SEED={SEED})")
+    cmds = commands(20)                               # 20 plain records, 1 680 bytes: the fill takes all
+    model = ReleaseWatch(line_noise=0.01, seed=seed, records_per_second=400)
+    driver, outcome = run(model, cmds)
+    assert outcome.status == "done" and executed_fields(model, cmds) == cmds
+    release = [received for value, received in model.received_at_control if not value & p.CONTROL_FILL]
+    assert release and release[0] == model.record_len * len(cmds), (release, driver.recoveries)

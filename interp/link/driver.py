@@ -51,6 +51,7 @@ class Item:
     payload: bytes
     offset: int = 0             # DATA: where its bytes start in the stream
     write_id: int = -1          # WRITE: its number (write_register waits for it)
+    after: int = 0              # WRITE: the stream bytes cut before it was queued, which go first
 
 
 @dataclass
@@ -205,9 +206,11 @@ class Driver:
         return self.free - sum(len(i.payload) for i in list(self.outstanding)[:self.sent] if i.type == p.DATA)
 
     def _next_item(self) -> Item | None:
-        if self.write_queue:
+        # a WRITE goes after the stream bytes cut before it was queued, also when a go-back
+        # cuts them again (the fill release after the fill, a resume after the data before it)
+        if self.write_queue and self.write_queue[0].after <= self.stream_pos:
             return self.write_queue.popleft()
-        left = len(self.stream) - self.stream_pos
+        left = (self.write_queue[0].after if self.write_queue else len(self.stream)) - self.stream_pos
         if left <= 0:
             return None
         credit = self._credit() - sum(len(i.payload) for i in list(self.outstanding)[self.sent:]
@@ -345,7 +348,7 @@ class Driver:
 
     def queue_write(self, name_or_address, value: int) -> int:
         address = REG[name_or_address] if isinstance(name_or_address, str) else name_or_address
-        item = Item(p.WRITE, p.write_payload(address, value), write_id=self.writes_issued)
+        item = Item(p.WRITE, p.write_payload(address, value), write_id=self.writes_issued, after=self.stream_pos)
         self.writes_issued += 1
         self.write_queue.append(item)
         return item.write_id
@@ -359,6 +362,8 @@ class Driver:
 
     def start_stream(self, data: bytes) -> None:
         self.stream, self.stream_pos, self.acked_bytes = bytes(data), 0, 0
+        for item in self.write_queue:           # queued before this stream: they go first
+            item.after = 0
 
     def stream_done(self) -> bool:
         return self.stream_pos >= len(self.stream) and not self.outstanding and not self.write_queue

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""interp.litex outside simulation (tb/litex runs the wrapper): the docs' recipe on a LiteX
+"""interp.litex outside simulation (tb/litex/test_litex.py runs the wrapper): the docs' recipe on a LiteX
 platform (the pads requested and wired, the family's file list added), the pad helper's
 checks, the family by device name."""
 import pytest
