@@ -260,13 +260,13 @@ class ReleaseWatch(DeviceModel):
         super().write_register(address, value)
 
 
-@pytest.mark.parametrize("run", range(12))
-def test_fill_release_follows_the_data_after_a_go_back(run):
+@pytest.mark.parametrize("index", range(12))
+def test_fill_release_follows_the_data_after_a_go_back(index):
     """A program the queue holds whole: the WRITE that clears CONTROL.fill is sequenced after all
     of it, and stays after it when line errors make the driver go back and cut the data again
     (a go-back used to resend the unacknowledged WRITEs first: the run started before its last
     records were in, and their steps came late)."""
-    seed = SEED + run                                 # (the ids stay the same on every xdist worker)
+    seed = SEED + index                               # (the ids stay the same on every xdist worker)
     print(f"seed {seed} (SEED={SEED})")
     cmds = commands(20)                               # 20 plain records, 1 680 bytes: the fill takes all
     model = ReleaseWatch(line_noise=0.01, seed=seed, records_per_second=400)
