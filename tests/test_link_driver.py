@@ -253,9 +253,12 @@ def test_nak_4_repeated_is_one_line_error():
 class ReleaseWatch(DeviceModel):
     """The model, noting the bytes received (queued + executed) at each CONTROL write."""
 
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.received_at_control = []
+
     def write_register(self, address, value):
         if address == p.REGISTER_ADDRESSES["CONTROL"]:
-            self.received_at_control = getattr(self, "received_at_control", [])
             self.received_at_control.append((value, len(self.queue) + self.record_len * len(self.executed)))   # plain records
         super().write_register(address, value)
 

@@ -106,6 +106,28 @@ class StepLog:
         return pos
 
 
+async def watch_steps(dut, log: StepLog, cycle) -> None:
+    """Log the rising edges of dut.step (x, y, z) with dut.dir, at cycle()."""
+    last = 0
+    while True:
+        await dut.step.value_change
+        await ReadOnly()
+        now = int(dut.step.value)
+        direction = int(dut.dir.value)
+        for axis in range(3):
+            if now >> axis & 1 and not last >> axis & 1:
+                log.edges.append((cycle(), axis, direction >> axis & 1))
+        last = now
+
+
+def data_words(data: bytes, fill: int = 0):
+    """(value, byte selects) of the CMD_DATA writes that queue `data`: 4 bytes a write, the
+    last 1 .. 3 with only their lanes selected (the others `fill`, ignored)."""
+    for at in range(0, len(data), 4):
+        chunk = data[at:at + 4]
+        yield int.from_bytes(chunk.ljust(4, bytes([fill])), "little"), (1 << len(chunk)) - 1
+
+
 class ControllerBench:
     """Clock, reset, Wishbone master, record stream and monitors of a controller DUT."""
 
@@ -148,16 +170,7 @@ class ControllerBench:
         return int(get_sim_time(unit="ns")) // self.period
 
     async def _watch_steps(self):
-        dut, last = self.dut, 0
-        while True:
-            await dut.step.value_change
-            await ReadOnly()
-            now = int(dut.step.value)
-            direction = int(dut.dir.value)
-            for axis in range(3):
-                if now >> axis & 1 and not last >> axis & 1:
-                    self.steps.edges.append((self.cycle(), axis, direction >> axis & 1))
-            last = now
+        await watch_steps(self.dut, self.steps, self.cycle)
 
     async def _watch_pushes(self):
         motion = self.dut.u_motion
@@ -212,9 +225,8 @@ class ControllerBench:
     async def send_words(self, data: bytes) -> None:
         """The bytes through CMD_DATA, 4 a write; the last 1 .. 3 with only their byte
         selects set (no padding: a padding byte would start a record)."""
-        for at in range(0, len(data), 4):
-            chunk = data[at:at + 4]
-            await self.write("CMD_DATA", int.from_bytes(chunk.ljust(4, b"\0"), "little"), sel=(1 << len(chunk)) - 1)
+        for value, sel in data_words(data):
+            await self.write("CMD_DATA", value, sel=sel)
 
     def records(self, commands) -> bytes:
         return b"".join(encode(c, self.build) for c in commands)

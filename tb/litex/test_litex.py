@@ -8,12 +8,12 @@ length is not a multiple of 4: its last write selects only its bytes) ending at 
 programmed position, counted on the step pads and in POS_X/Y/Z."""
 import cocotb
 from cocotb.clock import Clock
-from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly
+from cocotb.triggers import ClockCycles, FallingEdge
 
 from interp.link import records
 from interp.link.registers import REG_ID, RESETS
 from interp.simulation.runner import ROOT, run_cocotb
-from interp.testing.controllerkit import ENABLE, CLEAR, REG, StepLog, icarus_in_make_test
+from interp.testing.controllerkit import CLEAR, ENABLE, REG, StepLog, data_words, icarus_in_make_test, watch_steps
 
 CLOCK_HZ = 50_000                      # the machine's clock (the sim's period is arbitrary)
 NAME = "litex_cnc"
@@ -38,19 +38,8 @@ class LiteXBench:
         self.wb = WishboneMaster(dut, "bus", dut.sys_clk, width=32, timeout=100_000, signals_dict={
             "cyc": "cyc", "stb": "stb", "we": "we", "adr": "adr", "datwr": "dat_w", "datrd": "dat_r",
             "ack": "ack", "sel": "sel"})
-        cocotb.start_soon(self._watch_steps())
+        cocotb.start_soon(watch_steps(dut, self.steps, lambda: 0))
         return self
-
-    async def _watch_steps(self):
-        dut, last = self.dut, 0
-        while True:
-            await dut.step.value_change
-            await ReadOnly()
-            now, direction = int(dut.step.value), int(dut.dir.value)
-            for axis in range(3):
-                if now >> axis & 1 and not last >> axis & 1:
-                    self.steps.edges.append((0, axis, direction >> axis & 1))
-            last = now
 
     async def read(self, name: str) -> int:
         from cocotbext.wishbone.driver import WBOp
@@ -98,9 +87,8 @@ async def soc_drives_the_controller(dut):
         await tb.write(name, timing[key])
     stream = records.encode_program(compiled.commands, build)
     assert len(stream) % 4, "the stream's last write is a partial one"
-    for at in range(0, len(stream), 4):
-        chunk = stream[at:at + 4]
-        await tb.write("CMD_DATA", int.from_bytes(chunk.ljust(4, b"\xff"), "little"), sel=(1 << len(chunk)) - 1)
+    for value, sel in data_words(stream, fill=0xFF):           # lanes not selected: 0xFF, ignored
+        await tb.write("CMD_DATA", value, sel=sel)
     for _ in range(400):
         if await tb.read("EXECUTED") == len(compiled.commands) and not await tb.read("STATUS") & 8:
             break               # all executed, nothing left in the queue (no stray byte)
