@@ -414,17 +414,20 @@ def check_controller(driver: Driver, build: Build = DEFAULT_BUILD, clock_hz: flo
     return v
 
 
-def configure(driver: Driver, timing: dict, settings: dict) -> None:
-    """The machine settings `interp gcode` runs with: step timing, speed quantum, profile shifts,
-    override."""
+def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
+    """The register writes of the machine settings `interp gcode` runs with (step timing,
+    speed quantum, profile shifts, override), in order: for a driver, a bench or firmware."""
     quantum = int(settings.get("speed_quantum", 1))
-    driver.write_register("PULSE_WIDTH", int(timing["pulse_width"]))
-    driver.write_register("DIR_SETUP", int(timing["setup"]))
-    driver.write_register("DIR_HOLD", int(timing["hold"]))
-    driver.write_register("QUANTUM_LO", quantum & 0xFFFFFFFF)
-    driver.write_register("QUANTUM_HI", quantum >> 32)
-    driver.write_register("MOTION", int(settings.get("block_shift", 0)) | int(settings.get("jerk_shift", 0)) << 4)
-    driver.write_register("OVERRIDE", int(settings.get("override", 100)))
+    return [("PULSE_WIDTH", int(timing["pulse_width"])), ("DIR_SETUP", int(timing["setup"])),
+            ("DIR_HOLD", int(timing["hold"])), ("QUANTUM_LO", quantum & 0xFFFFFFFF), ("QUANTUM_HI", quantum >> 32),
+            ("MOTION", int(settings.get("block_shift", 0)) | int(settings.get("jerk_shift", 0)) << 4),
+            ("OVERRIDE", int(settings.get("override", 100)))]
+
+
+def configure(driver: Driver, timing: dict, settings: dict) -> None:
+    """The machine settings `interp gcode` runs with, written through the link."""
+    for name, value in settings_writes(timing, settings):
+        driver.write_register(name, value)
 
 
 POLLED = ("EXECUTED", "QUEUE_FREE", "POS_X", "POS_Y", "POS_Z", "ERROR", "STATUS")   # STATUS after EXECUTED: the end test

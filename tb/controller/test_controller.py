@@ -18,6 +18,7 @@ import cocotb
 from cocotb.triggers import FallingEdge
 
 from interp.link import records
+from interp.link.driver import settings_writes
 from interp.models.motion import ARC_CCW, ARC_CW, CURVE, DWELL, EVENT, LINE, Command, queue_steps
 from interp.models.profile import profile_for
 from interp.simulation import motion_build
@@ -496,13 +497,8 @@ async def gcode_program(dut):
     text = ("G21 G90 G17\nM3 S12000\nM8\nG01 X1 F1200\nG03 X1.5 Y0.5 I0 J0.5\nG03 X1 Y1 Z-0.3 I-0.5 J0\n"
             "G01 X0\nG18 G02 X-0.4 Z-0.3 I-0.2 K0\nG17 G00 X0.2 Y0.1 Z0.2\nM9\nM2\n")
     _, compiled = compile_text(text, machine, costs="true")
-    settings, timing = compiled.settings, machine.timing()
-    await tb.write("QUANTUM_LO", settings["speed_quantum"] & 0xFFFFFFFF)
-    await tb.write("QUANTUM_HI", settings["speed_quantum"] >> 32)
-    await tb.write("MOTION", settings["block_shift"] | settings["jerk_shift"] << 4)
-    await tb.write("OVERRIDE", settings.get("override", 100))
-    for name, key in (("PULSE_WIDTH", "pulse_width"), ("DIR_SETUP", "setup"), ("DIR_HOLD", "hold")):
-        await tb.write(name, timing[key])
+    for name, value in settings_writes(machine.timing(), compiled.settings):
+        await tb.write(name, value)
     data = b"".join(
         __import__("interp.testing.controllerkit", fromlist=["encode"]).encode(c, tb.build) for c in compiled.commands)
     sender = cocotb.start_soon(tb.send(data))

@@ -11,6 +11,7 @@ from cocotb.clock import Clock
 from cocotb.triggers import ClockCycles, FallingEdge
 
 from interp.link import records
+from interp.link.driver import settings_writes
 from interp.link.registers import REG_ID, RESETS
 from interp.simulation.runner import ROOT, run_cocotb
 from interp.testing.controllerkit import CLEAR, ENABLE, REG, StepLog, data_words, icarus_in_make_test, watch_steps
@@ -79,12 +80,8 @@ async def soc_drives_the_controller(dut):
     # a program, as the firmware would: the settings, then the records through CMD_DATA
     machine = load_machine(clock_hz=CLOCK_HZ)
     _, compiled = compile_text("G21 G90 G17\nG01 X0.4 Y-0.2 F1200\nG02 X0.6 Y0 I0 J0.2\nG01 Z-0.1\n", machine)
-    settings, timing = compiled.settings, machine.timing()
-    await tb.write("QUANTUM_LO", settings["speed_quantum"] & 0xFFFFFFFF)
-    await tb.write("QUANTUM_HI", settings["speed_quantum"] >> 32)
-    await tb.write("MOTION", settings["block_shift"] | settings["jerk_shift"] << 4)
-    for name, key in (("PULSE_WIDTH", "pulse_width"), ("DIR_SETUP", "setup"), ("DIR_HOLD", "hold")):
-        await tb.write(name, timing[key])
+    for name, value in settings_writes(machine.timing(), compiled.settings):
+        await tb.write(name, value)
     stream = records.encode_program(compiled.commands, build)
     assert len(stream) % 4, "the stream's last write is a partial one"
     for value, sel in data_words(stream, fill=0xFF):           # lanes not selected: 0xFF, ignored
