@@ -117,17 +117,17 @@ module controller #(
 
     wire        q_valid, q_ready;
     wire [7:0]  q_data;
-    wire [QUEUE_AW:0] q_level, q_free;
+    wire [QUEUE_AW:0] unused_level, q_free;
     wire [15:0] free_records;
     segment_queue #(.AW(QUEUE_AW), .RECORD_BYTES(RECORD_BYTES)) u_queue (
         .clk(clk), .rst(rst), .flush(flush), .in_valid(q_in_valid), .in_data(q_in_data),
         .in_ready(q_in_ready), .out_valid(q_valid), .out_data(q_data), .out_ready(q_ready),
-        .level(q_level), .free(q_free), .free_records(free_records)
+        .level(unused_level), .free(q_free), .free_records(free_records)
     );
     assign queue_free = {{(15 - QUEUE_AW){1'b0}}, q_free};
 
     // ---------------- unpacker -> motion_top ----------------
-    wire              m_valid, m_full, record_error, taken, assembling;
+    wire              m_valid, m_full, record_error, taken, unused_assembling;
     wire [2:0]        m_kind;
     wire [1:0]        m_plane;
     wire [FEED_W-1:0] m_feed, m_limit, m_cost;
@@ -142,7 +142,7 @@ module controller #(
         .cmd_x(m_x), .cmd_y(m_y), .cmd_z(m_z), .cmd_i(m_i), .cmd_j(m_j), .cmd_k(m_k), .cmd_l(m_l),
         .cmd_limit(m_limit), .cmd_exit(m_exit), .cmd_rate(m_rate), .cmd_cost(m_cost),
         .cmd_length(m_length), .cmd_budget(m_budget), .cmd_full(m_full | fill),
-        .record_error(record_error), .taken(taken), .assembling(assembling)
+        .record_error(record_error), .taken(taken), .assembling(unused_assembling)
     );
 
     // records written and not yet taken by the unpacker (STATUS[15:8])
@@ -258,17 +258,22 @@ module controller #(
     );
     assign hold_set = pause;
 
-    // records pushed into motion_top (or dropped) minus those still in its queue
+    // records pushed into motion_top minus those still in its queue; a flush (alarm, abort)
+    // discards that queue in its first clock (motion_top is then at reset, level 0), and
+    // the discarded records were never run
     reg  [31:0] consumed;
     always @(posedge clk) begin
         if (rst)
             consumed <= 32'd0;
-        else if (taken & ~flush)
+        else if (flush)
+            consumed <= consumed - {{(32 - QLW){1'b0}}, m_level};
+        else if (taken)
             consumed <= consumed + 1'b1;
     end
     wire [31:0] executed = consumed - {{(32 - QLW){1'b0}}, m_level};
 
-    wire        busy = m_busy | q_level != {(QUEUE_AW+1){1'b0}} | assembling | ~data_ready;
+    // busy: something to run (a partial record alone, bytes still to come, is not)
+    wire        busy = m_busy | records != 16'd0 | ~data_ready;
     wire        halted = stopped | (hold & fill);       // in hold: motion_top at rest, or kept at reset
     wire [2:0]  state = alarm ? 3'd4 : hold ? (halted ? 3'd3 : 3'd2) : busy ? 3'd1 : 3'd0;
     assign status_state = {5'd0, state};

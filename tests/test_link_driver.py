@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from interp.link import protocol as p
 from interp.link.devicemodel import DeviceModel
 from interp.link.driver import (Driver, LinkError, MismatchError, check_controller, configure, run_program)
-from interp.link.records import Build, encode, encode_program
+from interp.link.records import Build, RecordReader, encode, encode_program
 
 SEED = int(os.environ.get("SEED", random.randrange(1 << 30)))
 
@@ -277,3 +277,46 @@ def test_fill_release_follows_the_data_after_a_go_back(index):
     assert outcome.status == "done" and executed_fields(model, cmds) == cmds
     release = [received for value, received in model.received_at_control if not value & p.CONTROL_FILL]
     assert release and release[0] == model.record_len * len(cmds), (release, driver.recoveries)
+
+
+def test_model_refuses_a_frame_that_escapes_the_crc():
+    """The model's ideal CRC check: on a noisy line, a frame with a good CRC-16 that the host
+    never sent (here: the host's DATA frame with a payload byte changed and the CRC redone,
+    as the noise did once in 65,536 corrupted frames) is counted and refused with NAK 1."""
+    model = DeviceModel(line_noise=1e-12, seed=1)
+    sent = p.encode_frame(p.DATA, 0, bytes(8))
+    model.write(sent)                                       # the host's frame (the noise flips nothing)
+    model.down.clear()                                      # ... and on the line, a changed one
+    for byte in p.encode_frame(p.DATA, 0, bytes([1]) + bytes(7)):
+        model.down.append((model.t, byte))
+    model.timeout = 0.01
+    replies = [p.decode_reply(f) for f in p.FrameParser().feed(model.read(256))]
+    assert model.crc_escapes == 1 and not model.queue
+    assert [(type(r), r.seq, r.reason) for r in replies] == [(p.Nak, 0, p.NAK_CRC)]
+    model.write(sent)                                       # the frame the host did send is taken
+    replies = [p.decode_reply(f) for f in p.FrameParser().feed(model.read(256))]
+    assert model.queue == bytes(8) and isinstance(replies[-1], p.Ack) and replies[-1].seq == 1
+
+
+class ResetMidStream(DeviceModel):
+    """The controller reset (power glitch, reset button) after its 30th sequenced frame:
+    its next expected sequence number is 0 again, its queue empty."""
+
+    def _frame(self, f):
+        if self.frames == 30 and self.expected:
+            self.expected = 0
+            self.queue.clear()
+            self.reader = RecordReader(self.build)
+        super()._frame(f)
+
+
+def test_controller_reset_mid_stream_is_one_line_error():
+    """The driver stops with one LinkError naming the reset, within the dead-link time (it
+    used to go back for ever: the controller's ACKs, for sequence numbers outside the
+    window, were ignored yet kept the link alive)."""
+    model = ResetMidStream(records_per_second=200)
+    driver = Driver(model, baud=model.baud)
+    driver.connect()
+    with pytest.raises(LinkError, match="was it reset"):
+        run_program(driver, b"".join(encode(c) for c in commands(60)), 60, max_seconds=20)
+    assert model.t < 5

@@ -320,7 +320,11 @@ class Driver:
                     if not recovering:
                         self.base, self.free = reply.seq, reply.free      # connect: E starts the sequence
                     elif not self._advance(reply.seq, reply.free):
-                        continue
+                        # the line is quiet, so E is between base and base + sent unless the
+                        # controller lost its state: it would take nothing from us again
+                        raise LinkError(f"the controller expects frame {reply.seq}, the driver "
+                                        f"{self.base % 256} .. {(self.base + self.sent) % 256}: "
+                                        "was it reset? (its queue and position are lost)")
                     if isinstance(reply, p.Ack):
                         self.device_state, self.device_error = reply.state, reply.error
                     return reply

@@ -227,9 +227,12 @@ async def program_ends_at_its_position(dut):
 
 async def trip_mid_arc(tb, pin, value, code):
     """Start a long arc, trip `pin` mid-way: the steps are gated in the cycle the synchronized
-    input shows it; ERROR, ALARM; positions = the pulses that went out."""
+    input shows it; ERROR, ALARM; positions = the pulses that went out; EXECUTED counts the
+    arc only, not the records the alarm discards from motion_top's queue."""
     dut = tb.dut
-    cmds = tb.profiled([Command(ARC_CW, ONE // 2, 0, 0, 0, 15, 0)])     # a full circle, radius 15
+    executed = await tb.read("EXECUTED")
+    cmds = tb.profiled([Command(ARC_CW, ONE // 2, 0, 0, 0, 15, 0)]     # a full circle, radius 15
+                       + [Command(LINE, ONE // 2, 2, 1, 0)] * 3)        # waiting behind it
     await tb.send(tb.records(cmds))
     await tb.wait_steps(len(tb.steps.edges) + 20)
     getattr(dut, pin).value = value
@@ -246,6 +249,7 @@ async def trip_mid_arc(tb, pin, value, code):
     assert await tb.position() == tb.steps.position()
     size = 1 << int(dut.QUEUE_AW.value)
     assert await tb.read("QUEUE_FREE") & 0xFFFF == size, "ALARM flushes the queue"
+    assert await tb.read("EXECUTED") == executed + 1, "the records behind the arc never ran"
 
 
 @cocotb.test()
@@ -301,25 +305,31 @@ async def hold_resume_mid_helix(dut):
 @cocotb.test()
 async def abort_and_restart(dut):
     """Abort mid-program: the steps stop, queue and partial record flushed, positions kept;
-    a record cut by an abort is dropped; the next program runs from where the machine is."""
+    half a record is not busy, and a record cut by an abort is dropped; the next program runs from where the machine is."""
     tb = await Bench(dut).start()
     cmds = tb.profiled([Command(LINE, ONE // 2, 40, 10, 0), Command(LINE, ONE // 2, -30, 20, 5)] * 3)
     await tb.send(tb.records(cmds))
     await tb.wait_steps(25)
+    executed = await tb.read("EXECUTED")                 # the first record (no other has begun)
     await tb.write("CONTROL", ABORT)
     await tb.quiet(300)
+    assert executed == 1 and await tb.read("EXECUTED") == 1, "the aborted records were never run"
     size = 1 << int(dut.QUEUE_AW.value)
     assert await tb.read("QUEUE_FREE") == size | (size // tb.rb) << 16
     assert await tb.read("STATUS") == IDLE and await tb.read("ERROR") == 0
     kept = await tb.position()
     assert kept == tb.steps.position() and kept != [0, 0, 0]
-    # half a record, then abort: dropped
+    # half a record: IDLE, not busy, no record (a host may start a program); then abort: dropped
     await tb.send(tb.records(cmds[:1])[:tb.rb // 2])
+    await tb.clocks(tb.rb)
+    status = await tb.read("STATUS")
+    assert status & 0xFF0F == IDLE, f"STATUS {status:#x} with half a record"
     await tb.write("CONTROL", ABORT)
     again = tb.profiled([Command(LINE, ONE // 2, -5, 7, 1), Command(ARC_CW, ONE // 3, 0, 0, 0, 4, 0)])
     await tb.send(tb.records(again))
     await tb.wait_idle()
     assert await tb.position() == tb.end_of(again, kept)[0] == tb.steps.position()
+    assert await tb.read("EXECUTED") == 1 + len(again)
 
 
 @cocotb.test()
