@@ -330,8 +330,8 @@ class DeviceModel:
             a["BUILD1"]: b.LEN_W | b.ZW << 8 | b.MW << 16 | b.TW << 24,
             a["CLOCK_HZ"]: self.clock_hz,
             a["QUEUE_SIZE"]: (self.queue_size & 0xFFFF) | self.queue_aw << 16 | int(self.curves) << 24,
-            a["STATUS"]: (self.state() | int(self.busy or self._whole()) << 3 | int(not self.busy) << 4 | int(self.enabled) << 6
-                          | min(records, 255) << 8),
+            a["STATUS"]: (self.state() | int(self.busy or self._whole()) << 3 | int(self.state() == p.HELD) << 4
+                          | int(self.enabled) << 6 | min(records, 255) << 8),
             a["ERROR"]: self.error | self.limits << 8,
             a["QUEUE_FREE"]: (free & 0xFFFF) | (free // self.record_len) << 16,
             a["POS_X"]: self.position[0] & 0xFFFFFFFF, a["POS_Y"]: self.position[1] & 0xFFFFFFFF,
