@@ -235,9 +235,9 @@ module controller #(
                 else if (limit_trip != 3'b000) begin
                     error_code   <= 8'd17;
                     error_limits <= limit_trip;
-                end else if (m_error)
+                end else if (m_error & ~abort)      // (in an abort's clock: what it discards)
                     error_code <= {4'd0, m_error_code};
-                else if (record_error)
+                else if (record_error & ~abort)
                     error_code <= 8'd18;
                 else
                     error_code <= 8'd0;

@@ -495,6 +495,22 @@ async def bad_records(dut):
 
 
 @cocotb.test()
+async def abort_meets_a_bad_record(dut):
+    """CONTROL abort + clear (what `interp send` writes before a run) at every clock around
+    a bad record's end: IDLE with ERROR 0 every time (an error found in the clock of an
+    abort belongs to what the abort discards)."""
+    tb = await Bench(dut).start()
+    bad = tb.records(tb.profiled([Command(6, ONE // 2, 8, 0, 25, 0, 0, 1, 0)]))
+    for delay in range(tb.rb + 24):
+        await tb.send(bad)
+        await tb.clocks(delay)
+        await tb.write("CONTROL", ABORT | CLEAR)
+        await tb.clocks(4)
+        assert await tb.read("ERROR") == 0 and await tb.state() == IDLE, \
+            f"abort and clear {delay} clocks after the bad record's last byte"
+
+
+@cocotb.test()
 async def gcode_program(dut):
     """The G-code build: a compiled G-code program (spindle, coolant, line, arc, helix, ZX arc,
     program end) with the machine settings the host writes: ends at its programmed end, the
