@@ -305,7 +305,8 @@ async def hold_resume_mid_helix(dut):
 @cocotb.test()
 async def abort_and_restart(dut):
     """Abort mid-program: the steps stop, queue and partial record flushed, positions kept;
-    half a record is not busy, and a record cut by an abort is dropped; the next program runs from where the machine is."""
+    half a record is not busy, and a record cut by an abort is dropped; the next program runs
+    from where the machine is."""
     tb = await Bench(dut).start()
     cmds = tb.profiled([Command(LINE, ONE // 2, 40, 10, 0), Command(LINE, ONE // 2, -30, 20, 5)] * 3)
     await tb.send(tb.records(cmds))
