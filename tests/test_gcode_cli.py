@@ -33,7 +33,7 @@ def fake_harness(commands_path, sim, *, steps_path, timing, max_cycles, progress
     """An ideal motion_top: the command file's moves by the step models, each event at the time
     the command's trapezoid (its profile fields) covers it; one event per EVENT."""
     from interp.models.motion import Command, command_steps
-    from interp.simulation.monitor import trapezoid_times
+    from interp.simulation.monitor import event_costs, trapezoid_times
 
     pos, events, rows = [0, 0, 0], [], []
     a_q, bs = settings["speed_quantum"], settings["block_shift"]
@@ -48,8 +48,8 @@ def fake_harness(commands_path, sim, *, steps_path, timing, max_cycles, progress
             steps, _ = command_steps(Command(kind, feed, x, y, z, i, j, k, l, plane=plane), 32)
             accel = rate / (1 << 24) * a_q / (1 << bs) / (1 << 48)
             exit_speed = exit * a_q / (1 << 48)
-            times, duration = trapezoid_times(len(steps), cost / (1 << 48), speed, feed / (1 << 48),
-                                              exit_speed, accel)
+            times, duration = trapezoid_times(event_costs(cost, steps), speed, feed / (1 << 48), exit_speed,
+                                              accel)
             rows += [(math.ceil(now + t), *s) for t, s in zip(times, steps)]
             now += duration
             speed = exit_speed

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from interp.testing.seeds import seeded_random
 from interp.gcode.compile import (ARC_LIMIT, DWELL_MAX, EVENT, EVENT_CODES, EXIT_MARGIN, FRAC, LINE_MAX, PF,
                                   PWM_FULL, CompileError, Compiler, compile_program)
-from interp.gcode.stepcount import arc_count, helix_count
+from interp.gcode.stepcount import arc_count, arc_events, helix_count
 from interp.gcode.machine import SCHEMA, MachineError, default_machine_text, load_machine
 from interp.gcode.moves import PLANES, Arc, Dwell, Event, Line, Program
 from interp.models.arc import arc_error, arc_steps
@@ -293,9 +293,12 @@ def arcs(draw, radius=400):
 @settings(max_examples=300, deadline=None)
 @given(arcs())
 def test_arc_count_is_the_models(arc):
-    """The exact step count (octant interiors in closed form) equals the arc model's steps."""
+    """The exact step count and diagonal step count (octant interiors in closed form) equal
+    the arc model's steps."""
     ci, cj, x, y, ccw = arc
-    assert arc_count(ci, cj, x, y, ccw) == len(arc_steps(ci, cj, 0, 0, x, y, ccw, (x, y) == (0, 0)))
+    steps = arc_steps(ci, cj, 0, 0, x, y, ccw, (x, y) == (0, 0))
+    assert arc_count(ci, cj, x, y, ccw) == len(steps)
+    assert arc_events(ci, cj, x, y, ccw) == (len(steps), sum(1 for s in steps if s.dx and s.dy))
 
 
 @settings(max_examples=200, deadline=None)
@@ -315,6 +318,8 @@ def test_arc_count_of_huge_circles():
     eight octants of R / sqrt(2) steps on the leading axis each."""
     r = 1 << 28
     assert abs(arc_count(-r, 0, 0, 0, True) - 8 * r / math.sqrt(2)) <= 8
+    # its diagonal steps: the minor coordinates' travel, R (1 - 1 / sqrt 2) per octant
+    assert abs(arc_events(-r, 0, 0, 0, True)[1] - 8 * r * (1 - 1 / math.sqrt(2))) <= 8
 
 
 def test_chords_for_unequal_steps_and_huge_radius():
@@ -387,19 +392,44 @@ def test_feed_with_unequal_steps_per_mm():
     [Line((0, 0, 0), (10, 5, 0), 600, 1), Line((10, 5, 0), (10.07, 4.97, 0.02), 600, 2)],
     [Line((0, 0, 0), (3, 0, 0), 600, 1), Arc((3, 0, 0), (0, -3, 1), (0, 0, 0), "XY", True, 1, 600, 2)],
     [Line((0, 0, 0), (0, 3, 0), 600, 1), Arc((0, 3, 0), (0, 0, 3), (0, 0, 0), "YZ", False, 1, 600, 2)]])
-def test_costs_true_and_lecture(moves):
-    """cost = round(true length x 2^FRAC / N), length = N x cost; costs="lecture": cost 0 and
-    length = the lecture's sqrt(axes) costs over the models' steps (as the RTL rounds them)."""
+def test_costs_true_even_and_lecture(moves):
+    """costs="even": cost = round(true length x 2^FRAC / N), length = N x cost; "lecture": cost 0
+    and length = the lecture's sqrt(axes) costs over the models' steps (as the RTL rounds them);
+    "true" (the default): lines as "even", arcs and helices as "lecture" with their speed words
+    scaled by the stepped length over the true one (F along the true arc on average)."""
     true = compile_program(Program(moves), MACHINE)
+    even = compile_program(Program(moves), MACHINE, costs="even")
     lecture = compile_program(Program(moves), MACHINE, costs="lecture")
     table = interval_costs(FRAC)
-    for t, c in zip(true.commands, lecture.commands):
+    for t, e, c in zip(true.commands, even.commands, lecture.commands):
         steps, error = command_steps(c, 32)
-        assert not error and len(steps) == t.motion.events == c.motion.events
-        assert t.length == t.motion.events * t.cost
-        assert abs(t.cost * t.motion.events - t.motion.steps * (1 << FRAC)) <= t.motion.events
+        assert not error and len(steps) == t.motion.events == c.motion.events == e.motion.events
+        assert e.length == e.motion.events * e.cost
+        assert abs(e.cost * e.motion.events - e.motion.steps * (1 << FRAC)) <= e.motion.events
         assert c.cost == 0 and c.length == sum(table[sum(map(abs, s))] for s in steps)
-        assert c.length >= t.length - t.motion.events        # the lecture's path is never shorter
+        assert c.length >= e.length - e.motion.events        # the lecture's path is never shorter
+        if t.kind == LINE:
+            assert (t.cost, t.length, t.motion.pacing) == (e.cost, e.length, 1.0)
+        else:
+            ratio = c.length / (t.motion.steps * (1 << FRAC))
+            assert (t.cost, t.length) == (0, c.length) and t.motion.pacing == pytest.approx(max(1.0, ratio))
+            # the same time along the true arc at the plan's cruise: length / feed = true / v
+            spm_word = t.motion.spm * (1 << FRAC) / MACHINE.clock_hz
+            assert t.feed == round(true.plans[-1].cruise_mm_s * spm_word * ratio)
+
+
+def test_arcs_keep_their_local_speed_near_f():
+    """Along a quarter arc and a helix the default costs keep the local path speed (32-event
+    windows) within -4 % .. +8 % of the mean, and never above the command's pacing; events
+    charged evenly run the diagonals over 25 % fast."""
+    from interp.benchmarks.feed_accuracy import MOVES, local_range
+
+    for name in ("arc r 20, quarter", "helix r 20, 10 mm"):
+        moves = MOVES[name]
+        low, high = local_range(moves, "true")
+        pacing = compile_program(Program(moves), MACHINE).commands[-1].motion.pacing
+        assert 0.96 <= low and high <= min(1.08, pacing + 1e-9), (name, low, high, pacing)
+        assert local_range(moves, "even")[1] > 1.25
 
 
 # ---------------- dwells, events, time ----------------

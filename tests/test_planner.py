@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from interp.gcode.planner import (CENTRIPETAL_SHARE, Plan, Segment, _junction_limits, junction_speed,
+from interp.gcode.planner import (CENTRIPETAL_SHARE, PACING_SLOPE, Plan, Segment, _junction_limits, junction_speed,
                                   limits, machine_time, plan, trapezoid_time)
 
 RATE = (100.0, 100.0, 50.0)
@@ -152,25 +152,30 @@ def test_time_is_monotone_in_acceleration(segments, deviation, factor):
 @settings(max_examples=300, deadline=None)
 @given(st.builds(dict, radius=st.floats(0.05, 100), angle=st.floats(0.01, 12) | st.floats(-12, -0.01),
                  pitch=st.floats(-2, 2), plane=planes, start_angle=st.floats(-4, 4), feed=st.floats(0.5, 400)),
-       st.sampled_from([ACCEL, (500.0, 500.0, 500.0), (100.0, 900.0, 300.0)]))
-def test_arc_bounds_hold_along_the_arc(shape, accel):
+       st.sampled_from([ACCEL, (500.0, 500.0, 500.0), (100.0, 900.0, 300.0)]),
+       st.sampled_from([1.0, 1.0]) | st.floats(1.0, 1.1))
+def test_arc_bounds_hold_along_the_arc(shape, accel, pacing):
     """Speed, and tangential (speeding up or braking) plus centripetal acceleration at the
-    cruise speed, per axis, at every angle the arc passes (sampled finely)."""
-    segment = arc_segment(**shape, accel=accel)
+    cruise speed, per axis, at every angle the arc passes (sampled finely).  With a pacing P
+    > 1 (the lecture's step costs) at the local speed P x cruise, the tangential P x a_t +
+    PACING_SLOPE x the centripetal."""
+    segment = arc_segment(**shape, accel=accel, pacing=pacing)
     cruise, tangential = limits(segment)
     p, q = segment.plane_axes
     w = 3 - p - q
     sin_a = abs(segment.start_unit[w])
     cos_a = math.sqrt(1 - sin_a ** 2)
     assert cruise <= segment.feed_mm_s and tangential > 0
-    centripetal = (cruise * cos_a) ** 2 / segment.radius_mm
+    local = cruise * pacing
+    centripetal = (local * cos_a) ** 2 / segment.radius_mm
+    paced = tangential * pacing + (PACING_SLOPE * centripetal / cos_a if pacing > 1 else 0.0)
     samples = 2000
     for step in range(samples + 1):
         theta = shape["start_angle"] + shape["angle"] * step / samples      # position angle
-        velocity = {p: -math.sin(theta) * cruise * cos_a, q: math.cos(theta) * cruise * cos_a,
-                    w: cruise * sin_a}
+        velocity = {p: -math.sin(theta) * local * cos_a, q: math.cos(theta) * local * cos_a,
+                    w: local * sin_a}
         for sign in (1, -1):
-            along = sign * tangential
+            along = sign * paced
             acceleration = {p: -math.sin(theta) * along * cos_a - math.cos(theta) * centripetal,
                             q: math.cos(theta) * along * cos_a - math.sin(theta) * centripetal,
                             w: along * sin_a}

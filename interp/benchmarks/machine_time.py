@@ -136,10 +136,10 @@ class Row:
         return self.ours_s / self.grbl_s if self.grbl_s else math.nan
 
 
-def compiled_segments(program: Program, machine: Machine) -> list[Segment] | None:
+def compiled_segments(program: Program, machine: Machine, paced: bool = True) -> list[Segment] | None:
     """Our segments as the compiler emits its move commands (interp.gcode.compile, when its
     commands carry the planner's view of them: `Cmd.motion`), or None with a compiler that
-    does not plan."""
+    does not plan; paced=False leaves out the arcs' pacing (their local speed's excess)."""
     from ..gcode import compile as compiler
 
     if "plans" not in getattr(compiler.Compiled, "__dataclass_fields__", {}):
@@ -150,7 +150,8 @@ def compiled_segments(program: Program, machine: Machine) -> list[Segment] | Non
     motions = [c.motion for c in compiled.commands if getattr(c, "motion", None) is not None]
     return [Segment(m.length_mm, m.start_unit, m.end_unit, m.feed_mm_s, rate, accel,
                     radius_mm=m.radius_mm, plane_axes=m.plane_axes, stop_before=m.stop_before,
-                    tolerance_mm=m.tolerance_mm) for m in motions]
+                    tolerance_mm=m.tolerance_mm, pacing=getattr(m, "pacing", 1.0) if paced else 1.0)
+            for m in motions]
 
 
 def measure(program: Program, machine: Machine, name: str = "", *, window: int = STREAM_WINDOW,
@@ -187,8 +188,12 @@ def why_slower(program: Program, machine: Machine, row: Row) -> str:
     flat = [Segment(s.length_mm, s.start_unit, s.end_unit, s.feed_mm_s, s.axis_rate_mm_s,
                     s.axis_accel_mm_s2, None, None, s.stop_before, s.tolerance_mm) for s in segments]
     unbounded = machine_time(plan(flat, junction_deviation_mm=deviation)) + dwell
-    parts = [(row.ours_s - row.moves_s, "the compiler's commands against the moves (step rounding, "
-                                        "one-step corrections at arc ends)"),
+    unpaced = compiled_segments(program, machine, paced=False) if row.source == "compiler" else None
+    plain = row.ours_s if unpaced is None else machine_time(plan(unpaced, junction_deviation_mm=deviation)) + dwell
+    parts = [(row.ours_s - plain, "the arcs' stepped pace (their local speed up to pacing x the mean, "
+                                  "within the axes' limits)"),
+             (plain - row.moves_s, "the compiler's commands against the moves (step rounding, "
+                                   "one-step corrections at arc ends)"),
              (row.moves_s - no_stops, "G61 exact stops (Grbl runs G61 with its junction deviation)"),
              (no_stops - unbounded, "the centripetal bound v^2 <= a_n R on tight arcs (Grbl's chord "
                                     "junctions allow about v^2 = a R delta / arc tolerance)"),

@@ -29,9 +29,14 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
     exact stops before the first move and after dwells and events); the plan
     becomes the profile fields of each command: cmd_feed = the planned cruise,
     cmd_limit = the axes' ceiling (for feed override), cmd_exit (quanta),
-    cmd_rate, cmd_cost = the TRUE path length / N with N the exact number of
-    step events (costs="lecture": 0, the lecture's sqrt(axes) costs),
-    cmd_length = N x cost, cmd_budget; and the global speed quantum A,
+    cmd_rate, cmd_cost and cmd_length (lines: cmd_cost = the TRUE path length /
+    N with N the exact number of step events, cmd_length = N x cost; arcs and
+    helices: cmd_cost = 0, the lecture's 1, sqrt 2, sqrt 3 per step event,
+    cmd_length their sum, and the command's speeds and acceleration scaled by
+    cmd_length / its true length, so that F holds along the true arc on average
+    and within its `pacing` locally; costs="even": every move as a line, for
+    comparison; costs="lecture": every move by the lecture's costs, unscaled,
+    for tests), cmd_budget; and the global speed quantum A,
     block_shift, jerk_shift (Compiled.settings).  Speeds are path units
     (2^-48 steps) per clock: v = mm/s x spm x 2^48 / clock_hz, spm the path's
     steps per mm along the command.  F is capped so that no axis exceeds its
@@ -51,7 +56,7 @@ from ..models.lecture import within_half_step
 from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command, command_steps, interval_costs
 from .machine import AXES, Machine
 from .moves import EVENTS, PLANES, Arc, Dwell, Event, Line, Program
-from .stepcount import arc_count, helix_count, line_count
+from .stepcount import arc_count, arc_events, helix_count, line_count
 
 EVENT = 5
 W, FRAC, FEED_W = 32, 48, 50                 # the CLI's build of motion_top
@@ -69,7 +74,7 @@ LEN_MAX, ZW_MAX, NW_MAX = (1 << LEN_W) - 1, (1 << ZW) - 1, (1 << NW) - 1
 # would end before it and stop at once (motion_top error 9).  Binding only at low clocks
 # (a one-step move at 200 kHz: <= 23 mm/s at 100 steps/mm; at 50 MHz: <= 5.8 m/s).
 SEGMENT_CLOCKS = 2 * (NW + 3)
-COST_MODES = ("true", "lecture")
+COST_MODES = ("true", "even", "lecture")
 PWM_FULL = 65535                             # spindle duty of S = max_s
 CHORD_SAGITTA = 0.25                         # chords stay within this many steps of the true arc
 PLANE_CODE = {"XY": 0, "ZX": 1, "YZ": 2}     # cmd_plane
@@ -104,6 +109,8 @@ class Motion:
     plane_axes: tuple[int, int] | None = None
     stop_before: bool = False
     tolerance_mm: float | None = None
+    # the largest local path speed over the mean the hardware's step costs give (planner.Segment)
+    pacing: float = 1.0
 
     @property
     def spm(self) -> float:
@@ -507,10 +514,33 @@ class Compiler:
             quantum = self.out.settings["speed_quantum"]
             cmd.exit = max(0, min(cmd.exit, reach, cmd.feed // quantum, nxt.feed // quantum))
 
+    def stepped_length(self, cmd: Cmd) -> int:
+        """The lecture's costs (1, sqrt 2, sqrt 3 x 2^FRAC per 1-, 2-, 3-axis step event,
+        rounded as the RTL's step_cost) summed over the command's steps (a flat arc's by its
+        step and diagonal counts, a helix's and a line's by the models' step list)."""
+        costs = interval_costs(FRAC)
+        if cmd.kind in (ARC_CW, ARC_CCW) and cmd.z == 0:   # a flat arc: counted in closed form
+            n, diagonal = arc_events(cmd.i, cmd.j, cmd.x, cmd.y, cmd.kind == ARC_CCW)
+            return (n - diagonal) * costs[1] + diagonal * costs[2]
+        feed, cmd.feed = cmd.feed, cmd.feed or 1            # (the models refuse a zero feed)
+        try:
+            steps, _ = command_steps(cmd, W)
+        finally:
+            cmd.feed = feed
+        return sum(costs[abs(x) + abs(y) + abs(z)] for x, y, z in steps)
+
     def profile(self) -> None:
         """Plan the move commands and fill in their profile fields and the settings."""
         moves = [c for c in self.out.commands if c.motion is not None]
         plans = []
+        # arcs and helices run on the lecture's step costs (module docstring): their stepped
+        # length over the true one scales the command's speeds, and bounds the local speed
+        stepped = {}
+        if self.costs == "true":
+            for c in moves:
+                if c.kind in (ARC_CW, ARC_CCW):
+                    stepped[id(c)] = self.stepped_length(c)
+                    c.motion.pacing = max(1.0, stepped[id(c)] / (c.motion.steps * (1 << FRAC)))
         if moves:
             from .planner import Segment, limits, plan
 
@@ -520,7 +550,7 @@ class Compiler:
             shortest = [m.length_mm * self.clock / SEGMENT_CLOCKS for m in motions]
             segments = [Segment(m.length_mm, m.start_unit, m.end_unit, min(m.feed_mm_s, brief), rates, accels,
                                 radius_mm=m.radius_mm, plane_axes=m.plane_axes, stop_before=m.stop_before,
-                                tolerance_mm=m.tolerance_mm) for m, brief in zip(motions, shortest)]
+                                tolerance_mm=m.tolerance_mm, pacing=m.pacing) for m, brief in zip(motions, shortest)]
             deviation = self.machine.values["motion"]["junction_deviation_mm"]
             plans = plan(segments, junction_deviation_mm=deviation)
             if self.profile_name != "trapezoid":
@@ -534,14 +564,20 @@ class Compiler:
             ceiling: dict = {}
             caps = []
             for m in motions:
-                key = (m.start_unit, m.end_unit, m.radius_mm, m.plane_axes)
+                key = (m.start_unit, m.end_unit, m.radius_mm, m.plane_axes, m.pacing)
                 if key not in ceiling:
                     ceiling[key] = limits(Segment(m.length_mm, m.start_unit, m.end_unit, math.inf, rates, accels,
-                                                  radius_mm=m.radius_mm, plane_axes=m.plane_axes))[0]
+                                                  radius_mm=m.radius_mm, plane_axes=m.plane_axes,
+                                                  pacing=m.pacing))[0]
                 caps.append(min(ceiling[key], m.length_mm * self.clock / SEGMENT_CLOCKS))
         self.out.plans = plans
         clock = self.clock
-        scale = [c.motion.spm * (1 << FRAC) / clock for c in moves]     # path units / clock per mm/s
+        # path units / clock per mm/s along the true path: the speeds' words (`scale`, the arcs'
+        # stepped over true length in), the exits' (`along`: at a command's ends the local speed
+        # may be the mean x the pacing, so an exit in true units is never above the plan's)
+        along = [c.motion.spm * (1 << FRAC) / clock for c in moves]
+        scale = [k * stepped[id(c)] / (c.motion.steps * (1 << FRAC)) if id(c) in stepped else k
+                 for c, k in zip(moves, along)]
         a_pu = [p.accel_mm_s2 * k / clock for p, k in zip(plans, scale)]
         block_shift, jerk_shift = self.shifts(max((p.accel_mm_s2 for p in plans), default=0.0))
         quantum = max(1, math.ceil((1 << block_shift) * max(a_pu, default=1.0)))
@@ -549,7 +585,6 @@ class Compiler:
             raise CompileError(f"the speed quantum {quantum} does not fit cmd_feed's {FEED_W} bits")
         self.out.settings = {"speed_quantum": quantum, "block_shift": block_shift, "jerk_shift": jerk_shift,
                              "override": 100}
-        costs = interval_costs(FRAC)
         for n, (cmd, p, k, a) in enumerate(zip(moves, plans, scale, a_pu)):
             feed = _round(p.cruise_mm_s * k)
             if feed <= 0:
@@ -559,13 +594,14 @@ class Compiler:
                                    f"at {clock:g} Hz)")
             cmd.feed = min(feed, FEED_MAX)
             cmd.limit = max(cmd.feed, min(FEED_MAX, math.floor(caps[n] * k)))
-            k_next = scale[n + 1] if n + 1 < len(moves) else k
-            cmd.exit = min(NW_MAX, math.floor(p.exit_mm_s * min(k, k_next) / quantum))
+            k_next = along[n + 1] if n + 1 < len(moves) else along[n]
+            cmd.exit = min(NW_MAX, math.floor(p.exit_mm_s * min(along[n], k_next) / quantum))
             cmd.rate = max(1, min(1 << PF, math.floor(a * (1 << block_shift) * (1 << PF) / quantum)))
             events = cmd.motion.events
-            if self.costs == "lecture":
-                steps, _ = command_steps(cmd, W)
-                cmd.cost, cmd.length = 0, sum(costs[sum(map(abs, s))] for s in steps)
+            if id(cmd) in stepped:
+                cmd.cost, cmd.length = 0, stepped[id(cmd)]
+            elif self.costs == "lecture":
+                cmd.cost, cmd.length = 0, self.stepped_length(cmd)
             else:
                 cmd.cost = max(1, _round(cmd.motion.steps * (1 << FRAC) / events))
                 cmd.length = events * cmd.cost
@@ -620,5 +656,7 @@ def compile_program(program: Program, machine: Machine, pause_seconds: float = 0
                     profile: str | None = None, costs: str = "true") -> Compiled:
     """The program's motion_top commands with their speed profile, the harness settings, end
     point, time estimate and warnings.  profile: "trapezoid" | "scurve" (default: the machine
-    file's); costs: "true" (cmd_cost = true length / N) or "lecture" (cmd_cost 0, for tests)."""
+    file's); costs: "true" (lines: cmd_cost = true length / N; arcs: the lecture's costs, their
+    speeds scaled to the true length), "even" (every move cmd_cost = true length / N, for
+    comparison) or "lecture" (every move cmd_cost 0, unscaled, for tests)."""
     return Compiler(machine, pause_seconds, profile, costs).run(program)

@@ -39,6 +39,13 @@ for every phi of the arc, c taken at the cruise speed v_c (the highest on the ar
 either sign.  Over a whole turn: v_c^2 cos^2(alpha) / R <= CENTRIPETAL_SHARE * min(a_p, a_q)
 and (a_t cos(alpha))^2 + c^2 <= min(a_p, a_q)^2.  CENTRIPETAL_SHARE reserves part of the
 plane axes' acceleration for speeding up and slowing down on tight arcs.
+
+An arc's `pacing` P (the compiler's: its stepped length over its true length, >= 1) is the
+hardware's: its step events are charged the lecture's costs, so the local speed along the
+true arc is the mean x P x g, g in [cos(pi / 8), 1], and it changes by up to PACING_SLOPE
+x v^2 / R along the tangent.  The rules above then take the local speed P v for v, the
+centripetal c = (P v cos(alpha))^2 / R with sqrt(1 + PACING_SLOPE^2) c within the share,
+and a_t P + PACING_SLOPE c for the tangential acceleration (lines: P = 1, exact).
 docs/planner.md has the formulas, the rules and the limits.
 """
 from __future__ import annotations
@@ -57,6 +64,12 @@ STRAIGHT_COS = -0.999999
 # tangential acceleration (0.9 leaves 0.436; on the corpus of the machine-time
 # benchmark 0.9 to 0.95 gave the shortest times of 0.5 .. 0.99, within 0.02 %).
 CENTRIPETAL_SHARE = 0.9
+# The lecture's step costs charge a step event by its steps (1, sqrt 2, sqrt 3), so along an
+# arc the speed follows the stepped path: the true local speed is the mean x pacing x g, g
+# = sqrt(1 + t^2) / (1 + (sqrt 2 - 1) t) in [cos(pi / 8), 1] for a tangent at atan(t) from
+# its octant's axis, and |dg / dangle| <= sqrt 2 - 1: the speed changes along the tangent by
+# up to that x v^2 / R, which the plane axes see with the centripetal acceleration.
+PACING_SLOPE = math.sqrt(2.0) - 1.0
 # An arc's span of tangent directions is widened by this on each side (radians), so that
 # the bounds hold however its tangents were rounded.
 SPAN_MARGIN = 1e-3
@@ -77,6 +90,7 @@ class Segment:
     plane_axes: tuple[int, int] | None = None  # arcs: indices of the plane's (u, v) axes
     stop_before: bool = False                 # exact stop before this segment
     tolerance_mm: float | None = None         # G64 P tolerance for the junction INTO this segment
+    pacing: float = 1.0                       # arcs: the local path speed's largest ratio to the mean
 
 
 @dataclass
@@ -162,6 +176,18 @@ def _largest(span, function, peak: float) -> float:
     return max(abs(function(span[0])), abs(function(span[1])))
 
 
+def _largest_mix(span, first, second, slope: float) -> float:
+    """Largest |first(phi)| + slope |second(phi)| over the span ((first, second) = (sin, cos)
+    or (cos, sin)): sqrt(1 + slope^2) where the span reaches a peak, else at an end."""
+    if slope == 0.0:
+        return _largest(span, first, 0.0 if first is math.cos else math.pi / 2)
+    shift = math.atan(slope)
+    centre = math.pi / 2 if first is math.sin else 0.0
+    if _contains(span, centre - shift) or _contains(span, centre + shift):
+        return math.hypot(1.0, slope)
+    return max(abs(first(a)) + slope * abs(second(a)) for a in span)
+
+
 def _tangential_room(span, along_p: float, along_q: float, centripetal: float) -> float:
     """The largest in-plane tangential acceleration A1 such that at every tangent angle phi
     of the span A1 |cos phi| + c |sin phi| <= along_p and A1 |sin phi| + c |cos phi| <=
@@ -200,21 +226,35 @@ def limits(segment: Segment) -> tuple[float, float]:
     # the centripetal acceleration points across the tangent, so its shares are swapped
     on_p, on_q = _largest(span, math.cos, 0.0), _largest(span, math.sin, math.pi / 2)
     cruise = segment.feed_mm_s
+    # the stepped pace: the local speed is up to `pacing` x the mean, and it changes along
+    # the arc by up to PACING_SLOPE x (v^2 / R) (module docstring)
+    pace = max(1.0, segment.pacing)
+    slope = PACING_SLOPE if pace > 1.0 else 0.0
     if cos_a > 1e-12:
-        centripetal_most = min(accel[p] / on_q if on_q > 1e-12 else math.inf,
-                               accel[q] / on_p if on_p > 1e-12 else math.inf)
+        # the centripetal c across the tangent and the pace's change slope x c along it: on p
+        # c (|sin phi| + slope |cos phi|), on q c (|cos phi| + slope |sin phi|)
+        across_p = _largest_mix(span, math.sin, math.cos, slope)
+        across_q = _largest_mix(span, math.cos, math.sin, slope)
+        centripetal_most = min(accel[p] / across_p if across_p > 1e-12 else math.inf,
+                               accel[q] / across_q if across_q > 1e-12 else math.inf)
         for most, share in ((rate[p], on_p), (rate[q], on_q)):
             if share > 1e-12:
-                cruise = min(cruise, most / (share * cos_a))
-        cruise = min(cruise, math.sqrt(CENTRIPETAL_SHARE * centripetal_most * radius) / cos_a)
+                cruise = min(cruise, most / (share * cos_a * pace))
+        cruise = min(cruise, math.sqrt(CENTRIPETAL_SHARE * centripetal_most * radius) / (cos_a * pace))
+        if slope and sin_a > 1e-12:
+            # a helix's w axis sees the speed's change x sin(alpha): keep it within half of a_w
+            cruise = min(cruise, math.sqrt(accel[w] * cos_a / (2 * slope * sin_a) * radius) / (cos_a * pace))
     if sin_a > 1e-12:
-        cruise = min(cruise, rate[w] / sin_a)
+        cruise = min(cruise, rate[w] / (sin_a * pace))
     tangential = math.inf
+    centripetal = 0.0
     if cos_a > 1e-12:
-        centripetal = (cruise * cos_a) ** 2 / radius
-        tangential = _tangential_room(span, accel[p], accel[q], centripetal) / cos_a
+        centripetal = (cruise * pace * cos_a) ** 2 / radius
+        room = _tangential_room(span, accel[p], accel[q], centripetal) - slope * centripetal
+        tangential = max(0.0, room) / (cos_a * pace)
     if sin_a > 1e-12:
-        tangential = min(tangential, accel[w] / sin_a)
+        w_room = accel[w] - slope * centripetal * sin_a / max(cos_a, 1e-12)
+        tangential = min(tangential, max(0.0, w_room) / (sin_a * pace))
     return cruise, tangential
 
 

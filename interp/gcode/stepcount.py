@@ -14,7 +14,8 @@ one event), so the host needs N, the exact number of events of each command:
     under one per step).  `arc_count` therefore jumps over each octant's
     interior in one step and runs the core's own step rule (integers) only
     near the diagonals and near the end ray: a full circle of any radius costs
-    a few dozen rule steps and a few integer square roots;
+    a few dozen rule steps and a few integer square roots.  `arc_events` also
+    counts the diagonal (two-axis) steps, for the lecture's step costs;
   * a HELIX (rtl/arc_plane.v): line core A spreads the w travel over `count`
     ticks, one per arc step, and the w travel left at the arc's end follows one
     step per event: N = (arc steps) + (w travel) - (w steps that coincide with
@@ -71,28 +72,40 @@ def arc_count(ci: int, cj: int, x: int, y: int, ccw: bool) -> int:
     """Exact number of steps of the arc core for the command start (0, 0), centre (ci, cj),
     end (x, y) (a full circle when the end is the start), as interp.models.arc.arc_steps
     (the end within half a step of the circle: the core refuses the rest)."""
+    return arc_events(ci, cj, x, y, ccw)[0]
+
+
+def arc_events(ci: int, cj: int, x: int, y: int, ccw: bool) -> tuple[int, int]:
+    """(steps, diagonal steps) of the arc core, as arc_count: a jump through an octant's
+    interior moves the major coordinate by one a step and the minor one by 0 or 1, so its
+    diagonal steps are the minor coordinate's travel (up to the axis and back down when
+    the jump crosses it)."""
     u, v, u1, v1 = -ci, -cj, x - ci, y - cj
     r2 = u * u + v * v
     if r2 == 0:
-        return 0
+        return 0, 0
     turn = 1 if ccw else -1
-    n = 0
+    n = diagonal = 0
     limit = isqrt(r2 // 2) - 3          # |major| <= limit: at least 2 from the diagonals
     while True:
         if r2 >= SMALL_R2:
             jump = _jump(u, v, u1, v1, r2, ccw, turn, limit)
             if jump:
-                k, u, v = jump
+                k, u, v, minor_travel = jump
                 n += k
+                diagonal += minor_travel
                 continue
-        u, v, last = _rule(u, v, u1, v1, r2, ccw)
+        nu, nv, last = _rule(u, v, u1, v1, r2, ccw)
         n += 1
+        diagonal += nu != u and nv != v
+        u, v = nu, nv
         if last:
-            return n
+            return n, diagonal
 
 
 def _jump(u, v, u1, v1, r2, ccw, turn, limit):
-    """(steps, u, v) of a jump through the interior of the current octant, or None."""
+    """(steps, u, v, the minor coordinate's travel) of a jump through the interior of the
+    current octant, or None."""
     x_major, (ax, ay), _ = _octant(u, v, ccw)
     # (major, minor) coordinates and the unit step along the major one
     if x_major:
@@ -126,7 +139,13 @@ def _jump(u, v, u1, v1, r2, ccw, turn, limit):
         if (target - major) * step < 1:
             return None
         tu, tv = point(target)
-    return (target - major) * step, tu, tv
+    # |minor| = round(sqrt(r2 - m^2)) rises to m = 0 and falls after it
+    height = rounded_root(r2 - major * major), rounded_root(r2 - target * target)
+    if min(major, target) < 0 < max(major, target):
+        travel = 2 * rounded_root(r2) - height[0] - height[1]
+    else:
+        travel = abs(height[1] - height[0])
+    return (target - major) * step, tu, tv, travel
 
 
 def helix_count(arc_steps: int, travel: int, count: int) -> int:

@@ -250,7 +250,8 @@ def _junction_caps(moves, machine) -> list[float]:
     rates = tuple(a.max_rate_mm_min / 60 for a in machine.axes)
     accels = tuple(a.accel_mm_s2 for a in machine.axes)
     segments = [Segment(m.length_mm, m.start_unit, m.end_unit, m.feed_mm_s, rates, accels, radius_mm=m.radius_mm,
-                        plane_axes=m.plane_axes, stop_before=m.stop_before, tolerance_mm=m.tolerance_mm)
+                        plane_axes=m.plane_axes, stop_before=m.stop_before, tolerance_mm=m.tolerance_mm,
+                        pacing=m.pacing)
                 for m in (c.motion for c in moves)]
     if not segments:
         return []
@@ -452,17 +453,27 @@ def table(report: Report) -> str:
 
 # ---------------- the ideal hardware, for tests and comparisons ----------------
 
-def trapezoid_times(count: int, cost: float, entry: float, cruise: float, exit: float, accel: float):
-    """(times, duration): the clock (from the command's start) at which each of `count` events
-    of `cost` steps is covered by the trapezoid entry -> cruise -> exit at `accel` (speeds in
-    steps/clock, accel in steps/clock^2), and the trapezoid's duration."""
-    length = count * cost
+def event_costs(cmd_cost: int, steps) -> list[float]:
+    """The path distance of each step event, steps: cmd_cost / 2^FRAC each, or with cmd_cost
+    = 0 the lecture's cost of its 1-, 2- or 3-axis step (as the RTL rounds it)."""
+    if cmd_cost:
+        return [cmd_cost / (1 << FRAC)] * len(steps)
+    lecture = _costs(FRAC)
+    return [lecture[max(1, sum(map(abs, s)))] for s in steps]
+
+
+def trapezoid_times(costs, entry: float, cruise: float, exit: float, accel: float):
+    """(times, duration): the clock (from the command's start) at which each event, of
+    `costs` steps each, is covered by the trapezoid entry -> cruise -> exit at `accel` (speeds
+    in steps/clock, accel in steps/clock^2), and the trapezoid's duration."""
+    ends = np.cumsum(np.asarray(costs, dtype=float))
+    length = float(ends[-1]) if len(ends) else 0.0
     peak = min(cruise, math.sqrt((2 * accel * length + entry ** 2 + exit ** 2) / 2))
     up, down = (peak ** 2 - entry ** 2) / (2 * accel), (peak ** 2 - exit ** 2) / (2 * accel)
     t_up, t_flat = (peak - entry) / accel, (length - up - down) / peak
     out = []
-    for n in range(1, count + 1):
-        x = min(n * cost, length)
+    for x in ends:
+        x = min(float(x), length)
         if x <= up:
             t = (math.sqrt(entry ** 2 + 2 * accel * x) - entry) / accel
         elif x <= length - down:
@@ -476,7 +487,7 @@ def trapezoid_times(count: int, cost: float, entry: float, cruise: float, exit: 
 
 def ideal_rows(commands, settings: dict, width: int = 32) -> list[tuple[int, int, int, int]]:
     """The steps CSV rows (cycle, dx, dy, dz) of an ideal trapezoid machine running the
-    commands (their profile fields, true-length costs): each event at the first clock at
+    commands (their profile fields and step costs): each event at the first clock at
     which the trapezoid has covered it; dwells wait their cycles."""
     from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, command_steps
 
@@ -487,7 +498,7 @@ def ideal_rows(commands, settings: dict, width: int = 32) -> list[tuple[int, int
             steps, _ = command_steps(c, width)
             accel = c.rate / (1 << PF) * a_q / (1 << bs) / (1 << FRAC)
             exit_speed = c.exit * a_q / (1 << FRAC)
-            times, duration = trapezoid_times(len(steps), c.cost / (1 << FRAC), speed, c.feed / (1 << FRAC),
+            times, duration = trapezoid_times(event_costs(c.cost, steps), speed, c.feed / (1 << FRAC),
                                               exit_speed, accel)
             rows += [(math.ceil(now + t), *s) for t, s in zip(times, steps)]
             now += duration

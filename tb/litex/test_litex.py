@@ -79,7 +79,7 @@ async def soc_drives_the_controller(dut):
 
     # a program, as the firmware would: the settings, then the records through CMD_DATA
     machine = load_machine(clock_hz=CLOCK_HZ)
-    _, compiled = compile_text("G21 G90 G17\nG01 X0.4 Y-0.2 F1200\nG02 X0.6 Y0 I0 J0.2\nG01 Z-0.1\n", machine)
+    _, compiled = compile_text("G21 G90 G17\nG01 X0.4 Y-0.2 F1200\nG02 X0.6 Y0 I0 J0.2\nG01 Z-0.1 F600\n", machine)
     for name, value in settings_writes(machine.timing(), compiled.settings):
         await tb.write(name, value)
     stream = records.encode_program(compiled.commands, build)
