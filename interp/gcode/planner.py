@@ -44,8 +44,9 @@ An arc's `pacing` P (the compiler's: its stepped length over its true length, >=
 hardware's: its step events are charged the lecture's costs, so the local speed along the
 true arc is the mean x P x g, g in [cos(pi / 8), 1], and it changes by up to PACING_SLOPE
 x v^2 / R along the tangent.  The rules above then take the local speed P v for v, the
-centripetal c = (P v cos(alpha))^2 / R with sqrt(1 + PACING_SLOPE^2) c within the share,
-and a_t P + PACING_SLOPE c for the tangential acceleration (lines: P = 1, exact).
+centripetal c = (P v cos(alpha))^2 / R, and a_t P + PACING_SLOPE c for the tangential
+acceleration: the centripetal bound becomes c (|sin phi| + PACING_SLOPE |cos phi|) <= a_n's
+share of a_p (and the same on q), the largest over the span (lines: P = 1, exact).
 docs/planner.md has the formulas, the rules and the limits.
 """
 from __future__ import annotations
