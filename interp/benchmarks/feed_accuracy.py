@@ -9,9 +9,9 @@ covered the event's cost, so a command of N events takes length / feed clocks
     true length x 2^48 / length  x  feed  (path units / clock),
 
 compared with F for moves of every kind, in the compiler's three modes: "true" (the
-default: a line's events cost its true length / N each; an arc's or a helix's the
-lecture's 1, sqrt 2, sqrt 3 per 1-, 2-, 3-axis step, its speed words scaled by its
-stepped length over its true length), "even" (every move's events cost true length / N)
+default: a line's or a helix's events cost its true length / N each; a flat arc's
+the lecture's 1, sqrt 2 per 1-, 2-axis step, its speed words scaled by its stepped
+length over its true length), "even" (every move's events cost true length / N)
 and "lecture" (the lecture's costs everywhere, unscaled: the cruise word is F along the
 true path).  The lecture's rule over-charges the mixed steps of a line whose minor axes
 move on different steps, so such a line runs slow (-10.5 % for the 3-axis 10:7:3 line).
@@ -21,7 +21,7 @@ distance they are charged, against the move's mean (the models' steps, no simula
 Evenly charged events run an arc's octant diagonals (diagonal steps) fast and its axis
 directions slow, -10 % .. +27 % on a quarter arc; the lecture's costs follow the
 stepped path, within cos(pi / 8) .. 1 of its speed, so the scaled default stays within
--4 % .. +7 % (the planner bounds the axes with that pacing).
+-3 % .. +6 % on a quarter arc (the planner bounds the axes with that pacing).
 
 Table 3, measured on the RTL (the native Verilator harness, when it is built): the same
 moves at 50 kHz (the steps as at 50 MHz in a thousandth of the cycles), the path speed

@@ -29,9 +29,9 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
     exact stops before the first move and after dwells and events); the plan
     becomes the profile fields of each command: cmd_feed = the planned cruise,
     cmd_limit = the axes' ceiling (for feed override), cmd_exit (quanta),
-    cmd_rate, cmd_cost and cmd_length (lines: cmd_cost = the TRUE path length /
-    N with N the exact number of step events, cmd_length = N x cost; arcs and
-    helices: cmd_cost = 0, the lecture's 1, sqrt 2, sqrt 3 per step event,
+    cmd_rate, cmd_cost and cmd_length (lines and helices: cmd_cost = the TRUE path
+    length / N with N the exact number of step events, cmd_length = N x cost; flat
+    arcs: cmd_cost = 0, the lecture's 1, sqrt 2 per step event,
     cmd_length their sum, and the command's speeds and acceleration scaled by
     cmd_length / its true length, so that F holds along the true arc on average
     and within its `pacing` locally; costs="even": every move as a line, for
@@ -533,12 +533,14 @@ class Compiler:
         """Plan the move commands and fill in their profile fields and the settings."""
         moves = [c for c in self.out.commands if c.motion is not None]
         plans = []
-        # arcs and helices run on the lecture's step costs (module docstring): their stepped
-        # length over the true one scales the command's speeds, and bounds the local speed
+        # flat arcs run on the lecture's step costs (module docstring): their stepped length
+        # over the true one scales the command's speeds, and bounds the local speed.  Helices
+        # are charged as lines: core A spreads w evenly over the events, so with the lecture's
+        # costs w would run faster near the plane's axes (and on a steep helix's w-only tail)
         stepped = {}
         if self.costs == "true":
             for c in moves:
-                if c.kind in (ARC_CW, ARC_CCW):
+                if c.kind in (ARC_CW, ARC_CCW) and c.z == 0:
                     stepped[id(c)] = self.stepped_length(c)
                     c.motion.pacing = max(1.0, stepped[id(c)] / (c.motion.steps * (1 << FRAC)))
         if moves:
@@ -656,7 +658,7 @@ def compile_program(program: Program, machine: Machine, pause_seconds: float = 0
                     profile: str | None = None, costs: str = "true") -> Compiled:
     """The program's motion_top commands with their speed profile, the harness settings, end
     point, time estimate and warnings.  profile: "trapezoid" | "scurve" (default: the machine
-    file's); costs: "true" (lines: cmd_cost = true length / N; arcs: the lecture's costs, their
+    file's); costs: "true" (lines, helices: cmd_cost = true length / N; flat arcs: the lecture's costs, their
     speeds scaled to the true length), "even" (every move cmd_cost = true length / N, for
     comparison) or "lecture" (every move cmd_cost 0, unscaled, for tests)."""
     return Compiler(machine, pause_seconds, profile, costs).run(program)
