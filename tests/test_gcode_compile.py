@@ -432,6 +432,40 @@ def test_arcs_keep_their_local_speed_near_f():
         assert local_range(moves, "even")[1] > 1.25
 
 
+def test_tangent_arc_joins_keep_the_cruise():
+    """Four tangent G3 quarters at F3000 run at their cruise word through the joins (the
+    profile's cycle model): where the junction allows the exit x the pacing, the exit takes
+    the arcs' scaled words (in true units it would brake to 1 / pacing of the cruise, 0.948).
+    At a corner the junction binds and the exit stays in true units."""
+    from interp.gcode.compile import FEED_W, LEN_W, NW, ZW
+    from interp.models.speed_ramp import Segment, run_profile
+
+    r, feed = 10, 3000
+    points = [(0, 0), (-r, r), (-2 * r, 0), (-r, -r), (0, 0)]
+    moves = [Arc((*s, 0), (*e, 0), (-r, 0, 0), "XY", True, 1, feed, n) for n, (s, e) in
+             enumerate(zip(points, points[1:]), 1)]
+    for costs, floor in (("true", 1.0), ("even", 1.0)):
+        out = compile_program(Program(moves), load_machine(clock_hz=20e3), costs=costs)
+        cmds = [c for c in out.commands if c.motion is not None]
+        q = out.settings["speed_quantum"]
+        cruise = cmds[0].feed
+        assert all(c.feed == cruise for c in cmds) and [c.exit for c in cmds] == [cruise // q] * 3 + [0]
+        samples = run_profile([Segment(c.feed, c.limit, c.exit, c.rate, c.length, c.budget) for c in cmds],
+                              widths=dict(feed_w=FEED_W, nw=NW, pf=PF, len_w=LEN_W, zw=ZW), quantum=q,
+                              block_shift=out.settings["block_shift"], max_cycles=10**6)
+        speed = [s["speed"] for s in samples]
+        at_cruise = [k for k, v in enumerate(speed) if v >= cruise - q]
+        assert min(speed[at_cruise[0]:at_cruise[-1]]) >= floor * cruise - q, costs
+    # a right-angle corner between two arcs: the exit in true units, below the plan's exit
+    corner = [Arc((0, 0, 0), (-r, r, 0), (-r, 0, 0), "XY", True, 1, feed, 1),
+              Arc((-r, r, 0), (-2 * r, 0, 0), (-2 * r, r, 0), "XY", False, 1, feed, 2)]
+    out = compile_program(Program(corner), load_machine(clock_hz=20e3))
+    first = out.commands[0]
+    assert 0 < out.plans[0].exit_mm_s * first.motion.pacing > out.plans[0].junction_mm_s
+    assert first.exit * out.settings["speed_quantum"] <= \
+        out.plans[0].exit_mm_s * first.motion.spm * (1 << FRAC) / 20e3
+
+
 # ---------------- dwells, events, time ----------------
 
 def test_dwells_split():

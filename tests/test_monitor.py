@@ -171,6 +171,18 @@ def test_corner_faster_than_its_exit_fails(run):
     assert checks(report)["junction speeds"] == "VIOLATED"
 
 
+def test_tangent_arcs_through_their_joins_at_cruise_pass():
+    """Tangent arcs keep their scaled cruise word through the joins (the exit takes the
+    arcs' scale): the junction check bounds the charged speed by the junction's own limit
+    and the cruise words, so it passes (bounded by the true cruise, it would fail)."""
+    points = [(0, 0), (-10, 10), (-20, 0), (-10, -10), (0, 0)]
+    arcs = Program([Arc((*s, 0), (*e, 0), (-10, 0, 0), "XY", True, 1, 3000, n)
+                    for n, (s, e) in enumerate(zip(points, points[1:]), 1)])
+    out = compile_program(arcs, MACHINE)
+    report = monitor(ideal_rows(out.commands, out.settings), out, MACHINE)
+    assert report.ok, verdict(report)
+
+
 def test_program_ending_at_speed_fails():
     end = Program([Line((0, 0, 0), (20, 0, 0), 3000, 1)])
     single = compile_program(end, MACHINE)

@@ -250,6 +250,8 @@ def test_plan_time_is_the_analytic_sum():
     plans = plan(segments, junction_deviation_mm=0.01)
     assert [p.entry_mm_s for p in plans] == [0.0, 50.0, 0.0]
     assert [p.exit_mm_s for p in plans] == [50.0, 0.0, 0.0]
+    # the exits' junctions alone: straight on, an exact stop, the program's end
+    assert [p.junction_mm_s for p in plans] == [math.inf, 0.0, 0.0]
     # x: 2.5 mm up in 0.1 s, 7.5 mm at 50 in 0.15 s; then 7.5 mm at 50 and down in 0.1 s;
     # y at 400 mm/s^2: 3.125 mm ramps of 0.125 s and 3.75 mm at 50
     assert plans[0].time_s == pytest.approx(0.25)
@@ -263,6 +265,7 @@ def test_corner_and_tolerance():
     wide = plan(corner, junction_deviation_mm=0.05)[0].exit_mm_s
     narrow = plan(corner, junction_deviation_mm=0.01)[0].exit_mm_s
     assert 0 < narrow < wide
+    assert plan(corner, junction_deviation_mm=0.01)[0].junction_mm_s == pytest.approx(narrow)
     corner[1].tolerance_mm = 0.01          # G64 P0.01 lowers the junction deviation there
     assert plan(corner, junction_deviation_mm=0.05)[0].exit_mm_s == pytest.approx(narrow)
     corner[1].tolerance_mm = 1.0           # ... but never raises it

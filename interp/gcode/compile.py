@@ -576,7 +576,10 @@ class Compiler:
         clock = self.clock
         # path units / clock per mm/s along the true path: the speeds' words (`scale`, the arcs'
         # stepped over true length in), the exits' (`along`: at a command's ends the local speed
-        # may be the mean x the pacing, so an exit in true units is never above the plan's)
+        # may be the mean x the pacing, so an exit in true units is never above the plan's;
+        # where the junction allows the exit x the pacing, the exit takes the speeds' scale, so
+        # a tangent join of two arcs at their cruise keeps the cruise word instead of braking
+        # to 1 / pacing of it)
         along = [c.motion.spm * (1 << FRAC) / clock for c in moves]
         scale = [k * stepped[id(c)] / (c.motion.steps * (1 << FRAC)) if id(c) in stepped else k
                  for c, k in zip(moves, along)]
@@ -596,8 +599,12 @@ class Compiler:
                                    f"at {clock:g} Hz)")
             cmd.feed = min(feed, FEED_MAX)
             cmd.limit = max(cmd.feed, min(FEED_MAX, math.floor(caps[n] * k)))
-            k_next = along[n + 1] if n + 1 < len(moves) else along[n]
-            cmd.exit = min(NW_MAX, math.floor(p.exit_mm_s * min(along[n], k_next) / quantum))
+            k_exit = min(along[n:n + 2])
+            if n + 1 < len(moves):
+                pacing = max(cmd.motion.pacing, moves[n + 1].motion.pacing)
+                if p.exit_mm_s * pacing <= p.junction_mm_s:
+                    k_exit = min(scale[n:n + 2])
+            cmd.exit = min(NW_MAX, math.floor(p.exit_mm_s * k_exit / quantum))
             cmd.rate = max(1, min(1 << PF, math.floor(a * (1 << block_shift) * (1 << PF) / quantum)))
             events = cmd.motion.events
             if id(cmd) in stepped:

@@ -102,6 +102,7 @@ class Plan:
     entry_mm_s: float
     exit_mm_s: float
     time_s: float
+    junction_mm_s: float = 0.0                # the exit's junction limit alone (inf: straight on; 0: a stop)
 
 
 def _limit_by_axes(maxima: Vector, unit: Vector) -> float:
@@ -409,12 +410,13 @@ def plan(segments: list[Segment], *, junction_deviation_mm: float,
     accel = [a for _, a in bounds]
     reach = [2.0 * a * s.length_mm for a, s in zip(accel, segments)]
     caps = _junction_limits(segments, cruise, junction_deviation_mm)
+    bare = _junction_limits(segments, [math.inf] * count, junction_deviation_mm)
     if smoothing_s > 0.0:
         # the filtered speed is the mean of the planned speed over the last W seconds; the
         # steps pass the junction at a time whose window holds the virtual passage, and the
         # planned speed moves at most a per second: the mean is at most v_j + a W / 2
-        caps = [max(0.0, cap - max(accel[i - 1] if i else 0.0, accel[i]) * smoothing_s / 2.0)
-                for i, cap in enumerate(caps)]
+        caps, bare = ([max(0.0, cap - max(accel[i - 1] if i else 0.0, accel[i]) * smoothing_s / 2.0)
+                       for i, cap in enumerate(limit)] for limit in (caps, bare))
     whole = _backward(caps, reach, 0, count - 1) + [0.0]         # entry speeds, then the end
     entry = [0.0] * (count + 1)
     for index in range(count):
@@ -427,7 +429,8 @@ def plan(segments: list[Segment], *, junction_deviation_mm: float,
     return [Plan(cruise_mm_s=cruise[i], accel_mm_s2=accel[i], entry_mm_s=entry[i],
                  exit_mm_s=entry[i + 1],
                  time_s=trapezoid_time(segments[i].length_mm, entry[i], entry[i + 1],
-                                       cruise[i], accel[i]))
+                                       cruise[i], accel[i]),
+                 junction_mm_s=bare[i + 1] if i + 1 < count else 0.0)
             for i in range(count)]
 
 

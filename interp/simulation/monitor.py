@@ -244,8 +244,9 @@ def _junction_jumps(moves, steps_per_mm, quantum: float, junctions: list[float])
 
 def _junction_caps(moves, machine) -> list[float]:
     """The junction limit (Grbl's junction deviation, G64 P, exact stops; at most the two
-    cruises) at the end of each move, steps/clock; the last move's end is a stop (0)."""
-    from ..gcode.planner import Segment, _junction_limits, limits
+    cruise words) at the end of each move, steps/clock of the charged path (the true path's
+    limit: the charged speed is never below the true one); the last move's end is a stop (0)."""
+    from ..gcode.planner import Segment, _junction_limits
 
     rates = tuple(a.max_rate_mm_min / 60 for a in machine.axes)
     accels = tuple(a.accel_mm_s2 for a in machine.axes)
@@ -255,10 +256,10 @@ def _junction_caps(moves, machine) -> list[float]:
                 for m in (c.motion for c in moves)]
     if not segments:
         return []
-    cruise = [limits(s)[0] for s in segments]
-    caps = _junction_limits(segments, cruise, machine.values["motion"]["junction_deviation_mm"])
-    clock = machine.clock_hz
-    return [caps[k + 1] * moves[k].motion.spm / clock for k in range(len(moves) - 1)] + [0.0]
+    caps = _junction_limits(segments, [math.inf] * len(segments), machine.values["motion"]["junction_deviation_mm"])
+    clock, one = machine.clock_hz, 1 << FRAC
+    return [min(caps[k + 1] * moves[k].motion.spm / clock, moves[k].feed / one, moves[k + 1].feed / one)
+            for k in range(len(moves) - 1)] + [0.0]
 
 
 def _exits(report, moves, t, x, owner, counts, accel, quantum: float, window: int, q: int, clock: float,
