@@ -395,8 +395,9 @@ def test_feed_with_unequal_steps_per_mm():
 def test_costs_true_even_and_lecture(moves):
     """costs="even": cost = round(true length x 2^FRAC / N), length = N x cost; "lecture": cost 0
     and length = the lecture's sqrt(axes) costs over the models' steps (as the RTL rounds them);
-    "true" (the default): lines and helices as "even", flat arcs as "lecture" with their speed
-    words scaled by the stepped length over the true one (F along the true arc on average)."""
+    "true" (the default): lines and helices as "even" (a helix paced by its plane's local speed),
+    flat arcs as "lecture" with their speed words scaled by the stepped length over the true one
+    (F along the true arc on average)."""
     true = compile_program(Program(moves), MACHINE)
     even = compile_program(Program(moves), MACHINE, costs="even")
     lecture = compile_program(Program(moves), MACHINE, costs="lecture")
@@ -408,8 +409,14 @@ def test_costs_true_even_and_lecture(moves):
         assert abs(e.cost * e.motion.events - e.motion.steps * (1 << FRAC)) <= e.motion.events
         assert c.cost == 0 and c.length == sum(table[sum(map(abs, s))] for s in steps)
         assert c.length >= e.length - e.motion.events        # the lecture's path is never shorter
-        if t.kind == LINE or t.z != 0:
+        if t.kind == LINE:
             assert (t.cost, t.length, t.motion.pacing) == (e.cost, e.length, 1.0)
+        elif t.z != 0:
+            # a helix: charged evenly; its plane's local speed up to sqrt 2 x N / its length in steps
+            p, q = t.motion.plane_axes
+            plane = math.hypot(t.motion.start_unit[p], t.motion.start_unit[q]) * t.motion.length_mm * 100
+            assert (t.cost, t.length, t.motion.even_costs) == (e.cost, e.length, True)
+            assert t.motion.pacing == pytest.approx(math.sqrt(2) * t.motion.events / plane)
         else:
             ratio = c.length / (t.motion.steps * (1 << FRAC))
             assert (t.cost, t.length) == (0, c.length) and t.motion.pacing == pytest.approx(max(1.0, ratio))

@@ -144,6 +144,7 @@ def test_hold_stops_and_resumes_on_a_long_line(tmp_path, capsys):
 
 
 TIGHT_CIRCLES = "G21 G90 G0 X5 Y0\nG2 X5 Y0 I-5 J0 F6000\nG2 X5 Y0 I-5 J0\nG3 X-5 Y0 I-5 J0\nG1 X0\nM2\n"
+TIGHT_HELICES = "G21 G90 G0 X5 Y0\nG2 X5 Y0 Z-3 I-5 J0 F6000\nG2 X5 Y0 Z-6 I-5 J0\nG3 X-5 Y0 Z-7 I-5 J0\nG1 X0\nM2\n"
 
 
 def test_tight_fast_circles_keep_the_axes_limits(tmp_path):
@@ -151,7 +152,8 @@ def test_tight_fast_circles_keep_the_axes_limits(tmp_path):
     default costs (arcs by the lecture's step costs, scaled) keep every axis within its
     acceleration and the path speed within 3 % of its mean; events evenly charged
     (costs="even") run the diagonals 27 % fast and break the axes' 500 mm/s^2 where the
-    octants meet."""
+    octants meet.  Helices (charged evenly: the plane's local speed follows sec(theta), which
+    the planner bounds) keep every limit too."""
     reason = _harness_ready()
     if reason:
         pytest.skip(reason)
@@ -164,8 +166,8 @@ def test_tight_fast_circles_keep_the_axes_limits(tmp_path):
     clock = 200e3
     machine = load_machine(clock_hz=clock)
     verdicts = {}
-    for costs in ("true", "even"):
-        _, out = compile_text(TIGHT_CIRCLES, machine, costs=costs)
+    for costs, program in (("true", TIGHT_CIRCLES), ("even", TIGHT_CIRCLES), ("helices", TIGHT_HELICES)):
+        _, out = compile_text(program, machine, costs="true" if costs == "helices" else costs)
         write_commands(tmp_path / "c.txt", out.commands)
         t = machine.timing()
         native.run_native(str(tmp_path / "c.txt"), steps_path=str(tmp_path / "s.csv"),
@@ -175,4 +177,5 @@ def test_tight_fast_circles_keep_the_axes_limits(tmp_path):
         verdicts[costs] = {name: verdict for name, *_, verdict in report.checks}
         print(costs, table(report))
     assert all(v == "ok" for v in verdicts["true"].values())
+    assert all(v == "ok" for v in verdicts["helices"].values())
     assert "VIOLATED" in (verdicts["even"]["x acceleration"], verdicts["even"]["y acceleration"])

@@ -9,7 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from interp.gcode.planner import (CENTRIPETAL_SHARE, PACING_SLOPE, Plan, Segment, _junction_limits, junction_speed,
-                                  limits, machine_time, plan, trapezoid_time)
+                                  largest_secant, limits, machine_time, plan, trapezoid_time)
 
 RATE = (100.0, 100.0, 50.0)
 ACCEL = (500.0, 400.0, 200.0)
@@ -182,6 +182,54 @@ def test_arc_bounds_hold_along_the_arc(shape, accel, pacing):
             for axis in range(3):
                 assert abs(velocity[axis]) <= RATE[axis] * (1 + SLACK)
                 assert abs(acceleration[axis]) <= accel[axis] * (1 + SLACK)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.builds(dict, radius=st.floats(0.05, 100), angle=st.floats(0.01, 12) | st.floats(-12, -0.01),
+                 pitch=st.floats(-2, 2), plane=planes, start_angle=st.floats(-4, 4), feed=st.floats(0.5, 400)),
+       st.sampled_from([ACCEL, (500.0, 500.0, 500.0), (100.0, 900.0, 300.0)]),
+       st.sampled_from([1.0, 1.26]) | st.floats(1.0, 1.6))
+def test_evenly_charged_helix_bounds_hold_along_the_arc(shape, accel, pacing):
+    """A helix charged evenly (its events take equal times, each covers sec(theta) of the
+    plane, theta the tangent's angle from its octant's axis): the plane's local speed
+    u = v cos(alpha) P sec(theta) / (its largest over the arc) changes by u^2 tan(theta) / R
+    along the tangent, w runs at v sin(alpha).  Speed and acceleration per axis, both
+    signs of the tangential acceleration, at every angle the arc passes (sampled finely)."""
+    segment = arc_segment(**shape, accel=accel, pacing=pacing, even_costs=True)
+    cruise, tangential = limits(segment)
+    p, q = segment.plane_axes
+    w = 3 - p - q
+    sin_a = abs(segment.start_unit[w])
+    cos_a = math.sqrt(1 - sin_a ** 2)
+    peak = largest_secant(segment)
+    turn = 1.0 if shape["angle"] > 0 else -1.0
+    samples = 2000
+    for step in range(samples + 1):
+        theta = shape["start_angle"] + shape["angle"] * step / samples      # position angle
+        tx, ty = -math.sin(theta) * turn, math.cos(theta) * turn              # tangent in the plane
+        major, minor = max(abs(tx), abs(ty)), min(abs(tx), abs(ty))
+        local = cruise * cos_a * pacing / major / peak
+        assert local <= cruise * cos_a * pacing * (1 + SLACK)
+        centripetal = local ** 2 / segment.radius_mm
+        velocity = {p: tx * local, q: ty * local, w: cruise * sin_a}
+        for sign in (1, -1):
+            for pace_sign in (1, -1):
+                along = sign * tangential * cos_a * pacing / major / peak + pace_sign * centripetal * minor / major
+                acceleration = {p: tx * along + math.cos(theta) * -centripetal,
+                                q: ty * along - math.sin(theta) * centripetal,
+                                w: sign * tangential * sin_a}
+                for axis in range(3):
+                    assert abs(velocity[axis]) <= RATE[axis] * (1 + SLACK)
+                    assert abs(acceleration[axis]) <= accel[axis] * (1 + SLACK)
+
+
+def test_largest_secant():
+    """sqrt 2 where an arc passes a diagonal, else at the end nearer one."""
+    assert largest_secant(arc_segment(1.0, 0.1, 0.0, (0, 1), math.pi / 4 - 0.05, feed=10)) == math.sqrt(2)
+    short = arc_segment(1.0, 0.1, 0.0, (0, 1), 0.0, feed=10)          # tangent from 90 to 95.7 degrees
+    assert largest_secant(short) == pytest.approx(1 / math.cos(0.1), rel=1e-3)
+    helix = arc_segment(1.0, 2 * math.pi, 0.3, (0, 1), 0.0, feed=10)
+    assert largest_secant(helix) == math.sqrt(2)
 
 
 def test_full_circle_bound_is_the_euclidean_one():

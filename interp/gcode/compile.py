@@ -111,6 +111,7 @@ class Motion:
     tolerance_mm: float | None = None
     # the largest local path speed over the mean the hardware's step costs give (planner.Segment)
     pacing: float = 1.0
+    even_costs: bool = False               # a helix: its events charged evenly (planner.Segment)
 
     @property
     def spm(self) -> float:
@@ -514,6 +515,21 @@ class Compiler:
             quantum = self.out.settings["speed_quantum"]
             cmd.exit = max(0, min(cmd.exit, reach, cmd.feed // quantum, nxt.feed // quantum))
 
+    def helix_pacing(self, motion: Motion) -> None:
+        """A helix's events, charged evenly, cover sec(theta) of its plane each (an event
+        steps the plane's major axis once): its plane's local speed is up to the largest
+        sec(theta) over the plane's mean per event (planner.py, even_costs)."""
+        from .planner import Segment, largest_secant
+
+        p, q = motion.plane_axes
+        cos_a = math.sqrt(max(0.0, 1.0 - motion.start_unit[3 - p - q] ** 2))
+        plane_steps = motion.length_mm * cos_a * self.spm[p]
+        motion.even_costs = True
+        if plane_steps > 0:
+            arc = Segment(motion.length_mm, motion.start_unit, motion.end_unit, 1.0, (1.0,) * 3, (1.0,) * 3,
+                          radius_mm=motion.radius_mm, plane_axes=motion.plane_axes)
+            motion.pacing = max(1.0, largest_secant(arc) * motion.events / plane_steps)
+
     def stepped_length(self, cmd: Cmd) -> int:
         """The lecture's costs (1, sqrt 2, sqrt 3 x 2^FRAC per 1-, 2-, 3-axis step event,
         rounded as the RTL's step_cost) summed over the command's steps (a flat arc's by its
@@ -536,23 +552,27 @@ class Compiler:
         # flat arcs run on the lecture's step costs (module docstring): their stepped length
         # over the true one scales the command's speeds, and bounds the local speed.  Helices
         # are charged as lines: core A spreads w evenly over the events, so with the lecture's
-        # costs w would run faster near the plane's axes (and on a steep helix's w-only tail)
+        # costs w would run faster near the plane's axes (and on a steep helix's w-only tail);
+        # their plane's local speed follows sec(theta), which bounds it (helix_pacing)
+        from .planner import Segment, limits, plan
+
         stepped = {}
         if self.costs == "true":
             for c in moves:
                 if c.kind in (ARC_CW, ARC_CCW) and c.z == 0:
                     stepped[id(c)] = self.stepped_length(c)
                     c.motion.pacing = max(1.0, stepped[id(c)] / (c.motion.steps * (1 << FRAC)))
+                elif c.kind in (ARC_CW, ARC_CCW):
+                    self.helix_pacing(c.motion)
         if moves:
-            from .planner import Segment, limits, plan
-
             rates = tuple(a.max_rate_mm_min / 60 for a in self.axes)
             accels = tuple(a.accel_mm_s2 for a in self.axes)
             motions = [c.motion for c in moves]
             shortest = [m.length_mm * self.clock / SEGMENT_CLOCKS for m in motions]
             segments = [Segment(m.length_mm, m.start_unit, m.end_unit, min(m.feed_mm_s, brief), rates, accels,
                                 radius_mm=m.radius_mm, plane_axes=m.plane_axes, stop_before=m.stop_before,
-                                tolerance_mm=m.tolerance_mm, pacing=m.pacing) for m, brief in zip(motions, shortest)]
+                                tolerance_mm=m.tolerance_mm, pacing=m.pacing, even_costs=m.even_costs)
+                        for m, brief in zip(motions, shortest)]
             deviation = self.machine.values["motion"]["junction_deviation_mm"]
             plans = plan(segments, junction_deviation_mm=deviation)
             if self.profile_name != "trapezoid":
@@ -566,20 +586,19 @@ class Compiler:
             ceiling: dict = {}
             caps = []
             for m in motions:
-                key = (m.start_unit, m.end_unit, m.radius_mm, m.plane_axes, m.pacing)
+                key = (m.start_unit, m.end_unit, m.radius_mm, m.plane_axes, m.pacing, m.even_costs)
                 if key not in ceiling:
                     ceiling[key] = limits(Segment(m.length_mm, m.start_unit, m.end_unit, math.inf, rates, accels,
                                                   radius_mm=m.radius_mm, plane_axes=m.plane_axes,
-                                                  pacing=m.pacing))[0]
+                                                  pacing=m.pacing, even_costs=m.even_costs))[0]
                 caps.append(min(ceiling[key], m.length_mm * self.clock / SEGMENT_CLOCKS))
         self.out.plans = plans
         clock = self.clock
         # path units / clock per mm/s along the true path: the speeds' words (`scale`, the arcs'
-        # stepped over true length in), the exits' (`along`: at a command's ends the local speed
-        # may be the mean x the pacing, so an exit in true units is never above the plan's;
-        # where the junction allows the exit x the pacing, the exit takes the speeds' scale, so
-        # a tangent join of two arcs at their cruise keeps the cruise word instead of braking
-        # to 1 / pacing of it)
+        # stepped over true length in).  An exit is the plan's on that scale, but at most the
+        # junction's own limit over each side's pacing (at a command's end the local speed
+        # may be the mean x its pacing): at a corner a flat arc's exit is the plan's in true
+        # units, and a tangent join of two arcs at their cruise keeps the cruise word
         along = [c.motion.spm * (1 << FRAC) / clock for c in moves]
         scale = [k * stepped[id(c)] / (c.motion.steps * (1 << FRAC)) if id(c) in stepped else k
                  for c, k in zip(moves, along)]
@@ -599,12 +618,10 @@ class Compiler:
                                    f"at {clock:g} Hz)")
             cmd.feed = min(feed, FEED_MAX)
             cmd.limit = max(cmd.feed, min(FEED_MAX, math.floor(caps[n] * k)))
-            k_exit = min(along[n:n + 2])
-            if n + 1 < len(moves):
-                pacing = max(cmd.motion.pacing, moves[n + 1].motion.pacing)
-                if p.exit_mm_s * pacing <= p.junction_mm_s:
-                    k_exit = min(scale[n:n + 2])
-            cmd.exit = min(NW_MAX, math.floor(p.exit_mm_s * k_exit / quantum))
+            exit_word = p.exit_mm_s * min(scale[n:n + 2])
+            for m, k in zip(moves[n:n + 2], scale[n:n + 2]):
+                exit_word = min(exit_word, p.junction_mm_s * k / m.motion.pacing)
+            cmd.exit = min(NW_MAX, math.floor(exit_word / quantum))
             cmd.rate = max(1, min(1 << PF, math.floor(a * (1 << block_shift) * (1 << PF) / quantum)))
             events = cmd.motion.events
             if id(cmd) in stepped:

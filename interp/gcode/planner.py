@@ -47,6 +47,9 @@ x v^2 / R along the tangent.  The rules above then take the local speed P v for 
 centripetal c = (P v cos(alpha))^2 / R, and a_t P + PACING_SLOPE c for the tangential
 acceleration: the centripetal bound becomes c (|sin phi| + PACING_SLOPE |cos phi|) <= a_n's
 share of a_p (and the same on q), the largest over the span (lines: P = 1, exact).
+A helix's events are charged evenly (`even_costs`): its plane's local speed is the mean x
+P x sec(theta) / sqrt 2 (P = sqrt 2 x N / the plane's length in steps at a diagonal), its
+change up to EVEN_SLOPE x c, and w runs steady at v sin(alpha).
 docs/planner.md has the formulas, the rules and the limits.
 """
 from __future__ import annotations
@@ -71,6 +74,11 @@ CENTRIPETAL_SHARE = 0.9
 # its octant's axis, and |dg / dangle| <= sqrt 2 - 1: the speed changes along the tangent by
 # up to that x v^2 / R, which the plane axes see with the centripetal acceleration.
 PACING_SLOPE = math.sqrt(2.0) - 1.0
+# Charged evenly (a helix), an arc's events take equal times and cover sec(theta) of its
+# plane each, theta the tangent's angle from its octant's axis: the plane's local speed is
+# the mean x pacing x g, g = sec(theta) / sqrt 2 in [cos(pi / 4), 1], |dg / dangle| =
+# sec(theta) tan(theta) / sqrt 2 <= 1 (w, a step on evenly spread events, is steady).
+EVEN_SLOPE = 1.0
 # An arc's span of tangent directions is widened by this on each side (radians), so that
 # the bounds hold however its tangents were rounded.
 SPAN_MARGIN = 1e-3
@@ -92,6 +100,7 @@ class Segment:
     stop_before: bool = False                 # exact stop before this segment
     tolerance_mm: float | None = None         # G64 P tolerance for the junction INTO this segment
     pacing: float = 1.0                       # arcs: the local path speed's largest ratio to the mean
+    even_costs: bool = False                  # helices: events charged evenly (w steady, the plane paced)
 
 
 @dataclass
@@ -211,6 +220,19 @@ def _tangential_room(span, along_p: float, along_q: float, centripetal: float) -
     return max(0.0, room)
 
 
+def largest_secant(segment: Segment) -> float:
+    """The largest 1 / max(|cos phi|, |sin phi|) over an arc's tangent directions phi in its
+    plane: an event that steps the major axis once covers that much of the plane (sqrt 2
+    where the arc passes a diagonal)."""
+    _check(segment)
+    p, q = segment.plane_axes
+    sin_a = min(abs(_unit(segment.start_unit)[3 - p - q]), 1.0)
+    span = _arc_span(segment, math.sqrt(max(0.0, 1.0 - sin_a * sin_a)))
+    if _contains(span, math.pi / 4) or _contains(span, -math.pi / 4):
+        return math.sqrt(2.0)
+    return max(1.0 / max(abs(math.cos(a)), abs(math.sin(a))) for a in span)
+
+
 def limits(segment: Segment) -> tuple[float, float]:
     """(max cruise mm/s, path acceleration mm/s^2) of one segment (module docstring rules)."""
     _check(segment)
@@ -231,7 +253,9 @@ def limits(segment: Segment) -> tuple[float, float]:
     # the stepped pace: the local speed is up to `pacing` x the mean, and it changes along
     # the arc by up to PACING_SLOPE x (v^2 / R) (module docstring)
     pace = max(1.0, segment.pacing)
-    slope = PACING_SLOPE if pace > 1.0 else 0.0
+    slope = EVEN_SLOPE if segment.even_costs else PACING_SLOPE if pace > 1.0 else 0.0
+    # w's pace: the plane's, or steady where the events are charged evenly
+    pace_w, slope_w = (1.0, 0.0) if segment.even_costs else (pace, slope)
     if cos_a > 1e-12:
         # the centripetal c across the tangent and the pace's change slope x c along it: on p
         # c (|sin phi| + slope |cos phi|), on q c (|cos phi| + slope |sin phi|)
@@ -243,11 +267,11 @@ def limits(segment: Segment) -> tuple[float, float]:
             if share > 1e-12:
                 cruise = min(cruise, most / (share * cos_a * pace))
         cruise = min(cruise, math.sqrt(CENTRIPETAL_SHARE * centripetal_most * radius) / (cos_a * pace))
-        if slope and sin_a > 1e-12:
+        if slope_w and sin_a > 1e-12:
             # a helix's w axis sees the speed's change x sin(alpha): keep it within half of a_w
-            cruise = min(cruise, math.sqrt(accel[w] * cos_a / (2 * slope * sin_a) * radius) / (cos_a * pace))
+            cruise = min(cruise, math.sqrt(accel[w] * cos_a / (2 * slope_w * sin_a) * radius) / (cos_a * pace))
     if sin_a > 1e-12:
-        cruise = min(cruise, rate[w] / (sin_a * pace))
+        cruise = min(cruise, rate[w] / (sin_a * pace_w))
     tangential = math.inf
     centripetal = 0.0
     if cos_a > 1e-12:
@@ -255,8 +279,8 @@ def limits(segment: Segment) -> tuple[float, float]:
         room = _tangential_room(span, accel[p], accel[q], centripetal) - slope * centripetal
         tangential = max(0.0, room) / (cos_a * pace)
     if sin_a > 1e-12:
-        w_room = accel[w] - slope * centripetal * sin_a / max(cos_a, 1e-12)
-        tangential = min(tangential, max(0.0, w_room) / (sin_a * pace))
+        w_room = accel[w] - slope_w * centripetal * sin_a / max(cos_a, 1e-12)
+        tangential = min(tangential, max(0.0, w_room) / (sin_a * pace_w))
     return cruise, tangential
 
 
