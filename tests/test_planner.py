@@ -149,10 +149,13 @@ def test_time_is_monotone_in_acceleration(segments, deviation, factor):
     assert machine_time(quick) <= machine_time(slow) * (1 + 1e-9)
 
 
+arc_shapes = st.builds(dict, radius=st.floats(0.05, 100), angle=st.floats(0.01, 12) | st.floats(-12, -0.01),
+                       pitch=st.floats(-2, 2), plane=planes, start_angle=st.floats(-4, 4), feed=st.floats(0.5, 400))
+arc_accels = st.sampled_from([ACCEL, (500.0, 500.0, 500.0), (100.0, 900.0, 300.0)])
+
+
 @settings(max_examples=300, deadline=None)
-@given(st.builds(dict, radius=st.floats(0.05, 100), angle=st.floats(0.01, 12) | st.floats(-12, -0.01),
-                 pitch=st.floats(-2, 2), plane=planes, start_angle=st.floats(-4, 4), feed=st.floats(0.5, 400)),
-       st.sampled_from([ACCEL, (500.0, 500.0, 500.0), (100.0, 900.0, 300.0)]),
+@given(arc_shapes, arc_accels,
        st.sampled_from([1.0, 1.0]) | st.floats(1.0, 1.1))
 def test_arc_bounds_hold_along_the_arc(shape, accel, pacing):
     """Speed, and tangential (speeding up or braking) plus centripetal acceleration at the
@@ -185,9 +188,7 @@ def test_arc_bounds_hold_along_the_arc(shape, accel, pacing):
 
 
 @settings(max_examples=300, deadline=None)
-@given(st.builds(dict, radius=st.floats(0.05, 100), angle=st.floats(0.01, 12) | st.floats(-12, -0.01),
-                 pitch=st.floats(-2, 2), plane=planes, start_angle=st.floats(-4, 4), feed=st.floats(0.5, 400)),
-       st.sampled_from([ACCEL, (500.0, 500.0, 500.0), (100.0, 900.0, 300.0)]),
+@given(arc_shapes, arc_accels,
        st.sampled_from([1.0, 1.26]) | st.floats(1.0, 1.6))
 def test_evenly_charged_helix_bounds_hold_along_the_arc(shape, accel, pacing):
     """A helix charged evenly (its events take equal times, each covers sec(theta) of the
