@@ -553,7 +553,7 @@ class Compiler:
         # over the true one scales the command's speeds, and bounds the local speed.  Helices
         # are charged as lines: core A spreads w evenly over the events, so with the lecture's
         # costs w would run faster near the plane's axes (and on a steep helix's w-only tail);
-        # their plane's local speed follows sec(theta), which bounds it (helix_pacing)
+        # their plane's local speed follows sec(theta), which the planner bounds (helix_pacing)
         from .planner import Segment, limits, plan
 
         stepped = {}

@@ -48,7 +48,7 @@ centripetal c = (P v cos(alpha))^2 / R, and a_t P + PACING_SLOPE c for the tange
 acceleration: the centripetal bound becomes c (|sin phi| + PACING_SLOPE |cos phi|) <= a_n's
 share of a_p (and the same on q), the largest over the span (lines: P = 1, exact).
 A helix's events are charged evenly (`even_costs`): its plane's local speed is the mean x
-P x sec(theta) / sqrt 2 (P = sqrt 2 x N / the plane's length in steps at a diagonal), its
+P x sec(theta) / its largest (P = that largest x N / the plane's length in steps), its
 change up to EVEN_SLOPE x c, and w runs steady at v sin(alpha).
 docs/planner.md has the formulas, the rules and the limits.
 """

@@ -244,8 +244,8 @@ def _junction_jumps(moves, steps_per_mm, quantum: float, junctions: list[float])
 
 def _junction_caps(moves, machine) -> list[float]:
     """The junction limit (Grbl's junction deviation, G64 P, exact stops; at most the two
-    cruise words) at the end of each move, steps/clock of the charged path (the true path's
-    limit: the charged speed is never below the true one); the last move's end is a stop (0)."""
+    cruise words) at the end of each move, steps/clock (the junction's limit along the true
+    path, the cruise words along the charged one); the last move's end is a stop (0)."""
     from ..gcode.planner import Segment, _junction_limits
 
     rates = tuple(a.max_rate_mm_min / 60 for a in machine.axes)
