@@ -76,8 +76,8 @@ CENTRIPETAL_SHARE = 0.9
 PACING_SLOPE = math.sqrt(2.0) - 1.0
 # Charged evenly (a helix), an arc's events take equal times and cover sec(theta) of its
 # plane each, theta the tangent's angle from its octant's axis: the plane's local speed is
-# the mean x pacing x g, g = sec(theta) / sqrt 2 in [cos(pi / 4), 1], |dg / dangle| =
-# sec(theta) tan(theta) / sqrt 2 <= 1 (w, a step on evenly spread events, is steady).
+# the mean x pacing x g, g = sec(theta) / its largest (sqrt 2 past a diagonal), |dg / dangle| =
+# sec(theta) tan(theta) / that <= tan(theta) <= 1 (w, a step on evenly spread events, is steady).
 EVEN_SLOPE = 1.0
 # An arc's span of tangent directions is widened by this on each side (radians), so that
 # the bounds hold however its tangents were rounded.
