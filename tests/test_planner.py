@@ -8,7 +8,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from interp.gcode.planner import (CENTRIPETAL_SHARE, PACING_SLOPE, Plan, Segment, _junction_limits, junction_speed,
+from interp.gcode.planner import (CENTRIPETAL_SHARE, PACING_SLOPE, Plan, Segment, _entry_caps, _junction_limits,
+                                  junction_speed,
                                   largest_secant, limits, machine_time, plan, trapezoid_time)
 
 RATE = (100.0, 100.0, 50.0)
@@ -123,7 +124,7 @@ def test_window_plan_is_the_streaming_hosts(segments, deviation, window):
     and the forward step from the speed it actually has."""
     bounds = [limits(s) for s in segments]
     reach = [2 * accel * s.length_mm for (_, accel), s in zip(bounds, segments)]
-    caps = _junction_limits(segments, [cruise for cruise, _ in bounds], deviation)
+    caps = _entry_caps(_junction_limits(segments, deviation), [cruise for cruise, _ in bounds])
     streamed = plan(segments, junction_deviation_mm=deviation, window=window)
     speed = 0.0
     for index in range(len(segments)):

@@ -597,8 +597,8 @@ class Compiler:
         # path units / clock per mm/s along the true path: the speeds' words (`scale`, the arcs'
         # stepped over true length in).  An exit is the plan's on that scale, but at most the
         # junction's own limit over each side's pacing (at a command's end the local speed
-        # may be the mean x its pacing): at a corner a flat arc's exit is the plan's in true
-        # units, and a tangent join of two arcs at their cruise keeps the cruise word
+        # may be the mean x its pacing): where the junction binds a flat arc's exit is the
+        # plan's in true units, and a tangent join of two arcs at their cruise keeps the cruise word
         along = [c.motion.spm * (1 << FRAC) / clock for c in moves]
         scale = [k * stepped[id(c)] / (c.motion.steps * (1 << FRAC)) if id(c) in stepped else k
                  for c, k in zip(moves, along)]

@@ -345,13 +345,13 @@ def _reverses(segments: list[Segment], before: int, after: int) -> bool:
     return False
 
 
-def _junction_limits(segments: list[Segment], cruise: list[float],
-                     junction_deviation_mm: float) -> list[float]:
-    """The highest entry speed of every segment from its junction alone.  A run of lines
-    whose lengths add up to no more than the junction deviation (step-rounding
-    corrections, CAM micro-segments) between two others, in which no moving axis turns
-    back, is a single corner: its junctions may also take the speed of the corner between
-    the tangent before the run and the tangent after it."""
+def _junction_limits(segments: list[Segment], junction_deviation_mm: float) -> list[float]:
+    """The highest entry speed of every segment from its junction alone (inf: straight on;
+    0: the first segment, an exact stop).  A run of lines whose lengths add up to no more
+    than the junction deviation (step-rounding corrections, CAM micro-segments) between
+    two others, in which no moving axis turns back, is a single corner: its junctions may
+    also take the speed of the corner between the tangent before the run and the tangent
+    after it."""
     count = len(segments)
     caps = []
     for index, segment in enumerate(segments):
@@ -360,7 +360,7 @@ def _junction_limits(segments: list[Segment], cruise: list[float],
             continue
         speed = junction_speed(segments[index - 1].end_unit, segment.start_unit,
                                segment.axis_accel_mm_s2, _deviation(segment, junction_deviation_mm))
-        caps.append(min(speed, cruise[index - 1], cruise[index]))
+        caps.append(speed)
     first = 1
     while first < count:
         after, total, deviation = first, 0.0, math.inf
@@ -380,7 +380,7 @@ def _junction_limits(segments: list[Segment], cruise: list[float],
             speed = junction_speed(segments[first - 1].end_unit, segments[after].start_unit,
                                    segments[after].axis_accel_mm_s2, deviation)
             for index in range(first, after + 1):      # (never below the junction's own)
-                caps[index] = max(caps[index], min(speed, cruise[index - 1], cruise[index]))
+                caps[index] = max(caps[index], speed)
         first = after + 1
     return caps
 
@@ -411,6 +411,13 @@ def _window_entry(caps: list[float], reach: list[float], whole: list[float], fir
     return math.sqrt(exit_sqr)
 
 
+def _entry_caps(junctions: list[float], cruise: list[float]) -> list[float]:
+    """The highest entry speed of every segment: its junction's limit, at most the two
+    cruises it joins (the first segment: 0)."""
+    return [min(limit, cruise[index - 1], cruise[index]) if index else 0.0
+            for index, limit in enumerate(junctions)]
+
+
 def plan(segments: list[Segment], *, junction_deviation_mm: float,
          window: int | None = None, smoothing_s: float = 0.0) -> list[Plan]:
     """The plan of every segment (module docstring).  window=None plans the whole program;
@@ -433,8 +440,8 @@ def plan(segments: list[Segment], *, junction_deviation_mm: float,
     cruise = [c for c, _ in bounds]
     accel = [a for _, a in bounds]
     reach = [2.0 * a * s.length_mm for a, s in zip(accel, segments)]
-    caps = _junction_limits(segments, cruise, junction_deviation_mm)
-    bare = _junction_limits(segments, [math.inf] * count, junction_deviation_mm)
+    bare = _junction_limits(segments, junction_deviation_mm)
+    caps = _entry_caps(bare, cruise)
     if smoothing_s > 0.0:
         # the filtered speed is the mean of the planned speed over the last W seconds; the
         # steps pass the junction at a time whose window holds the virtual passage, and the

@@ -256,7 +256,7 @@ def _junction_caps(moves, machine) -> list[float]:
                 for m in (c.motion for c in moves)]
     if not segments:
         return []
-    caps = _junction_limits(segments, [math.inf] * len(segments), machine.values["motion"]["junction_deviation_mm"])
+    caps = _junction_limits(segments, machine.values["motion"]["junction_deviation_mm"])
     clock, one = machine.clock_hz, 1 << FRAC
     return [min(caps[k + 1] * moves[k].motion.spm / clock, moves[k].feed / one, moves[k + 1].feed / one)
             for k in range(len(moves) - 1)] + [0.0]
