@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from interp.gcode.planner import (CENTRIPETAL_SHARE, PACING_SLOPE, Plan, Segment, _entry_caps, _junction_limits,
                                   junction_speed,
                                   largest_secant, limits, machine_time, plan, trapezoid_time)
+from interp.testing.seeds import seeded_random
 
 RATE = (100.0, 100.0, 50.0)
 ACCEL = (500.0, 400.0, 200.0)
@@ -286,6 +287,34 @@ def test_grbl_junction_formula_known_values():
         math.sqrt(a_j * 0.05 * sin_half / (1 - sin_half)))
 
 
+def test_junction_of_velocities_of_different_lengths():
+    """Given the machine's velocities per unit of planned speed: the corner whose velocity
+    change is the same share of the larger velocity, at the speed over that length.  A step
+    of the speed alone is a junction; scaling both velocities scales the speed inversely;
+    the change of velocity never exceeds sqrt(8 a_j delta), Grbl's bound over every angle."""
+    a = (500.0, 500.0, 500.0)
+    # a speed step of 20 % along x is the corner whose chord is 0.2: the change along y
+    half = math.asin(0.1)
+    corner = junction_speed((math.cos(half), -math.sin(half), 0.0), (math.cos(half), math.sin(half), 0.0), a, 0.01)
+    assert junction_speed((1.0, 0, 0), (0.8, 0, 0), a, 0.01) == pytest.approx(corner)
+    assert junction_speed((1.25, 0, 0), (1.0, 0, 0), a, 0.01) == pytest.approx(corner / 1.25)
+    assert junction_speed((0.5, 0, 0), (0.5, 0, 0), a, 0.01) == math.inf
+    assert junction_speed((0.5, 0, 0), (-0.5, 0, 0), a, 0.01) == 0.0
+    rng, seed = seeded_random()
+    for _ in range(200):
+        before = [rng.uniform(-1.3, 1.3) for _ in range(3)]
+        after = [rng.uniform(-1.3, 1.3) for _ in range(3)]
+        accel = tuple(rng.uniform(100, 1000) for _ in range(3))
+        speed = junction_speed(before, after, accel, 0.02)
+        change = [speed * (y - x) for x, y in zip(before, after)]
+        jump = math.hypot(*change)
+        if 0 < speed < math.inf:
+            a_j = min(accel[i] / abs(c) * jump for i, c in enumerate(change) if abs(c) > 1e-12)
+            assert jump <= math.sqrt(8 * a_j * 0.02) * (1 + 1e-9), seed
+            assert junction_speed([2 * x for x in before], [2 * y for y in after], accel, 0.02) == \
+                pytest.approx(speed / 2), seed
+
+
 def test_trapezoid_and_triangle_times():
     assert trapezoid_time(10, 0, 0, 50, 500) == pytest.approx(0.3)    # 2.5 mm ramps, 5 mm cruise
     assert trapezoid_time(1, 0, 0, 50, 500) == pytest.approx(2 * math.sqrt(1 / 500))   # triangle
@@ -300,8 +329,6 @@ def test_plan_time_is_the_analytic_sum():
     plans = plan(segments, junction_deviation_mm=0.01)
     assert [p.entry_mm_s for p in plans] == [0.0, 50.0, 0.0]
     assert [p.exit_mm_s for p in plans] == [50.0, 0.0, 0.0]
-    # the exits' junctions alone: straight on, an exact stop, the program's end
-    assert [p.junction_mm_s for p in plans] == [math.inf, 0.0, 0.0]
     # x: 2.5 mm up in 0.1 s, 7.5 mm at 50 in 0.15 s; then 7.5 mm at 50 and down in 0.1 s;
     # y at 400 mm/s^2: 3.125 mm ramps of 0.125 s and 3.75 mm at 50
     assert plans[0].time_s == pytest.approx(0.25)
@@ -315,7 +342,7 @@ def test_corner_and_tolerance():
     wide = plan(corner, junction_deviation_mm=0.05)[0].exit_mm_s
     narrow = plan(corner, junction_deviation_mm=0.01)[0].exit_mm_s
     assert 0 < narrow < wide
-    assert plan(corner, junction_deviation_mm=0.01)[0].junction_mm_s == pytest.approx(narrow)
+    assert narrow == pytest.approx(junction_speed((1, 0, 0), (0, 1, 0), ACCEL, 0.01))
     corner[1].tolerance_mm = 0.01          # G64 P0.01 lowers the junction deviation there
     assert plan(corner, junction_deviation_mm=0.05)[0].exit_mm_s == pytest.approx(narrow)
     corner[1].tolerance_mm = 1.0           # ... but never raises it
@@ -352,8 +379,9 @@ def test_a_short_run_is_never_slower_nor_a_reversal():
     for jog in ((-1, 0, 0), (-1, 1, 0)):                          # x turns back: two corners
         segments = [line((1, 0, 0)), line(jog, length=0.005), line((1, 0, 0))]
         entries = [p.entry_mm_s for p in plan(segments, junction_deviation_mm=0.01)[1:]]
-        assert entries == pytest.approx([junction_speed((1, 0, 0), jog, ACCEL, 0.01),
-                                         junction_speed(jog, (1, 0, 0), ACCEL, 0.01)])
+        unit = segments[1].start_unit
+        assert entries == pytest.approx([junction_speed((1, 0, 0), unit, ACCEL, 0.01),
+                                         junction_speed(unit, (1, 0, 0), ACCEL, 0.01)])
 
 
 def test_tangent_arc_keeps_speed():

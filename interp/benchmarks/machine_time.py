@@ -148,10 +148,8 @@ def compiled_segments(program: Program, machine: Machine, paced: bool = True) ->
     rate = tuple(a.max_rate_mm_min / 60.0 for a in machine.axes)
     accel = tuple(a.accel_mm_s2 for a in machine.axes)
     motions = [c.motion for c in compiled.commands if getattr(c, "motion", None) is not None]
-    return [Segment(m.length_mm, m.start_unit, m.end_unit, m.feed_mm_s, rate, accel,
-                    radius_mm=m.radius_mm, plane_axes=m.plane_axes, stop_before=m.stop_before,
-                    tolerance_mm=m.tolerance_mm, pacing=getattr(m, "pacing", 1.0) if paced else 1.0)
-            for m in motions]
+    return [compiler.planner_segment(m, motions[n - 1] if n else None, rate, accel, paced=paced)
+            for n, m in enumerate(motions)]
 
 
 def measure(program: Program, machine: Machine, name: str = "", *, window: int = STREAM_WINDOW,

@@ -112,11 +112,47 @@ class Motion:
     # the largest local path speed over the mean the hardware's step costs give (planner.Segment)
     pacing: float = 1.0
     even_costs: bool = False               # a helix: its events charged evenly (planner.Segment)
+    charge: float = 1.0                    # charged over true path length (flat arcs: the stepped one)
+    # the local velocity at the start and at the end over the charged speed (mm/s per charged
+    # mm/s, Compiler.local_pace); None: the unit tangents
+    start_local: tuple[float, float, float] | None = None
+    end_local: tuple[float, float, float] | None = None
 
     @property
     def spm(self) -> float:
         """Steps per mm along the path."""
         return self.steps / self.length_mm
+
+
+def planner_segment(motion: Motion, before: Motion | None, rates, accels, *, feed_mm_s: float | None = None,
+                    paced: bool = True):
+    """The planner's view of a move (planner.Segment), `before` the move ahead of it (None:
+    the first); paced=False leaves out the hardware's pace (lines' and arcs' rules alone)."""
+    from .planner import Segment
+
+    m = motion
+    return Segment(m.length_mm, m.start_unit, m.end_unit, m.feed_mm_s if feed_mm_s is None else feed_mm_s,
+                   rates, accels, radius_mm=m.radius_mm, plane_axes=m.plane_axes, stop_before=m.stop_before,
+                   tolerance_mm=m.tolerance_mm, pacing=m.pacing if paced else 1.0,
+                   even_costs=m.even_costs and paced,
+                   junction_velocities=junction_velocities(before, m) if paced and before is not None else None)
+
+
+def charged_per_mm(before: Motion, after: Motion) -> float:
+    """Charged steps per mm of planned speed at the junction between two moves: the speed
+    word there is the planned speed on the scale of the side that charges fewer (spm x
+    charge; the exit rule of Compiler.profile)."""
+    return min(before.spm * before.charge, after.spm * after.charge)
+
+
+def junction_velocities(before: Motion, after: Motion) -> tuple[tuple, tuple]:
+    """The machine's velocities (mm/s) on the two sides of the junction between two moves
+    per mm/s of planned speed (planner.Segment.junction_velocities): each side runs the
+    speed word there (charged_per_mm) at its own local pace."""
+    word = charged_per_mm(before, after)
+    end = before.end_local or before.end_unit
+    start = after.start_local or after.start_unit
+    return tuple(word / before.spm * u for u in end), tuple(word / after.spm * u for u in start)
 
 
 @dataclass
@@ -530,6 +566,35 @@ class Compiler:
                           radius_mm=motion.radius_mm, plane_axes=motion.plane_axes)
             motion.pacing = max(1.0, largest_secant(arc) * motion.events / plane_steps)
 
+    def local_pace(self, cmd: Cmd) -> None:
+        """A move's local velocity at its two ends over the charged speed (Motion.start_local,
+        end_local).  A flat arc on the lecture's costs: its unit tangent x g(theta) =
+        sqrt(1 + t^2) / (1 + (sqrt 2 - 1) t), t = tan(theta), theta the tangent's angle from its
+        octant's axis (an event covers sqrt(1 + t^2) steps of the arc and is charged 1 + (sqrt 2
+        - 1) t on average).  A helix, charged evenly: its plane part x sec(theta) x N / (the
+        plane's length in steps), w's as is; the plane part is 0 at the end of a steep helix,
+        whose last events step w alone.  (A line keeps None: its unit tangent.)"""
+        m = cmd.motion
+        p, q = m.plane_axes
+        w = 3 - p - q
+        ends = []
+        for unit in (m.start_unit, m.end_unit):
+            major, minor = max(abs(unit[p]), abs(unit[q])), min(abs(unit[p]), abs(unit[q]))
+            if major == 0.0:
+                factor = 1.0
+            elif m.even_costs:
+                plane = math.hypot(major, minor)
+                factor = plane / major * m.events / (m.length_mm * plane * self.spm[p])
+            else:
+                t = minor / major
+                factor = math.sqrt(1.0 + t * t) / (1.0 + (math.sqrt(2.0) - 1.0) * t)
+            end = [u * factor for u in unit]
+            end[w] = unit[w]
+            ends.append(tuple(end))
+        if m.even_costs and abs(cmd.z) > cmd.k:
+            ends[1] = tuple(u if axis == w else 0.0 for axis, u in enumerate(ends[1]))
+        m.start_local, m.end_local = ends
+
     def stepped_length(self, cmd: Cmd) -> int:
         """The lecture's costs (1, sqrt 2, sqrt 3 x 2^FRAC per 1-, 2-, 3-axis step event,
         rounded as the RTL's step_cost) summed over the command's steps (a flat arc's by its
@@ -561,18 +626,20 @@ class Compiler:
             for c in moves:
                 if c.kind in (ARC_CW, ARC_CCW) and c.z == 0:
                     stepped[id(c)] = self.stepped_length(c)
-                    c.motion.pacing = max(1.0, stepped[id(c)] / (c.motion.steps * (1 << FRAC)))
+                    c.motion.charge = stepped[id(c)] / (c.motion.steps * (1 << FRAC))
+                    c.motion.pacing = max(1.0, c.motion.charge)
+                    self.local_pace(c)
                 elif c.kind in (ARC_CW, ARC_CCW):
                     self.helix_pacing(c.motion)
+                    self.local_pace(c)
         if moves:
             rates = tuple(a.max_rate_mm_min / 60 for a in self.axes)
             accels = tuple(a.accel_mm_s2 for a in self.axes)
             motions = [c.motion for c in moves]
             shortest = [m.length_mm * self.clock / SEGMENT_CLOCKS for m in motions]
-            segments = [Segment(m.length_mm, m.start_unit, m.end_unit, min(m.feed_mm_s, brief), rates, accels,
-                                radius_mm=m.radius_mm, plane_axes=m.plane_axes, stop_before=m.stop_before,
-                                tolerance_mm=m.tolerance_mm, pacing=m.pacing, even_costs=m.even_costs)
-                        for m, brief in zip(motions, shortest)]
+            segments = [planner_segment(m, motions[n - 1] if n else None, rates, accels,
+                                        feed_mm_s=min(m.feed_mm_s, brief))
+                        for n, (m, brief) in enumerate(zip(motions, shortest))]
             deviation = self.machine.values["motion"]["junction_deviation_mm"]
             plans = plan(segments, junction_deviation_mm=deviation)
             if self.profile_name != "trapezoid":
@@ -600,8 +667,7 @@ class Compiler:
         # may be the mean x its pacing): where the junction binds a flat arc's exit is the
         # plan's in true units, and a tangent join of two arcs at their cruise keeps the cruise word
         along = [c.motion.spm * (1 << FRAC) / clock for c in moves]
-        scale = [k * stepped[id(c)] / (c.motion.steps * (1 << FRAC)) if id(c) in stepped else k
-                 for c, k in zip(moves, along)]
+        scale = [k * c.motion.charge for c, k in zip(moves, along)]
         a_pu = [p.accel_mm_s2 * k / clock for p, k in zip(plans, scale)]
         block_shift, jerk_shift = self.shifts(max((p.accel_mm_s2 for p in plans), default=0.0))
         quantum = max(1, math.ceil((1 << block_shift) * max(a_pu, default=1.0)))
@@ -618,10 +684,7 @@ class Compiler:
                                    f"at {clock:g} Hz)")
             cmd.feed = min(feed, FEED_MAX)
             cmd.limit = max(cmd.feed, min(FEED_MAX, math.floor(caps[n] * k)))
-            exit_word = p.exit_mm_s * min(scale[n:n + 2])
-            for m, k in zip(moves[n:n + 2], scale[n:n + 2]):
-                exit_word = min(exit_word, p.junction_mm_s * k / m.motion.pacing)
-            cmd.exit = min(NW_MAX, math.floor(exit_word / quantum))
+            cmd.exit = min(NW_MAX, math.floor(p.exit_mm_s * min(scale[n:n + 2]) / quantum))
             cmd.rate = max(1, min(1 << PF, math.floor(a * (1 << block_shift) * (1 << PF) / quantum)))
             events = cmd.motion.events
             if id(cmd) in stepped:

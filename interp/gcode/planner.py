@@ -101,6 +101,9 @@ class Segment:
     tolerance_mm: float | None = None         # G64 P tolerance for the junction INTO this segment
     pacing: float = 1.0                       # arcs: the local path speed's largest ratio to the mean
     even_costs: bool = False                  # helices: events charged evenly (w steady, the plane paced)
+    # the machine's velocities just before and just after the junction INTO this segment per
+    # unit of planned speed (its local pace at the two ends); None: the unit tangents
+    junction_velocities: tuple[Vector, Vector] | None = None
 
 
 @dataclass
@@ -111,7 +114,6 @@ class Plan:
     entry_mm_s: float
     exit_mm_s: float
     time_s: float
-    junction_mm_s: float = 0.0                # the exit's junction limit alone (inf: straight on; 0: a stop)
 
 
 def _limit_by_axes(maxima: Vector, unit: Vector) -> float:
@@ -294,17 +296,26 @@ def junction_speed(before: Vector, after: Vector, axis_accel_mm_s2: Vector,
         v^2 = a_j * delta * sin(theta/2) / (1 - sin(theta/2))
 
     with theta the angle between the paths (cos theta = -before . after), a_j the axes'
-    limit in the direction after - before.  Straight on: no limit (inf); reversal: 0."""
-    before, after = _unit(before), _unit(after)
-    cos_theta = -(before[0] * after[0] + before[1] * after[1] + before[2] * after[2])
+    limit in the direction after - before.  Straight on: no limit (inf); reversal: 0.
+
+    `before` and `after` may also be the machine's velocities at the junction per unit of
+    the planned speed, of any lengths (a stepped arc's local pace): the junction is then
+    the corner whose velocity change is the same share of the larger of them,
+    |after - before| / max(|before|, |after|) = 2 cos(theta/2), and the speed is that
+    corner's over the larger length.  For unit tangents this is the rule above."""
+    size = max(math.sqrt(sum(u * u for u in before)), math.sqrt(sum(u * u for u in after)))
+    if size == 0.0:
+        raise ValueError("a junction's tangents must not both be the zero vector")
+    change = tuple(a - b for a, b in zip(after, before))
+    # cos theta = |change|^2 / (2 size^2) - 1: -before . after for unit tangents
+    cos_theta = sum(u * u for u in change) / (2.0 * size * size) - 1.0
     if cos_theta > REVERSAL_COS:
         return 0.0
     if cos_theta < STRAIGHT_COS:
         return math.inf
-    change = _unit((after[0] - before[0], after[1] - before[1], after[2] - before[2]))
-    accel = _limit_by_axes(axis_accel_mm_s2, change)
+    accel = _limit_by_axes(axis_accel_mm_s2, _unit(change))
     sin_half = math.sqrt(0.5 * (1.0 - cos_theta))
-    return math.sqrt(accel * junction_deviation_mm * sin_half / (1.0 - sin_half))
+    return math.sqrt(accel * junction_deviation_mm * sin_half / (1.0 - sin_half)) / size
 
 
 def trapezoid_time(length: float, entry: float, exit: float, cruise: float, accel: float) -> float:
@@ -345,6 +356,15 @@ def _reverses(segments: list[Segment], before: int, after: int) -> bool:
     return False
 
 
+def _velocities(segments: list[Segment], index: int) -> tuple[Vector, Vector]:
+    """The machine's velocities per unit of planned speed before and after the junction
+    into segments[index]: its `junction_velocities`, or the unit tangents."""
+    given = segments[index].junction_velocities
+    if given is not None:
+        return given
+    return _unit(segments[index - 1].end_unit), _unit(segments[index].start_unit)
+
+
 def _junction_limits(segments: list[Segment], junction_deviation_mm: float) -> list[float]:
     """The highest entry speed of every segment from its junction alone (inf: straight on;
     0: the first segment, an exact stop).  A run of lines whose lengths add up to no more
@@ -358,8 +378,8 @@ def _junction_limits(segments: list[Segment], junction_deviation_mm: float) -> l
         if index == 0 or segment.stop_before:
             caps.append(0.0)
             continue
-        speed = junction_speed(segments[index - 1].end_unit, segment.start_unit,
-                               segment.axis_accel_mm_s2, _deviation(segment, junction_deviation_mm))
+        speed = junction_speed(*_velocities(segments, index), segment.axis_accel_mm_s2,
+                               _deviation(segment, junction_deviation_mm))
         caps.append(speed)
     first = 1
     while first < count:
@@ -377,7 +397,7 @@ def _junction_limits(segments: list[Segment], junction_deviation_mm: float) -> l
                 and not _reverses(segments, first - 1, after):
             # a short run first..after-1, within every deviation of its junctions, in which
             # no moving axis turns back
-            speed = junction_speed(segments[first - 1].end_unit, segments[after].start_unit,
+            speed = junction_speed(_velocities(segments, first)[0], _velocities(segments, after)[1],
                                    segments[after].axis_accel_mm_s2, deviation)
             for index in range(first, after + 1):      # (never below the junction's own)
                 caps[index] = max(caps[index], speed)
@@ -440,14 +460,13 @@ def plan(segments: list[Segment], *, junction_deviation_mm: float,
     cruise = [c for c, _ in bounds]
     accel = [a for _, a in bounds]
     reach = [2.0 * a * s.length_mm for a, s in zip(accel, segments)]
-    bare = _junction_limits(segments, junction_deviation_mm)
-    caps = _entry_caps(bare, cruise)
+    caps = _entry_caps(_junction_limits(segments, junction_deviation_mm), cruise)
     if smoothing_s > 0.0:
         # the filtered speed is the mean of the planned speed over the last W seconds; the
         # steps pass the junction at a time whose window holds the virtual passage, and the
         # planned speed moves at most a per second: the mean is at most v_j + a W / 2
-        caps, bare = ([max(0.0, cap - max(accel[i - 1] if i else 0.0, accel[i]) * smoothing_s / 2.0)
-                       for i, cap in enumerate(limit)] for limit in (caps, bare))
+        caps = [max(0.0, cap - max(accel[i - 1] if i else 0.0, accel[i]) * smoothing_s / 2.0)
+                for i, cap in enumerate(caps)]
     whole = _backward(caps, reach, 0, count - 1) + [0.0]         # entry speeds, then the end
     entry = [0.0] * (count + 1)
     for index in range(count):
@@ -460,8 +479,7 @@ def plan(segments: list[Segment], *, junction_deviation_mm: float,
     return [Plan(cruise_mm_s=cruise[i], accel_mm_s2=accel[i], entry_mm_s=entry[i],
                  exit_mm_s=entry[i + 1],
                  time_s=trapezoid_time(segments[i].length_mm, entry[i], entry[i + 1],
-                                       cruise[i], accel[i]),
-                 junction_mm_s=bare[i + 1] if i + 1 < count else 0.0)
+                                       cruise[i], accel[i]))
             for i in range(count)]
 
 

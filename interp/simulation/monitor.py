@@ -232,34 +232,40 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
 def _junction_jumps(moves, steps_per_mm, quantum: float, junctions: list[float]) -> np.ndarray:
     """(len(moves), 3): per junction k (between moves k and k + 1) the jump of each axis's
     velocity, steps/clock, at the corner speed allowed (the junction's limit, or the exit
-    field's speed if higher, + a quantum; the S-curve's filtered speed is within the limit)."""
+    field's speed if higher, + a quantum; the S-curve's filtered speed is within the limit):
+    the change of the machine's velocity across it, each side at its local pace."""
+    from ..gcode.compile import charged_per_mm, junction_velocities
+
     out = np.zeros((len(moves), 3))
     for k in range(len(moves) - 1):
         m0, m1 = moves[k].motion, moves[k + 1].motion
-        v_mm = (max(junctions[k], moves[k].exit * quantum) + quantum) / m0.spm   # mm / clock along the path
+        charged = max(junctions[k], moves[k].exit * quantum) + quantum        # steps / clock, charged
+        v_mm = charged / charged_per_mm(m0, m1)                              # planned mm / clock
+        before, after = junction_velocities(m0, m1)
         for axis in range(3):
-            out[k, axis] = abs(m1.start_unit[axis] - m0.end_unit[axis]) * v_mm * steps_per_mm[axis]
+            out[k, axis] = abs(after[axis] - before[axis]) * v_mm * steps_per_mm[axis]
     return out
 
 
 def _junction_caps(moves, machine) -> list[float]:
-    """The junction limit (Grbl's junction deviation, G64 P, exact stops; at most the two
-    cruise words) at the end of each move, steps/clock (the junction's limit along the true
-    path, the cruise words along the charged one); the last move's end is a stop (0)."""
-    from ..gcode.planner import Segment, _junction_limits
+    """The junction limit (Grbl's junction deviation between the machine's velocities on
+    its two sides, G64 P, exact stops; at most the two cruise words) at the end of each
+    move, as the charged speed (steps/clock) of the speed word there; the last move's end
+    is a stop (0)."""
+    from ..gcode.compile import charged_per_mm, planner_segment
+    from ..gcode.planner import _junction_limits
 
     rates = tuple(a.max_rate_mm_min / 60 for a in machine.axes)
     accels = tuple(a.accel_mm_s2 for a in machine.axes)
-    segments = [Segment(m.length_mm, m.start_unit, m.end_unit, m.feed_mm_s, rates, accels, radius_mm=m.radius_mm,
-                        plane_axes=m.plane_axes, stop_before=m.stop_before, tolerance_mm=m.tolerance_mm,
-                        pacing=m.pacing)
-                for m in (c.motion for c in moves)]
+    motions = [c.motion for c in moves]
+    segments = [planner_segment(m, motions[n - 1] if n else None, rates, accels) for n, m in enumerate(motions)]
     if not segments:
         return []
     caps = _junction_limits(segments, machine.values["motion"]["junction_deviation_mm"])
     clock, one = machine.clock_hz, 1 << FRAC
-    return [min(caps[k + 1] * moves[k].motion.spm / clock, moves[k].feed / one, moves[k + 1].feed / one)
-            for k in range(len(moves) - 1)] + [0.0]
+    return [min(caps[k + 1] * charged_per_mm(m0, m1) / clock, moves[k].feed / one,
+                moves[k + 1].feed / one)
+            for k, (m0, m1) in enumerate(zip(motions, motions[1:]))] + [0.0]
 
 
 def _exits(report, moves, t, x, owner, counts, accel, quantum: float, window: int, q: int, clock: float,
