@@ -289,9 +289,11 @@ def test_grbl_junction_formula_known_values():
 
 def test_junction_of_velocities_of_different_lengths():
     """Given the machine's velocities per unit of planned speed: the corner whose velocity
-    change is the same share of the larger velocity, at the speed over that length.  A step
-    of the speed alone is a junction; scaling both velocities scales the speed inversely;
-    the change of velocity never exceeds sqrt(8 a_j delta), Grbl's bound over every angle."""
+    change is the same share of the larger velocity, at the speed over that length, and
+    neither side faster than Grbl's rule for their directions.  A step of the speed alone is
+    a junction; a reversal stops whatever the lengths; scaling both velocities scales the
+    speed inversely; the change of velocity never exceeds sqrt(8 a_j delta), Grbl's bound
+    over every angle."""
     a = (500.0, 500.0, 500.0)
     # a speed step of 20 % along x is the corner whose chord is 0.2: the change along y
     half = math.asin(0.1)
@@ -300,6 +302,7 @@ def test_junction_of_velocities_of_different_lengths():
     assert junction_speed((1.25, 0, 0), (1.0, 0, 0), a, 0.01) == pytest.approx(corner / 1.25)
     assert junction_speed((0.5, 0, 0), (0.5, 0, 0), a, 0.01) == math.inf
     assert junction_speed((0.5, 0, 0), (-0.5, 0, 0), a, 0.01) == 0.0
+    assert junction_speed((1.0, 0, 0), (-math.cos(math.pi / 8), 0, 0), a, 0.01) == 0.0
     rng, seed = seeded_random()
     for _ in range(200):
         before = [rng.uniform(-1.3, 1.3) for _ in range(3)]
@@ -311,6 +314,9 @@ def test_junction_of_velocities_of_different_lengths():
         if 0 < speed < math.inf:
             a_j = min(accel[i] / abs(c) * jump for i, c in enumerate(change) if abs(c) > 1e-12)
             assert jump <= math.sqrt(8 * a_j * 0.02) * (1 + 1e-9), seed
+            sides = max(math.hypot(*before), math.hypot(*after)) * speed
+            directions = [[u / math.hypot(*v) for u in v] for v in (before, after)]
+            assert sides <= junction_speed(*directions, accel, 0.02) * (1 + 1e-9), seed
             assert junction_speed([2 * x for x in before], [2 * y for y in after], accel, 0.02) == \
                 pytest.approx(speed / 2), seed
 

@@ -662,10 +662,10 @@ class Compiler:
         self.out.plans = plans
         clock = self.clock
         # path units / clock per mm/s along the true path: the speeds' words (`scale`, the arcs'
-        # stepped over true length in).  An exit is the plan's on that scale, but at most the
-        # junction's own limit over each side's pacing (at a command's end the local speed
-        # may be the mean x its pacing): where the junction binds a flat arc's exit is the
-        # plan's in true units, and a tangent join of two arcs at their cruise keeps the cruise word
+        # stepped over true length in).  An exit is the plan's on the smaller of its two sides'
+        # scales (charged_per_mm), which the planner's junction limits assumed: each side's
+        # local velocity at that word is within the junction's rule, and a tangent join of two
+        # arcs at their cruise keeps the cruise word
         along = [c.motion.spm * (1 << FRAC) / clock for c in moves]
         scale = [k * c.motion.charge for c, k in zip(moves, along)]
         a_pu = [p.accel_mm_s2 * k / clock for p, k in zip(plans, scale)]

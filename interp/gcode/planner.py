@@ -299,23 +299,37 @@ def junction_speed(before: Vector, after: Vector, axis_accel_mm_s2: Vector,
     limit in the direction after - before.  Straight on: no limit (inf); reversal: 0.
 
     `before` and `after` may also be the machine's velocities at the junction per unit of
-    the planned speed, of any lengths (a stepped arc's local pace): the junction is then
-    the corner whose velocity change is the same share of the larger of them,
-    |after - before| / max(|before|, |after|) = 2 cos(theta/2), and the speed is that
-    corner's over the larger length.  For unit tangents this is the rule above."""
-    size = max(math.sqrt(sum(u * u for u in before)), math.sqrt(sum(u * u for u in after)))
+    the planned speed, of any lengths (a stepped arc's local pace).  Then neither side may
+    run faster than the rule above allows for their directions, and the velocity change
+    may be no larger than at the corner whose change is the same share of the larger
+    velocity, |after - before| / max(|before|, |after|) = 2 cos(theta/2): the lower of the
+    two speeds, each over the larger length.  For unit tangents both are the rule above."""
+    lengths = math.sqrt(sum(u * u for u in before)), math.sqrt(sum(u * u for u in after))
+    size = max(lengths)
     if size == 0.0:
         raise ValueError("a junction's tangents must not both be the zero vector")
     change = tuple(a - b for a, b in zip(after, before))
     # cos theta = |change|^2 / (2 size^2) - 1: -before . after for unit tangents
-    cos_theta = sum(u * u for u in change) / (2.0 * size * size) - 1.0
+    speed = _corner_speed(sum(u * u for u in change) / (2.0 * size * size) - 1.0, change,
+                          axis_accel_mm_s2, junction_deviation_mm)
+    if min(lengths) > 0.0 and abs(lengths[0] - lengths[1]) > 1e-12 * size and speed > 0.0:
+        before, after = _unit(before), _unit(after)
+        directions = _corner_speed(-sum(b * a for b, a in zip(before, after)),
+                                   tuple(a - b for a, b in zip(after, before)), axis_accel_mm_s2,
+                                   junction_deviation_mm)
+        speed = min(speed, directions)
+    return speed / size
+
+
+def _corner_speed(cos_theta: float, change: Vector, axis_accel_mm_s2: Vector, junction_deviation_mm: float) -> float:
+    """Grbl's junction speed of a corner of cos theta whose velocity changes along `change`."""
     if cos_theta > REVERSAL_COS:
         return 0.0
     if cos_theta < STRAIGHT_COS:
         return math.inf
     accel = _limit_by_axes(axis_accel_mm_s2, _unit(change))
     sin_half = math.sqrt(0.5 * (1.0 - cos_theta))
-    return math.sqrt(accel * junction_deviation_mm * sin_half / (1.0 - sin_half)) / size
+    return math.sqrt(accel * junction_deviation_mm * sin_half / (1.0 - sin_half))
 
 
 def trapezoid_time(length: float, entry: float, exit: float, cruise: float, accel: float) -> float:
