@@ -193,7 +193,7 @@ def test_dwell_and_event_drain_skip(native, tmp_path, monkeypatch):
     """At rest (a dwell after the speed reached 0) the state other than the counters repeats
     every few cycles: those stretches are skipped, exactly (the same as Icarus and as every
     cycle simulated).  No steps file asked for: none written."""
-    rows = [(0, 0, ONE // 7, 5, 2, 0, 0, 0, 0, 0), (4, 0, 0, 200_000, 0, 0, 0, 0, 0, 0),
+    rows = [(0, 0, ONE // 7, 5, 2, 0, 0, 0, 0, 0), (4, 0, 0, 20_000, 0, 0, 0, 0, 0, 0),
             (5, 0, 0, 3, 9, 0, 0, 0, 0, 0), (4, 0, 0, 1000, 0, 0, 0, 0, 0, 0), (0, 0, ONE // 5, -5, 1, 0, 0, 0, 0, 0)]
     got = both(tmp_path, rows, max_cycles=10**6, name="dwell")
     assert got["position"] == [0, 3, 0] and got["events"] and not got["stopped"]

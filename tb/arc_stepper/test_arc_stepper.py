@@ -20,6 +20,9 @@ from interp.simulation.runner import run_cocotb
 from interp.models.base import CycleModel
 from interp.testing.tbkit import TB, scoreboard, seeded_rng
 
+# make test runs this bench on Verilator alone, its faster simulator (make test-all: both)
+QUICK_SIMULATOR = "verilator"
+
 IDLE = {"run": 0, "tick": 0, "u0": 0, "v0": 0, "u1": 0, "v1": 0, "ccw": 0}
 
 

@@ -18,6 +18,9 @@ from interp.models.arc import CircArc, arc_error, arc_setup_cycles, arc_steps
 from interp.models.lecture import radial_deviation, within_half_step
 from interp.simulation.runner import run_cocotb
 
+# make test runs this bench on Verilator alone, its faster simulator (make test-all: both)
+QUICK_SIMULATOR = "verilator"
+
 IDLE = {"start": 0, "tick": 0, "cx": 0, "cy": 0, "x0": 0, "y0": 0, "x1": 0, "y1": 0, "ccw": 0, "full": 0}
 
 

@@ -8,6 +8,9 @@ import pytest
 from interp.quadrant_bench import quadrant_suite
 from interp.simulation.runner import run_cocotb
 
+# make test runs this bench on Verilator alone, its faster simulator (make test-all: both)
+QUICK_SIMULATOR = "verilator"
+
 globals().update(quadrant_suite())      # the cocotb tests, bound here for cocotb to find
 
 

@@ -30,6 +30,9 @@ from interp.simulation.native.build import CLI_PARAMETERS
 from interp.simulation.runner import run_cocotb
 from interp.testing.tbkit import TB, read, scoreboard, seeded_rng
 
+# make test runs this bench on Verilator alone, its faster simulator (make test-all: both)
+QUICK_SIMULATOR = "verilator"
+
 ONE = 1 << 16                                  # FRAC = 16: feed ONE would be 1 step per clock
 TOP = ONE - 1                                  # the largest feed FEED_W = 16 holds
 QUANTUM = 64                                   # A at FRAC = 16: a quantum of speed, path units per clock

@@ -15,6 +15,9 @@ from interp.models.su1571551 import Su1571551, steps
 from interp.simulation.runner import run_cocotb
 from interp.testing.tbkit import seeded_rng
 
+# make test runs this bench on Verilator alone, its faster simulator (make test-all: both)
+QUICK_SIMULATOR = "verilator"
+
 # The patent's table, |X| = 7, |Y| = 3: (kind, F after, counter 1, counter 2).
 PATENT_TABLE = [
     ("axial", -2.5, 3, 3), ("diagonal", 0.5, 3, 2), ("axial", -1.5, 2, 2),
