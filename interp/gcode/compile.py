@@ -23,7 +23,9 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
     axes have different steps_per_mm (an ellipse in steps) run as chords
     within a quarter step of the true arc, with a warning.
   * helices: cmd_z = the w travel in steps; cmd_k = the arc's exact step count
-    (interp.gcode.stepcount).
+    (interp.gcode.stepcount).  A steep helix (|w travel| > cmd_k) is a helix of
+    w travel ± cmd_k, then a line along w: the steps the hardware makes in one
+    command, with the plane's stop a junction the planner sees.
   * the speed profile (docs/gcode-cli.md, "Speed profile"): every move command
     is a planner segment (interp.gcode.planner: junction deviation, G61 / G64 P,
     exact stops before the first move and after dwells and events); the plan
@@ -400,11 +402,16 @@ class Compiler:
 
     def arc_command(self, kind, plane, ci, cj, x, y, travel, sweep, feed, m: Arc, a_start) -> None:
         """An ARC command (start 0, centre (ci, cj), end (x, y) in the plane, w travel) with
-        the exact step count for cmd_k and the planner's view of it."""
+        the exact step count for cmd_k and the planner's view of it.  A steep helix, whose w
+        travel is beyond its arc's steps, runs as the hardware would run it in one command:
+        a helix whose every event steps w, then a line along w (its plane stops there, a
+        corner the planner must see)."""
         iu, iv, iw = PLANES[m.plane]
         s_u, s_w = self.spm[iu], self.spm[iw]
         arc_n = arc_count(ci, cj, x, y, kind == ARC_CCW)
         count = arc_n
+        rest = travel - (arc_n if travel > 0 else -arc_n) if abs(travel) > arc_n > 0 else 0
+        travel -= rest
         rs = math.sqrt(ci * ci + cj * cj)
         r_mm, dw_mm = rs / s_u, travel / s_w
         length_mm = math.hypot(r_mm * sweep, dw_mm)
@@ -421,6 +428,12 @@ class Compiler:
         self.emit_move(cmd, feed, tangent(a_start), tangent(a_start + turn * sweep),
                        math.hypot(rs * sweep, travel), helix_count(arc_n, travel, count), length_mm,
                        radius_mm=r_mm, plane_axes=(iu, iv))
+        if rest:
+            step = [0, 0, 0]
+            step[iw] = rest
+            mm = [d / s for d, s in zip(step, self.spm)]
+            self.emit_move(Cmd(LINE, 0, *step, source=m.line), feed, mm, mm, abs(rest), line_count(*step),
+                           abs(rest) / s_w)
 
     def lattice_point(self, r2: int, angle: float, exact) -> tuple[int, int]:
         """The lattice point within half a step of the circle u^2 + v^2 = r2 nearest to
@@ -572,8 +585,8 @@ class Compiler:
         sqrt(1 + t^2) / (1 + (sqrt 2 - 1) t), t = tan(theta), theta the tangent's angle from its
         octant's axis (an event covers sqrt(1 + t^2) steps of the arc and is charged 1 + (sqrt 2
         - 1) t on average).  A helix, charged evenly: its plane part x sec(theta) x N / (the
-        plane's length in steps), w's as is; the plane part is 0 at the end of a steep helix,
-        whose last events step w alone.  (A line keeps None: its unit tangent.)"""
+        plane's length in steps), w's as is (arc_command splits a steep one: every event
+        steps the plane).  (A line keeps None: its unit tangent.)"""
         m = cmd.motion
         p, q = m.plane_axes
         w = 3 - p - q
@@ -591,8 +604,6 @@ class Compiler:
             end = [u * factor for u in unit]
             end[w] = unit[w]
             ends.append(tuple(end))
-        if m.even_costs and abs(cmd.z) > cmd.k:
-            ends[1] = tuple(u if axis == w else 0.0 for axis, u in enumerate(ends[1]))
         m.start_local, m.end_local = ends
 
     def stepped_length(self, cmd: Cmd) -> int:
@@ -617,7 +628,7 @@ class Compiler:
         # flat arcs run on the lecture's step costs (module docstring): their stepped length
         # over the true one scales the command's speeds, and bounds the local speed.  Helices
         # are charged as lines: core A spreads w evenly over the events, so with the lecture's
-        # costs w would run faster near the plane's axes (and on a steep helix's w-only tail);
+        # costs w would run faster near the plane's axes;
         # their plane's local speed follows sec(theta), which the planner bounds (helix_pacing)
         from .planner import Segment, limits, plan
 
