@@ -497,6 +497,12 @@ def test_a_steep_helix_runs_as_its_steps_with_the_plane_stop_a_corner():
     directions = [[u / math.hypot(*v) for u in v] for v in (before, after)]
     assert sides <= junction_speed(*directions, (500.0,) * 3, 0.01) * (1 + 1e-9)
     assert out.plans[1].exit_mm_s < 0.85 * out.plans[1].cruise_mm_s
+    # the line along w is cut into pieces of at most 2^31 - 1 steps, as every line
+    fine = load_machine(sets=["axis.z.steps_per_mm=2e6", "axis.z.max_rate_mm_min=60"])
+    out = compile_program(Program([Line((0, 0, 0), (1, 0, -1000), None, 1),
+                                   Arc((1, 0, -1000), (1, 0, 1000), (0, 0, -1000), "XY", True, 1, 60, 2)]), fine)
+    assert [c.kind for c in out.commands] == [LINE, ARC_CCW, LINE, LINE] and out.end_steps == (100, 0, 2 * 10**9)
+    assert all(abs(c.z) <= LINE_MAX for c in out.commands)
 
 
 def test_local_pace_is_the_step_models():

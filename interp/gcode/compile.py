@@ -297,7 +297,11 @@ class Compiler:
     # ---------------- lines ----------------
     def line_to(self, target: list[int], feed_mm_s: float, line: int) -> None:
         """LINE commands from here to target (steps), split into pieces below 2^31 steps."""
-        delta = [t - h for t, h in zip(target, self.here)]
+        self.line_by([t - h for t, h in zip(target, self.here)], feed_mm_s, line)
+        self.here = list(target)
+
+    def line_by(self, delta: list[int], feed_mm_s: float, line: int) -> None:
+        """LINE commands moving by delta (steps), split into pieces below 2^31 steps."""
         big = max(abs(d) for d in delta)
         if big == 0:
             return
@@ -311,7 +315,6 @@ class Compiler:
                            math.sqrt(sum(d * d for d in step)), line_count(*step),
                            math.sqrt(sum(d * d for d in mm)))
             done = part
-        self.here = list(target)
 
     def segment(self, start, end, feed, line: int) -> None:
         """A straight move between two points in mm (a G0/G1 line or a chord)."""
@@ -429,11 +432,7 @@ class Compiler:
                        math.hypot(rs * sweep, travel), helix_count(arc_n, travel, count), length_mm,
                        radius_mm=r_mm, plane_axes=(iu, iv))
         if rest:
-            step = [0, 0, 0]
-            step[iw] = rest
-            mm = [d / s for d, s in zip(step, self.spm)]
-            self.emit_move(Cmd(LINE, 0, *step, source=m.line), feed, mm, mm, abs(rest), line_count(*step),
-                           abs(rest) / s_w)
+            self.line_by([rest if axis == iw else 0 for axis in range(3)], feed, m.line)
 
     def lattice_point(self, r2: int, angle: float, exact) -> tuple[int, int]:
         """The lattice point within half a step of the circle u^2 + v^2 = r2 nearest to
