@@ -629,7 +629,7 @@ class Compiler:
         # are charged as lines: core A spreads w evenly over the events, so with the lecture's
         # costs w would run faster near the plane's axes;
         # their plane's local speed follows sec(theta), which the planner bounds (helix_pacing)
-        from .planner import Segment, limits, plan
+        from .planner import limits, plan
 
         stepped = {}
         if self.costs == "true":
@@ -665,9 +665,7 @@ class Compiler:
             for m in motions:
                 key = (m.start_unit, m.end_unit, m.radius_mm, m.plane_axes, m.pacing, m.even_costs)
                 if key not in ceiling:
-                    ceiling[key] = limits(Segment(m.length_mm, m.start_unit, m.end_unit, math.inf, rates, accels,
-                                                  radius_mm=m.radius_mm, plane_axes=m.plane_axes,
-                                                  pacing=m.pacing, even_costs=m.even_costs))[0]
+                    ceiling[key] = limits(planner_segment(m, None, rates, accels, feed_mm_s=math.inf))[0]
                 caps.append(min(ceiling[key], m.length_mm * self.clock / SEGMENT_CLOCKS))
         self.out.plans = plans
         clock = self.clock
