@@ -4,7 +4,7 @@
 // small widths: FEED_W 6, NW 4, PF 3, LEN_W 8, ZW 12.  The environment is a profile
 // queue whose head holds still until it is popped (a move: rate 1 .. 2^PF, length
 // > 0, limit >= feed, a budget no larger than floor(2 rate length / (2^bs A)); or a
-// barrier, finished at will), a quantum A > 0 and block_shift 0 or 1 that stay
+// barrier, finished at will), a quantum A > 0 and block_shift 2 or 3 that stay
 // (REST = 1: a move enters only while the generator is at rest, so every move ends
 // at rest), with hold and override at will.  Properties, besides the generator's own
 // (n by at most one quantum a block, only at DDA ticks; the adders' registers):
@@ -59,7 +59,7 @@ module speed_ramp_check #(
         assume ({4'd0, next_budget} * {16'd0, f_scale} <= 32'd2 * {28'd0, next_rate} * {24'd0, next_length});
     end
     always @(*) begin
-        assume (speed_quantum != 6'd0 && block_shift <= 4'd1);
+        assume (speed_quantum != 6'd0 && block_shift >= 4'd2 && block_shift <= 4'd3);
         if (REST != 0 && next_valid && !next_barrier && !next_pop) assume (!moving);
     end
     always @(posedge clk) if (f_past_valid && !$past(rst))

@@ -547,7 +547,7 @@ _MT = "motion_top"
 # 1 step/mm, so F12000 mm/min is 0.2 step per clock, reached in 2 clocks (an acceleration of
 # 100 m/s^2); pulse 2 cycles, set-up 1, hold 1.
 _MACHINE = [f"axis.{a}.{k}={v}" for a in "xyz"
-            for k, v in (("steps_per_mm", 1), ("max_rate_mm_min", 60000), ("accel_mm_s2", 100000))]
+            for k, v in (("steps_per_mm", 1), ("max_rate_mm_min", 60000), ("accel_mm_s2", 12500))]
 _GCODE = ["gcode", "G21 G91\nG01 X30 Y-20 F12000\nG01 X-10\n", "--clock-hz", "1000", "--sim", "icarus",
           "--push-interval", "1",
           *[w for kv in _MACHINE + ["output.pulse_ns=2000000", "output.dir_setup_ns=1000000",

@@ -198,7 +198,7 @@ module controller_regs #(
             dir_setup        <= TIMING_RESET[TW-1:0];
             dir_hold         <= TIMING_RESET[TW-1:0];
             quantum          <= {{(FEED_W-1){1'b0}}, 1'b1};
-            block_shift      <= 4'd0;
+            block_shift      <= 4'd2;
             jerk_shift       <= 4'd0;
             input_invert     <= 5'd0;
             spindle_period   <= PERIOD_RESET[15:0];

@@ -43,7 +43,7 @@
 // `error_code` (held until the next error or rst):
 //   1 unknown kind, 2 feed 0, 3 a line coordinate = -2^(W-1), 5 queue full
 //   (cmd_valid while cmd_full), 7 an arc in plane 3, 8 bad profile (rate 0 or
-//   > 2^PF, length 0, limit < feed).
+//   > 2^PF, length 0, limit < feed, or a move pushed while block_shift < 2).
 // At run time: 4 the arc or curve core refused its command (e.g. an inconsistent
 // centre): a FAULT, both queues are flushed, the speed block stops, and every later
 // push is refused with 4 until rst; 6 step buffer overflow (never happens; a monitor);
@@ -163,7 +163,8 @@ module motion_top #(
     wire bad_range = cmd_kind == K_LINE && (cmd_x == min_w || cmd_y == min_w || cmd_z == min_w);
     wire bad_plane = p_arc && cmd_plane == 2'd3;
     wire bad_profile = p_move && (cmd_rate == {(PF+1){1'b0}} || cmd_rate > rate_top ||
-                                  cmd_length == {LEN_W{1'b0}} || cmd_limit < cmd_feed);
+                                  cmd_length == {LEN_W{1'b0}} || cmd_limit < cmd_feed ||
+                                  block_shift < 4'd2);
     wire bad_cmd   = bad_kind | bad_feed | bad_range | bad_plane | bad_profile;
     wire geo_full, prof_full;
     assign cmd_full = geo_full | prof_full;

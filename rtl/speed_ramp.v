@@ -24,10 +24,11 @@
 // clocks (restoring division by shifts).  Cap: v <= min(feed * override / 100,
 // limit), compared as 100 v <= feed * override (the product recomputed every 9
 // clocks), lowered at the DDA ticks when exceeded.  hold lowers n at every tick to 0.
-// Timing: the decision starts at registers only (the block end, the refinement's
-// quotient bit and the set-up's `known` are formed a clock ahead; the thresholds use
-// n * acc as the tick leaves it, na + p - n 2^PF) and compares floor(Zx / 2^bs) >= R,
-// which for an integer R is Zx >= R << bs, so one shifter serves both thresholds.
+// Timing: the thresholds and the cap are compared over the three clocks before a tick
+// (the decision pipeline below; blocks of at least 4 clocks, block_shift >= 2), so a
+// tick decides on registered bits; floor(Zx / 2^bs) >= R is Zx >= R << bs for an
+// integer R, so one shifter serves both thresholds.  The block end, the refinement's
+// quotient bit and the set-up's `known` are formed a clock ahead.
 module speed_ramp #(
     parameter integer FEED_W = 16,  // speed word: path units per clock (>= 2)
     parameter integer NW     = 16,  // speed in quanta n (2 .. 64)
@@ -48,7 +49,7 @@ module speed_ramp #(
     output reg               next_pop,       // registered strobe: drop the head at the next edge
     input  wire              barrier_done,   // strobe: a dwell / event has finished
     input  wire [FEED_W-1:0] speed_quantum,  // A (constant while moving)
-    input  wire [3:0]        block_shift,    // block = 2^block_shift clocks (constant while moving)
+    input  wire [3:0]        block_shift,    // block = 2^block_shift clocks, >= 2 (constant while moving)
     /* verilator lint_off SYMRSVDWORD */
     input  wire [7:0]        override,       // percent, 1 .. 200 (clamped)
     /* verilator lint_on SYMRSVDWORD */
@@ -78,7 +79,6 @@ module speed_ramp #(
     localparam integer SW  = LEN_W + 2;                   // S, signed
     localparam integer MW  = NW + FEED_W;                 // the refinement's remainder
     localparam [NW-1:0] ONE_N = {{(NW-1){1'b0}}, 1'b1};
-    localparam [NW-1:0] NMAX  = {NW{1'b1}};
     localparam [31:0]   NW32  = NW;
     localparam [7:0]    NW8   = NW32[7:0];
 
@@ -143,26 +143,18 @@ module speed_ramp #(
     wire signed [ZXW-1:0] zx_base = budget_x - $signed({{(ZXW-PW-1){1'b0}}, p, 1'b0});
     wire signed [ZXW-1:0] zx1 = zx_base + (ref_hit ? $signed({{(ZXW-PW-1){1'b0}}, ref_m}) : {ZXW{1'b0}});
 
-    // the thresholds for keeping n and for n + 1, used at a DDA tick only, where
-    // na1 = na_t = na + p - n 2^PF and acc_n = acc_sum: formed from registers alone.
-    // Zx >= R << bs  <=>  floor(Zx / 2^bs) >= R  (R an integer), so Zx is shifted once.
+    // q_up, p_up, na_t_up: the companions of n + 1 after a tick (na_t = n acc', acc' the
+    // DDA phase after the tick)
     wire [QW-1:0]  q_up  = q + {{(QW-NW-1){1'b0}}, n, 1'b0} + {{(QW-2){1'b0}}, 2'd2};
     wire [PW-1:0]  p_up  = p + {{(PW-PF-1){1'b0}}, rate};
     wire [NAW-1:0] na_t_up = na_t + {{NW{1'b0}}, acc_sum[PF-1:0]};
-    wire signed [RW-1:0] r_hold = $signed({{(RW-QW){1'b0}}, q} - {{(RW-QW){1'b0}}, f_sq}) <<< PF;
-    wire signed [RW-1:0] r_up   = $signed({{(RW-QW){1'b0}}, q_up} - {{(RW-QW){1'b0}}, f_sq}) <<< PF;
-    wire signed [RW-1:0] r_hold_t = r_hold + $signed({{(RW-PW-1){1'b0}}, p, 1'b0}) - $signed({{(RW-NAW-1){1'b0}}, na_t, 1'b0});
-    wire signed [RW-1:0] r_up_t   = r_up + $signed({{(RW-PW-1){1'b0}}, p_up, 1'b0}) - $signed({{(RW-NAW-1){1'b0}}, na_t_up, 1'b0});
-    wire signed [ZXW-1:0] zx1_s  = zx1 >>> bs_q;
-    wire ok_hold = (n <= floor_n) | (zx1_s >= $signed({{(ZXW-RW){r_hold_t[RW-1]}}, r_hold_t}));
-    wire ok_up   = (n < floor_n) | (zx1_s >= $signed({{(ZXW-RW){r_up_t[RW-1]}}, r_up_t}));
 
-    // the cap: 100 v against feed * override, and the limit
-    wire [FEED_W+7:0] v100  = {2'd0, speed, 6'd0} + {3'd0, speed, 5'd0} + {6'd0, speed, 2'd0};
+    // the decision pipeline (speed_ramp_decide): the thresholds and the cap compared over
+    // the three clocks before a tick; a tick it has not seen (within 3 clocks of a switch,
+    // load or end) keeps n, which costs the new segment at most 2 n of its budget until
+    // the next tick (the host keeps EXIT_MARGIN = 4 quanta of margin at every entry)
+    wire seen, ok_hold, ok_up, over, room;
     wire [FEED_W:0]   va    = {1'b0, speed} + {1'b0, speed_quantum};
-    wire [FEED_W+7:0] va100 = {1'd0, va, 6'd0} + {2'd0, va, 5'd0} + {5'd0, va, 2'd0};
-    wire over = (speed > limit) | (fo_valid & (v100 > fo));
-    wire room = fo_valid & (va <= {1'b0, limit}) & ~va[FEED_W] & (va100 <= fo) & (n != NMAX);
 
     reg signed [1:0] step;
     always @* begin
@@ -171,6 +163,7 @@ module speed_ramp #(
             if (hold) step = n != {NW{1'b0}} ? -2'sd1 : 2'sd0;
             else if (!seg) step = 2'sd0;
             else if (n == {NW{1'b0}}) step = 2'sd1;
+            else if (!seen) step = 2'sd0;
             else if (over && n > ONE_N) step = -2'sd1;
             else if (room && ok_up) step = 2'sd1;
             else if (ok_hold) step = 2'sd0;
@@ -211,6 +204,12 @@ module speed_ramp #(
     speed_ramp_mul #(.AW(FEED_W), .BW(8)) u_mul_fo (
         .clk(clk), .rst(rst), .start(~mo_busy), .a(feed), .b(ovr),
         .busy(mo_busy), .done(mo_done), .product(mo_product));
+    speed_ramp_decide #(.FEED_W(FEED_W), .NW(NW), .PF(PF), .ZW(ZW)) u_decide (
+        .clk(clk), .rst(rst), .event_now(bend | switch_s | load | end_s), .succ(succ),
+        .n(n), .q(q), .f_sq(f_sq), .floor_n(floor_n), .na(na), .acc(acc), .p(p),
+        .budget_x(budget_x), .bs(bs_q), .speed(speed), .va(va), .limit(limit), .fo(fo),
+        .fo_valid(fo_valid), .valid(seen), .ok_hold(ok_hold), .ok_up(ok_up), .over(over),
+        .room(room));
     speed_ramp_setup #(.FEED_W(FEED_W), .NW(NW), .PF(PF)) u_setup (
         .clk(clk), .rst(rst), .pop(pop), .move_head(move_head), .n(n),
         .n_up(st_up & ~final_q), .n_down(st_dn & ~final_q), .n_zero(final_q),
@@ -326,6 +325,21 @@ module speed_ramp #(
         assert (p == f_p);
         assert (na == f_na);
     end
+`ifndef INVARIANTS_ONLY
+    // the pipeline is sound: at a tick it decides on, each comparison it passes holds for
+    // the budget and the thresholds of the tick itself (braking_need at the phase the
+    // tick leaves), and its floor is no higher than the tick's
+    wire signed [RW-1:0] f_r_hold = ($signed({{(RW-QW){1'b0}}, q} - {{(RW-QW){1'b0}}, f_sq}) <<< PF)
+        + $signed({{(RW-PW-1){1'b0}}, p, 1'b0}) - $signed({{(RW-NAW-1){1'b0}}, na_t, 1'b0});
+    wire signed [RW-1:0] f_r_up = ($signed({{(RW-QW){1'b0}}, q_up} - {{(RW-QW){1'b0}}, f_sq}) <<< PF)
+        + $signed({{(RW-PW-1){1'b0}}, p_up, 1'b0}) - $signed({{(RW-NAW-1){1'b0}}, na_t_up, 1'b0});
+    wire signed [ZXW-1:0] f_zx = zx1 >>> bs_q;
+    always @(*) if (f_past_valid && !rst && dtick && seen && seg && n != {NW{1'b0}}) begin
+        if (ok_hold && n > floor_n) assert (f_zx >= $signed({{(ZXW-RW){f_r_hold[RW-1]}}, f_r_hold}));
+        if (ok_up && ~&n && n + ONE_N > floor_n)
+            assert (f_zx >= $signed({{(ZXW-RW){f_r_up[RW-1]}}, f_r_up}));
+    end
+`endif
 `endif
 
     wire unused = &{1'b0, rem_ext[MW+SW-1:MW], load_r_ext[MW+SW+NW:MW]};

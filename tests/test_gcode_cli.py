@@ -100,7 +100,7 @@ def test_check_json_fields(fakes, nc, capsys):
     rapid = (10 ** 2 + 5 ** 2) ** 0.5 / (6000 * (10 ** 2 + 5 ** 2) ** 0.5 / 10) * 60
     want = rapid + 6 / 300 * 60 + 3.14159265 * 5 / 1200 * 60 + 0.5
     assert want < info["machine_time_s"] < want + 0.5
-    assert info["profile"] == "trapezoid" and info["settings"]["block_shift"] == 0
+    assert info["profile"] == "trapezoid" and info["settings"]["block_shift"] == 2
     assert info["step_events"] == 1000 + 600 + 1414     # the rapid (x leads), z down, two octants of 1000 / sqrt 2
     assert "interp: warning: line 1: something the interpreter noticed" in captured.err
 

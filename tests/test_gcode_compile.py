@@ -14,6 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from interp.testing.seeds import seeded_random
+from interp.models.speed_ramp import BLOCK_SHIFT_MIN
 from interp.gcode.compile import (ARC_LIMIT, DWELL_MAX, EVENT, EVENT_CODES, EXIT_MARGIN, FRAC, LINE_MAX, PF,
                                   PWM_FULL, CompileError, Compiler, compile_program)
 from interp.gcode.planner import junction_speed
@@ -635,10 +636,12 @@ def test_profile_fields_and_settings():
     out = compile_program(prog, MACHINE)
     check_profile(out)
     a = out.settings["speed_quantum"]
-    assert out.settings == {"speed_quantum": a, "block_shift": 0, "jerk_shift": 0, "override": 100}
-    # A = the largest path acceleration in path units / clock^2 (the diagonal rapid's, above 500)
-    assert a == math.ceil(max(word(p.accel_mm_s2, 100, 50e6) for p in out.plans) / 50e6)
-    assert a > math.ceil(word(500, 100, 50e6) / 50e6)
+    assert out.settings == {"speed_quantum": a, "block_shift": BLOCK_SHIFT_MIN, "jerk_shift": 0, "override": 100}
+    # A = the largest path acceleration in path units / clock^2 (the diagonal rapid's, above
+    # 500) over a block of 2^BLOCK_SHIFT_MIN clocks
+    block = 1 << BLOCK_SHIFT_MIN
+    assert a == math.ceil(block * max(word(p.accel_mm_s2, 100, 50e6) for p in out.plans) / 50e6)
+    assert a > math.ceil(block * word(500, 100, 50e6) / 50e6)
     stops = [c.motion.stop_before for c in out.commands if c.motion]
     assert stops == [True, False, False, True]               # the start, after the dwell
     assert out.commands[0].exit > 0                          # straight on: no stop between 1 and 2
@@ -652,7 +655,7 @@ def test_profile_fields_and_settings():
     check_profile(tight)
     # the planner's accel in path units / clock^2: rate = floor(a_seg 2^bs / A 2^PF)
     p = out.plans[0]
-    assert out.commands[0].rate == math.floor(word(p.accel_mm_s2, 100, 50e6) / 50e6 / a * (1 << PF))
+    assert out.commands[0].rate == math.floor(word(p.accel_mm_s2, 100, 50e6) * block / 50e6 / a * (1 << PF))
 
 
 def test_path_modes_give_stops_and_tolerances():
@@ -672,9 +675,9 @@ def test_scurve_shifts():
     out = compile_program(Program([Line((0, 0, 0), (10, 0, 0), 600, 1)]), MACHINE, profile="scurve")
     assert (out.settings["jerk_shift"], out.settings["block_shift"]) == (12, 10) and out.profile == "scurve"
     check_profile(out)
-    slow = load_machine(clock_hz=50e3)          # 2500 cycles: 2^12, all in the filter
+    slow = load_machine(clock_hz=50e3)          # 2500 cycles: 2^12, blocks of the least 2^2 clocks
     out = compile_program(Program([Line((0, 0, 0), (10, 0, 0), 600, 1)]), slow, profile="scurve")
-    assert (out.settings["jerk_shift"], out.settings["block_shift"]) == (12, 0)
+    assert (out.settings["jerk_shift"], out.settings["block_shift"]) == (10, BLOCK_SHIFT_MIN)
     with pytest.raises(CompileError, match="S-curve's window"):
         compile_program(Program([Line((0, 0, 0), (10, 0, 0), 600, 1)]),
                         load_machine(sets=["motion.jerk_mm_s3=0.001"]), profile="scurve")

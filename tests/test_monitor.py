@@ -91,7 +91,7 @@ def stopped_rows(out, hold_cycle: int, decel: float):
     resumes (at full speed, at once) a second later."""
     rows = ideal_rows(out.commands, out.settings)
     c = out.commands[0]
-    a = c.rate / (1 << 24) * out.settings["speed_quantum"] / (1 << 48) * decel
+    a = c.rate / (1 << 24) * out.settings["speed_quantum"] / (1 << out.settings["block_shift"]) / (1 << 48) * decel
     v = c.feed / (1 << 48)
     cost = c.cost / (1 << 48)
     k0 = next(k for k, r in enumerate(rows) if r[0] >= hold_cycle)

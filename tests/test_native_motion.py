@@ -19,6 +19,7 @@ from interp.testing.seeds import seeded_random
 from interp.cores import UsageError
 from interp.models.motion import Command
 from interp.models.profile import profile_for
+from interp.models.speed_ramp import BLOCK_SHIFT_MIN
 from interp.simulation.native import CLI_PARAMETERS, command_row, executable, run_cocotb_job, run_native, write_commands
 from interp.simulation.native.build import ports
 from interp.simulation.runner import RTL
@@ -31,7 +32,7 @@ ONE = 1 << PARAMS["FRAC"]                       # feed of 1 step per clock
 TIMING = (3, 2, 4)                              # pulse width, dir setup, dir hold (cycles)
 QUANTUM = ONE >> 12                             # A: 2^-12 steps per clock
 ACCEL = QUANTUM / 4                             # path units per clock^2
-SETTINGS = {"speed_quantum": QUANTUM, "block_shift": 0, "jerk_shift": 0, "override": 100}
+SETTINGS = {"speed_quantum": QUANTUM, "block_shift": BLOCK_SHIFT_MIN, "jerk_shift": 0, "override": 100}
 
 
 def profiled(rows, accel=ACCEL, quantum=QUANTUM, lecture=True):  # noqa: D103
@@ -164,7 +165,7 @@ def test_paced_pushes_native_equals_icarus(native, tmp_path):
 
 def slow(feed):
     """Settings and profile arguments for a slow job: the quantum an eighth of the feed, the
-    rate 2^18 (a quantum every 64 clocks: the ramp's DDA phase comes back every 2^6 blocks,
+    rate 2^20 (a quantum every 64 clocks: the ramp's DDA phase comes back every 2^4 blocks,
     which the skipping of dwells needs)."""
     quantum = max(1, feed // 8)
     return {**SETTINGS, "speed_quantum": quantum}, {"quantum": quantum, "accel": quantum / 64}
@@ -175,7 +176,8 @@ def test_slow_job_with_dwell(native, tmp_path):
     moves are not (only rest is skipped); the same as every cycle simulated."""
     feed = ONE // 3000
     settings, args = slow(feed)
-    rows = [(0, 0, feed, 7, -3, 2, 0, 0, 0, 0), (2, 0, feed, 0, 0, 0, 3, 0, 0, 0), (4, 0, 0, 10**6, 0, 0, 0, 0, 0, 0),
+    # (a dwell of 4 * 10^6 cycles: at rest the state repeats every 2^MW blocks of 4 clocks)
+    rows = [(0, 0, feed, 7, -3, 2, 0, 0, 0, 0), (2, 0, feed, 0, 0, 0, 3, 0, 0, 0), (4, 0, 0, 4 * 10**6, 0, 0, 0, 0, 0, 0),
             (0, 0, feed, -1, 0, 0, 0, 0, 0, 0)]
     commands = tmp_path / "slow.txt"
     write_commands(commands, profiled(rows, **args))
@@ -184,7 +186,7 @@ def test_slow_job_with_dwell(native, tmp_path):
     exact = run_native(commands, steps_path=tmp_path / "b.csv", timing=TIMING, max_cycles=10**7,
                        parameters=PARAMS, exact=True, settings=settings)
     assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
-    assert 0.9 * 10**6 < got["skipped"] < 10**6 and exact.pop("skipped") == 0
+    assert 0.9 * 4 * 10**6 < got["skipped"] < 4 * 10**6 and exact.pop("skipped") == 0
     got.pop("skipped")
     assert got == exact and got["position"] == [6, -3, 2] and not got["stopped"]
 

@@ -125,7 +125,7 @@ def test_fixed_values_at_the_default_build():
     assert r["OVERRIDE"] == 100 and r["QUANTUM_LO"] == 1 and r["QUANTUM_HI"] == 0
     assert r["PULSE_WIDTH"] == r["DIR_SETUP"] == r["DIR_HOLD"] == 25          # 0.5 us at 50 MHz
     assert r["SPINDLE_PERIOD"] == 50_000_000 // 20_000
-    assert r["CONTROL"] == r["MOTION"] == r["INPUT_INVERT"] == 0
+    assert r["CONTROL"] == r["INPUT_INVERT"] == 0 and r["MOTION"] == 2         # block_shift 2
     assert registers.FIELDS["QUANTUM_HI.value"][1] == 50 - 32               # FEED_W - 32
 
 

@@ -14,6 +14,7 @@ import math
 
 from ..models.motion import DWELL, LINE, Command, queue_steps
 from ..models.profile import profile_for
+from ..models.speed_ramp import BLOCK_SHIFT_MIN
 from ..simulation.motion_build import FEED_MAX, FRAC, PF, QUANTUM, simulate
 
 MOVES = [("axial", (120, 0, 0)), ("diagonal", (120, 120, 0)), ("3-axis", (120, 120, 120)),
@@ -22,11 +23,11 @@ FAST = {"pulse_width": 1, "setup": 0, "hold_time": 0}
 ONE = 1 << FRAC
 
 
-def settings(block_shift: int = 0, jerk_shift: int = 0) -> dict:
+def settings(block_shift: int = BLOCK_SHIFT_MIN, jerk_shift: int = 0) -> dict:
     return {"speed_quantum": QUANTUM, "block_shift": block_shift, "jerk_shift": jerk_shift, "override": 100}
 
 
-def profiled(cmds, accel: float = QUANTUM, block_shift: int = 0):
+def profiled(cmds, accel: float = QUANTUM, block_shift: int = BLOCK_SHIFT_MIN):
     return profile_for(cmds, quantum=QUANTUM, accel=accel, frac=FRAC, pf=PF, block_shift=block_shift,
                        feed_w=16, feed_max=FEED_MAX)
 

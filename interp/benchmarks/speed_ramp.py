@@ -13,13 +13,13 @@ from __future__ import annotations
 
 import math
 
-from ..models.speed_ramp import Segment, SpeedRamp, run_profile, segment_budget
+from ..models.speed_ramp import BLOCK_SHIFT_MIN, Segment, SpeedRamp, run_profile, segment_budget
 
 BENCH = {"feed_w": 16, "nw": 16, "pf": 12, "len_w": 34, "zw": 48}
 PF = BENCH["pf"]
 CASES = [  # quantum A, block_shift, rate p * 2^PF, cruise quanta, length in clocks at cruise
-    (16, 0, 1 << PF, 60, 400), (16, 0, 1 << PF, 60, 40), (3, 1, 3000, 100, 800),
-    (1, 2, 1 << PF - 3, 40, 2000), (50, 0, 777, 120, 3000)]
+    (16, 2, 1 << PF, 60, 1600), (16, 2, 1 << PF, 60, 160), (3, 3, 3000, 100, 3200),
+    (1, 4, 1 << PF - 3, 40, 8000), (50, 2, 777, 120, 12000)]
 
 
 def ideal_clocks(length: float, v: float, a: float) -> float:
@@ -51,7 +51,7 @@ def move_rows():
 
 def hold_rows():
     rows = []
-    for quantum, shift, rate, quanta in [(16, 0, 1 << PF, 60), (3, 1, 3000, 100), (50, 0, 777, 120)]:
+    for quantum, shift, rate, quanta in [(16, 2, 1 << PF, 60), (3, 3, 3000, 100), (50, 2, 777, 120)]:
         feed = quanta * quantum
         length = feed * 20000
         seg = Segment(feed, feed, 0, rate, length, segment_budget(rate, length, quantum, shift))
@@ -74,7 +74,7 @@ def latency_rows():
                                                    "len_w": 82, "zw": 108})):
         model = SpeedRamp(**widths)
         seg = Segment(100, 100, 0, 1 << widths["pf"], 100 * 50, 0)
-        inputs = {**seg.ports(), "speed_quantum": 1, "block_shift": 0, "override": 100, "hold": 0}
+        inputs = {**seg.ports(), "speed_quantum": 1, "block_shift": BLOCK_SHIFT_MIN, "override": 100, "hold": 0}
         clocks = 0
         while not model.next_pop:
             model.clock(inputs)

@@ -56,6 +56,7 @@ from dataclasses import dataclass, field
 from ..cores import UsageError
 from ..models.lecture import within_half_step
 from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command, command_steps, interval_costs
+from ..models.speed_ramp import BLOCK_SHIFT_MIN
 from .machine import AXES, Machine
 from .moves import EVENTS, PLANES, Arc, Dwell, Event, Line, Program
 from .stepcount import arc_count, arc_events, helix_count, line_count
@@ -64,7 +65,7 @@ EVENT = 5
 W, FRAC, FEED_W = 32, 48, 50                 # the CLI's build of motion_top
 NW, PF, LEN_W, ZW, MW = 40, 24, 82, 108, 12  # its profile widths (quanta, rate fraction, ...)
 BLOCK_SHIFT_MAX = 15                         # block_shift [3:0]
-EXIT_MARGIN = 3                              # quanta kept below the next command's braking reach
+EXIT_MARGIN = 4                              # quanta kept below the next command's braking reach
 LINE_MAX = (1 << (W - 1)) - 1                # longest line command per axis (-2^31 is refused)
 ARC_LIMIT = 1 << (W - 3)                     # circ_arc: |point - centre| < 2^(W-3) per axis
 DWELL_MAX = (1 << W) - 1                     # cycles of one DWELL command (unsigned)
@@ -526,20 +527,22 @@ class Compiler:
 
     # ---------------- the speed profile ----------------
     def shifts(self, accel_mm_s2: float) -> tuple[int, int]:
-        """(block_shift, jerk_shift): 0, 0 for the trapezoid; for the S-curve the smallest
-        window 2^(jerk_shift + block_shift) clocks >= 2 accel / J seconds, jerk_shift <= MW.
+        """(block_shift, jerk_shift): BLOCK_SHIFT_MIN (blocks of 4 clocks, the least the
+        speed generator's decision pipeline takes), 0 for the trapezoid; for the S-curve
+        the smallest window 2^(jerk_shift + block_shift) clocks >= 2 accel / J seconds,
+        jerk_shift <= MW, block_shift >= BLOCK_SHIFT_MIN.
 
         The moving average over W turns a step of the acceleration from a to a' into a
         jerk of |a - a'| / W: a / W where a ramp meets a cruise, 2 a / W where an
         acceleration turns straight into a deceleration (a short move, a hold).  The
         window 2 a / J keeps both within J."""
         if self.profile_name == "trapezoid":
-            return 0, 0
+            return BLOCK_SHIFT_MIN, 0
         jerk = self.machine.values["motion"]["jerk_mm_s3"]
         cycles = 2 * accel_mm_s2 / jerk * self.clock
         total = max(0, math.ceil(math.log2(cycles) - 1e-12)) if cycles > 1 else 0
-        jerk_shift = min(MW, total)
-        block_shift = total - jerk_shift
+        jerk_shift = min(MW, max(0, total - BLOCK_SHIFT_MIN))
+        block_shift = max(BLOCK_SHIFT_MIN, total - jerk_shift)
         if block_shift > BLOCK_SHIFT_MAX:
             raise CompileError(f"the S-curve's window 2 accel / jerk = 2 x {accel_mm_s2:g} / {jerk:g} s is "
                                f"{cycles:.4g} clock cycles, beyond the hardware's 2^{MW + BLOCK_SHIFT_MAX}: "
@@ -551,7 +554,8 @@ class Compiler:
         command, entered at n = cmd_exit quanta, must brake to its own exit within its budget:
         (n + EXIT_MARGIN)^2 <= Z0 / 2^PF + n_exit^2 (quanta^2).  The plan's junction speeds
         are exactly feasible for the continuous trapezoid; the generator steps n by whole
-        quanta and needs about 3n more, so the tightest exits come down by a few quanta."""
+        quanta and needs about 3n more, and its first tick in a command may keep n unchecked
+        (2n more), so the tightest exits come down by a few quanta."""
         commands = self.out.commands
         following = {id(c): commands[n + 1] for n, c in enumerate(commands[:-1])}
         for cmd in reversed(moves):
@@ -691,6 +695,11 @@ class Compiler:
                                    f"the controller: its speed word rounds to 0 (slowest {slowest:.3g} mm/min "
                                    f"at {clock:g} Hz)")
             cmd.feed = min(feed, FEED_MAX)
+            if cmd.feed < quantum:
+                self.warn("quantum", cmd.source, f"feed {p.cruise_mm_s * 60:g} mm/min is below the speed "
+                          f"generator's quantum ({quantum / k * 60:.3g} mm/min: 2^block_shift x the largest "
+                          f"acceleration per clock at {clock:g} Hz); the move runs at one quantum: raise "
+                          f"the clock or lower the accelerations")
             cmd.limit = max(cmd.feed, min(FEED_MAX, math.floor(caps[n] * k)))
             cmd.exit = min(NW_MAX, math.floor(p.exit_mm_s * min(scale[n:n + 2]) / quantum))
             cmd.rate = max(1, min(1 << PF, math.floor(a * (1 << block_shift) * (1 << PF) / quantum)))
@@ -708,7 +717,7 @@ class Compiler:
         self.hardware_exits(moves)
         # machine time: the plan's trapezoids, the dwells; the S-curve's filter adds its window
         # (2^(jerk_shift + block_shift) clocks) to every run between two stops
-        window = (1 << (block_shift + jerk_shift)) / clock if jerk_shift or block_shift else 0.0
+        window = (1 << (block_shift + jerk_shift)) / clock if self.profile_name != "trapezoid" else 0.0
         plan_of = {id(c): p for c, p in zip(moves, plans)}
         t = 0.0
         commands = self.out.commands

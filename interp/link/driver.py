@@ -21,6 +21,7 @@ from collections import deque
 from dataclasses import dataclass, field
 
 from . import protocol as p
+from ..models.speed_ramp import BLOCK_SHIFT_MIN
 from .records import DEFAULT_BUILD, Build, record_bytes
 
 REG = p.REGISTER_ADDRESSES
@@ -424,7 +425,7 @@ def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
     quantum = int(settings.get("speed_quantum", 1))
     return [("PULSE_WIDTH", int(timing["pulse_width"])), ("DIR_SETUP", int(timing["setup"])),
             ("DIR_HOLD", int(timing["hold"])), ("QUANTUM_LO", quantum & 0xFFFFFFFF), ("QUANTUM_HI", quantum >> 32),
-            ("MOTION", int(settings.get("block_shift", 0)) | int(settings.get("jerk_shift", 0)) << 4),
+            ("MOTION", int(settings.get("block_shift", BLOCK_SHIFT_MIN)) | int(settings.get("jerk_shift", 0)) << 4),
             ("OVERRIDE", int(settings.get("override", 100)))]
 
 

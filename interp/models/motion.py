@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from typing import Mapping
 
 from .base import CycleModel
+from .speed_ramp import BLOCK_SHIFT_MIN
 from .su1571551 import steps as su_steps
 
 AXES = "xyz"
@@ -316,7 +317,7 @@ E_KIND, E_FEED, E_RANGE, E_CORE, E_QUEUE, E_SYNC, E_PLANE, E_PROFILE, E_LATE = r
 ERROR_TEXT = {E_KIND: "unknown command kind", E_FEED: "feed 0", E_RANGE: "coordinate out of range",
               E_CORE: "the core refused the command (fault: stopped until reset)", E_QUEUE: "queue overflow",
               E_SYNC: "step buffer overflow", E_PLANE: "arc in plane 3",
-              E_PROFILE: "bad profile (rate 0 or above 2^PF, length 0, limit below feed)",
+              E_PROFILE: "bad profile (rate 0 or above 2^PF, length 0, limit below feed, block_shift below 2)",
               E_LATE: "a segment ended above its target speed (too short for the look-ahead set-up)"}
 PROFILE_FIELDS = ("limit", "exit", "rate", "cost", "length", "budget")
 FIELDS = ("x", "y", "z", "i", "j", "k", "l")
@@ -662,7 +663,7 @@ class MotionTop(CycleModel):
         if kind in (ARC_CW, ARC_CCW) and i.get("cmd_plane", 0) & 3 == 3:
             return E_PLANE
         if move and (prof["rate"] == 0 or prof["rate"] > 1 << self.pf or prof["length"] == 0
-                     or prof["limit"] < feed):
+                     or prof["limit"] < feed or i.get("block_shift", 0) < BLOCK_SHIFT_MIN):
             return E_PROFILE
         return 0
 

@@ -23,6 +23,7 @@ from dataclasses import replace
 from typing import Mapping
 
 from .base import CycleModel
+from .speed_ramp import BLOCK_SHIFT_MIN
 from .motion import (ARC_CCW, ARC_CW, CURVE, LINE, Command, SyncFifo, command_steps,
                      interval_costs)
 
@@ -159,7 +160,7 @@ def direction(cmd: Command, at_end: bool) -> tuple[float, float, float] | None:
     return (cmd.x / n, cmd.y / n, cmd.z / n) if n else None
 
 
-def profile_for(commands, *, quantum: int, accel: float, frac: int, pf: int = 12, block_shift: int = 0,
+def profile_for(commands, *, quantum: int, accel: float, frac: int, pf: int = 12, block_shift: int = BLOCK_SHIFT_MIN,
                 width: int = 16, lecture: bool = True, limit_factor: float = 1.0,
                 feed_max: int | None = None, straight: float = 0.999,
                 feed_w: int | None = None) -> list[Command]:

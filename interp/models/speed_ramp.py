@@ -35,6 +35,7 @@ from typing import Mapping
 from .base import CycleModel
 
 PCT = 100            # override unit: percent
+BLOCK_SHIFT_MIN = 2  # blocks of 4 clocks at least: the decision pipeline's three clocks
 OVERRIDE_MIN, OVERRIDE_MAX = 1, 200
 
 
@@ -103,6 +104,53 @@ class ShiftMult:
             self.busy, self.done = 0, 1
 
 
+class Decide:
+    """rtl/speed_ramp_decide.v: the braking criterion and the cap over the three clocks
+    before a DDA tick.  R(n) and R(n + 1) (`braking_need` at the phase the tick leaves,
+    times 2^PF) against floor((Zx - 8 P) / 2^bs), Zx projected to the tick."""
+
+    def __init__(self, pf: int, nmax: int):
+        self.pf, self.nmax = pf, nmax
+        self.reset()
+
+    def reset(self) -> None:
+        self.fresh = 0
+        self.s1 = dict(dh=0, du=0, naa=0, zx=0, succ=0, le=0, lt=0)
+        self.s2 = dict(hold=0, up=0, zx=0, succ=0, le=0, lt=0, v100=0, va100=0, above=0, fit=0)
+        self.s3 = dict(hold=0, up=0, succ=0, le=0, lt=0)
+        self.over = self.room = 0
+
+    def valid(self, succ: int) -> bool:
+        """The bits are this clock's tick's: no event in the three clocks before, and the
+        successor stage 1 saw is still there."""
+        return self.fresh == 3 and not (self.s3["succ"] and not succ)
+
+    @property
+    def ok_hold(self) -> int:
+        return int(bool(self.s3["le"] or self.s3["hold"]))
+
+    @property
+    def ok_up(self) -> int:
+        return int(bool(self.s3["lt"] or self.s3["up"]))
+
+    def clock(self, *, event: bool, succ: int, n: int, q: int, f_sq: int, floor: int, na: int,
+              acc: int, p: int, budget_x: int, bs: int, v: int, va: int, limit: int, fo: int,
+              fo_valid: int) -> None:
+        s1, s2 = self.s1, self.s2
+        self.over = int(bool(s2["above"] or (fo_valid and s2["v100"] > fo)))
+        self.room = int(bool(fo_valid and s2["fit"] and s2["va100"] <= fo))
+        self.s3 = dict(hold=int(s2["zx"] >= s2["hold"]), up=int(s2["zx"] >= s2["up"]),
+                       succ=s2["succ"], le=s2["le"], lt=s2["lt"])
+        self.s2 = dict(hold=(s1["dh"] << self.pf) - 2 * na, up=(s1["du"] << self.pf) - 2 * s1["naa"],
+                       zx=s1["zx"] >> bs, succ=s1["succ"], le=s1["le"], lt=s1["lt"],
+                       v100=PCT * v, va100=PCT * va, above=int(v > limit),
+                       fit=int(va <= limit and n != self.nmax))
+        self.s1 = dict(dh=q - f_sq + 2 * n, du=q - f_sq + 4 * (n + 1), naa=na + acc,
+                       zx=budget_x - 8 * p, succ=int(bool(succ)), le=int(n <= floor),
+                       lt=int(n < floor))
+        self.fresh = 0 if event else min(self.fresh + 1, 3)
+
+
 IDLE, BUSY, DONE = range(3)
 
 
@@ -129,6 +177,7 @@ class SpeedRamp(CycleModel):
         self.mul_f = ShiftMult(nw)
         self.mul_fo = ShiftMult(8)
         self.mul_fn = ShiftMult(8)
+        self.decide = Decide(pf, self.nmax)
         self.reset()
 
     def reset(self) -> None:
@@ -143,6 +192,7 @@ class SpeedRamp(CycleModel):
         self.fo_next = self.fn_valid = self.fn_ok = 0
         self.bar_count = 0
         self.up = self.down = self.next_pop = self.late = self.hold_q = 0
+        self.decide.reset()
         self.mul_p.reset()
         self.mul_f.reset()
         self.mul_fo.reset()
@@ -201,6 +251,7 @@ class SpeedRamp(CycleModel):
         move_head = head and not g("next_barrier", 0)
         bar_head = head and g("next_barrier", 0)
         n_rate, n_exit = g("next_rate", 0), g("next_exit", 0)
+        fo, fo_valid = self.fo, self.fo_valid
 
         known = move_head and self.known
         exit_t = self.exit if known else 0             # the current segment's exit speed
@@ -217,17 +268,10 @@ class SpeedRamp(CycleModel):
         ref_hit = self.ref_count and self.ref_r >= self.ref_d
         zx1 = self.budget_x - 2 * self.p + (self.ref_m if ref_hit else 0)
 
-        # decision
+        # decision: on the pipeline's comparisons, formed over the three clocks before
         n, v = self.n, self.v
         q_up, p_up, na_up = self.q + 2 * (n + 1), self.p + self.rate, na1 + acc_n
-        r_hold = (((self.q - f_sq) << pf) + 2 * self.p - 2 * na1) << bs
-        r_up = (((q_up - f_sq) << pf) + 2 * p_up - 2 * na_up) << bs
-        ok_hold = n <= floor or zx1 >= r_hold
-        ok_up = n + 1 <= floor or zx1 >= r_up
-        v100 = PCT * v
-        over = v > self.limit or (self.fo_valid and v100 > self.fo)
-        room = (self.fo_valid and v + a_q <= self.limit and PCT * (v + a_q) <= self.fo
-                and n < self.nmax)
+        decide = self.decide
         step = 0
         if dtick:
             if hold:
@@ -236,11 +280,13 @@ class SpeedRamp(CycleModel):
                 step = 0
             elif n == 0:
                 step = 1
-            elif over and n > 1:
+            elif not decide.valid(known):
+                step = 0
+            elif decide.over and n > 1:
                 step = -1
-            elif room and ok_up:
+            elif decide.room and decide.ok_up:
                 step = 1
-            elif ok_hold:
+            elif decide.ok_hold:
                 step = 0
             elif n > 1:
                 step = -1
@@ -354,6 +400,10 @@ class SpeedRamp(CycleModel):
             self.ref_m >>= 1
             self.ref_count -= 1
 
+        decide.clock(event=bend or switch or load or (cross and not known), succ=known, n=n,
+                     q=self.q, f_sq=f_sq, floor=floor, na=self.na, acc=self.acc, p=self.p,
+                     budget_x=self.budget_x, bs=bs, v=v, va=v + a_q, limit=self.limit, fo=fo,
+                     fo_valid=fo_valid)
         self.bar_count += int(bool(g("barrier_done", 0))) - bar_pop
         self.up, self.down = int(n_d > n), int(n_d < n)
         self.late = late
@@ -368,7 +418,7 @@ class SpeedRamp(CycleModel):
         self.remaining, self.budget_x = rem_n, zx_n
 
 
-def profile_stimulus(segments: list[Segment], *, quantum: int, block_shift: int = 0,
+def profile_stimulus(segments: list[Segment], *, quantum: int, block_shift: int = BLOCK_SHIFT_MIN,
                      override: int = 100, controls: list[tuple[int, str, int]] = (),
                      arrivals: Mapping[int, int] | None = None, max_cycles: int = 1_000_000,
                      barrier_delay: int = 3, resets: tuple[int, ...] = (),
@@ -428,9 +478,10 @@ def plan_exits(segments: list[Segment], quantum: int, pf: int,
                underrun_safe: bool = False) -> list[Segment]:
     """A reference backward pass (the host's job, here for tests): each segment's
     exit speed in quanta is the highest n <= both cruise speeds from which the rest
-    of the queue can still be stopped, n^2 + 5 n <= Z0' / 2^PF + f' (f' + 1)
-    (R(n, u) <= n^2 + n - f^2 - f + 2 n, and the successor enters with up to one clock
-    at n already travelled: up to 2 n less budget), the last exit 0.  Barriers stop.
+    of the queue can still be stopped, n^2 + 7 n <= Z0' / 2^PF + f' (f' + 1)
+    (R(n, u) <= n^2 + n - f^2 - f + 2 n, the successor enters with up to one clock at n
+    already travelled, and its first tick may keep n unchecked: up to 2 n less budget
+    each), the last exit 0.  Barriers stop.
     `underrun_safe`: f' = 1, every segment can stop within itself (a queue that runs
     dry, or a successor set up late, still ends in a braked stop)."""
     out = list(segments)
@@ -446,7 +497,7 @@ def plan_exits(segments: list[Segment], quantum: int, pf: int,
             nxt = out[i + 1]
             room = (nxt.budget >> pf) + (2 if underrun_safe else nxt_floor_sq)
             n = max(0, int((room) ** 0.5))
-            while n > 0 and n * n + 5 * n > room:
+            while n > 0 and n * n + 7 * n > room:
                 n -= 1
             exit_n = min(n, seg.feed // quantum, nxt.feed // quantum)
         out[i] = Segment(seg.feed, seg.limit, exit_n, seg.rate, seg.length, seg.budget)

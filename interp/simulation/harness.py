@@ -116,9 +116,10 @@ def motion_top_load() -> dict:
     from .motion_build import FEED_MAX, FRAC, QUANTUM
     from ..models.motion import LINE, Command
     from ..models.profile import profile_for
+    from ..models.speed_ramp import BLOCK_SHIFT_MIN
 
     line = profile_for([Command(LINE, FEED_MAX, 120, 50, 0)], quantum=QUANTUM, accel=QUANTUM, frac=FRAC)[0]
-    return {**line.ports(), "hold": 0, "speed_quantum": QUANTUM, "block_shift": 0, "jerk_shift": 0,
+    return {**line.ports(), "hold": 0, "speed_quantum": QUANTUM, "block_shift": BLOCK_SHIFT_MIN, "jerk_shift": 0,
             "override": 100, "pulse_width": 1, "setup": 0, "hold_time": 0}
 
 

@@ -48,6 +48,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..gcode.compile import FRAC, PF
+from ..models.speed_ramp import BLOCK_SHIFT_MIN
 
 TOLERANCE = 0.25        # the acceleration quantisation as a share of the smallest acceleration
 MIN_GRID = 64           # clocks
@@ -107,7 +108,7 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
     report.events, report.expected_events = len(rows), int(counts.sum())
     if report.events != report.expected_events:
         report.violations.append(f"the run has {report.events} step events, the program {report.expected_events}")
-    settings = compiled.settings or {"speed_quantum": 1, "block_shift": 0, "jerk_shift": 0}
+    settings = compiled.settings or {"speed_quantum": 1, "block_shift": BLOCK_SHIFT_MIN, "jerk_shift": 0}
     clock = machine.clock_hz
     timing = timing or machine.timing()
     q = 1 + timing["pulse_width"] + timing["setup"] + timing["hold"]
@@ -131,7 +132,8 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
 
     quantum = settings["speed_quantum"] / (1 << FRAC)
     bs, js = settings["block_shift"], settings["jerk_shift"]
-    window = 1 << (bs + js) if (bs or js) else 0
+    scurve = getattr(compiled, "profile", "trapezoid") == "scurve" or js > 0    # (the trapezoid has blocks too)
+    window = 1 << (bs + js) if scurve else 0
     feed = np.array([c.feed for c in moves]) / (1 << FRAC)                     # steps / clock
     limit = np.array([c.limit for c in moves]) / (1 << FRAC)
     accel = np.array([c.rate / (1 << PF) * settings["speed_quantum"] / (1 << bs) for c in moves]) / (1 << FRAC)
@@ -177,7 +179,7 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
     _record(report, "path speed", v, caps, over, g, clock, "steps/clock")
     a_cap = np.maximum(accel_max[:-1], accel_max[1:])
     _record(report, "acceleration", np.abs(acc), a_cap, np.abs(acc) - (a_cap + da), g[1:], clock, "steps/clock^2")
-    if js or bs:
+    if scurve:
         jerk = np.diff(acc) / grid
         j_cap = machine.values["motion"]["jerk_mm_s3"] * spm[c_hi[1:-1]] / clock ** 3
         _record(report, "jerk", np.abs(jerk), j_cap, np.abs(jerk) - (j_cap + dj), g[2:], clock, "steps/clock^3")
@@ -221,7 +223,7 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
                      "cruise": feed_max * clock / spm[c_lo], "limit": limit_max * clock / spm[c_lo],
                      "cap": cap_now * clock / spm[c_lo],
                      "controls": [(float(c) / clock, kind, value) for c, kind, value in controls],
-                     "jerk_mm_s3": machine.values["motion"]["jerk_mm_s3"] if (js or bs) else None,
+                     "jerk_mm_s3": machine.values["motion"]["jerk_mm_s3"] if scurve else None,
                      "window_s": window / clock,
                      "axis_max": [a.max_rate_mm_min / 60 for a in machine.axes],
                      "accel": accel_max * clock * clock / spm[c_lo]}

@@ -28,12 +28,13 @@ import json
 import cocotb
 from cocotb.triggers import FallingEdge
 
+from ..models.speed_ramp import BLOCK_SHIFT_MIN
 from ..testing.tbkit import TB, read
 from .jobs import job_from_env
 
 FIELDS = ("cmd_kind", "cmd_plane", "cmd_feed", "cmd_x", "cmd_y", "cmd_z", "cmd_i", "cmd_j", "cmd_k", "cmd_l",
           "cmd_limit", "cmd_exit", "cmd_rate", "cmd_cost", "cmd_length", "cmd_budget")
-SETTINGS = {"speed_quantum": 1, "block_shift": 0, "jerk_shift": 0, "override": 100}
+SETTINGS = {"speed_quantum": 1, "block_shift": BLOCK_SHIFT_MIN, "jerk_shift": 0, "override": 100}
 
 
 def bits(dut, prefix: str) -> int:

@@ -21,6 +21,7 @@ from interp.link import records
 from interp.link.driver import settings_writes
 from interp.models.motion import ARC_CCW, ARC_CW, CURVE, DWELL, EVENT, LINE, Command, queue_steps
 from interp.models.profile import profile_for
+from interp.models.speed_ramp import BLOCK_SHIFT_MIN
 from interp.simulation import motion_build
 from interp.simulation.native.build import CLI_PARAMETERS
 from interp.simulation.runner import run_cocotb
@@ -95,7 +96,8 @@ async def registers(dut):
              "BUILD1": b["LEN_W"] | b["ZW"] << 8 | b["MW"] << 16 | b["TW"] << 24, "CLOCK_HZ": clk,
              "QUEUE_SIZE": size | aw << 16 | int(dut.CURVES.value) << 24, "STATUS": 0, "ERROR": 0,
              "QUEUE_FREE": size | (size // rb) << 16, "OVERRIDE": 100, "PULSE_WIDTH": half_us,
-             "DIR_SETUP": half_us, "DIR_HOLD": half_us, "QUANTUM_LO": 1, "SPINDLE_PERIOD": clk // 20000}
+             "DIR_SETUP": half_us, "DIR_HOLD": half_us, "QUANTUM_LO": 1, "SPINDLE_PERIOD": clk // 20000,
+             "MOTION": BLOCK_SHIFT_MIN}
     names = sorted(REG, key=REG.get)
     want = {n: reset.get(n, 0) for n in names}
     for name in names:

@@ -25,6 +25,7 @@ from interp.models.motion import (ARC_CCW, ARC_CW, CURVE, DWELL, E_CORE, E_FEED,
                                   E_QUEUE, E_RANGE, EVENT, LINE, Command, MotionTop, TimingMonitor,
                                   command_steps, queue_steps)
 from interp.models.profile import profile_for
+from interp.models.speed_ramp import BLOCK_SHIFT_MIN
 from interp.simulation import motion_build
 from interp.simulation.native.build import CLI_PARAMETERS
 from interp.simulation.runner import run_cocotb
@@ -60,7 +61,7 @@ class MotionTB(TB):
         self.one = 1 << p["FRAC"]                  # feed of one step per clock
         self.top = min(self.one, 1 << p["FEED_W"]) - 1
         self.scale = self.one // ONE               # the W = 16 build's feeds -> this build's
-        self.settings = {"speed_quantum": QUANTUM * self.scale, "block_shift": 0, "jerk_shift": 0,
+        self.settings = {"speed_quantum": QUANTUM * self.scale, "block_shift": BLOCK_SHIFT_MIN, "jerk_shift": 0,
                          "override": 100}
         await self.reset({**IDLE, **FAST, **self.settings})
         self.ref = MotionTop(**{k.lower(): v for k, v in p.items()})
@@ -298,17 +299,17 @@ async def hold_resume_override_fuzz(dut):
 
 @cocotb.test()
 async def s_curve_and_blocks(dut):
-    """block_shift > 0 (acceleration changes once per block) and jerk_shift > 0 (the S-curve
+    """block_shift > 2 (acceleration changes once per block) and jerk_shift > 0 (the S-curve
     filter): every cycle as the model, 0 lost steps, also under feed hold."""
     rng = seeded_rng(dut, "s_curve_and_blocks")
     tb = await MotionTB(dut).start()
-    for n, (block_shift, jerk_shift) in enumerate([(0, 2), (1, 0), (1, 3), (2, 4), (0, 6)]):
+    for n, (block_shift, jerk_shift) in enumerate([(2, 2), (3, 0), (3, 3), (4, 4), (2, 6)]):
         tb.settings.update(block_shift=block_shift, jerk_shift=jerk_shift)
         cmds = random_moves(rng, rng.randint(2, 5))
         errors, want_errors, _, _ = await tb.run(cmds, hold=hold_pattern(rng),
                                                  context=f"S-curve {n} (block {block_shift}, jerk {jerk_shift})")
         assert errors == want_errors == []
-    tb.settings.update(block_shift=0, jerk_shift=0)
+    tb.settings.update(block_shift=BLOCK_SHIFT_MIN, jerk_shift=0)
 
 
 @cocotb.test()
@@ -381,7 +382,8 @@ async def random_mix(dut):
 @cocotb.test()
 async def bad_commands_keep_the_queue(dut):
     """Unknown kind, feed 0, a coordinate of -2^(W-1), plane 3, bad profiles (rate 0, rate above
-    2^PF, length 0, limit below feed): each refused at its push with its code; the rest runs."""
+    2^PF, length 0, limit below feed, a move while block_shift < 2): each refused at its push
+    with its code; the rest runs."""
     tb = await MotionTB(dut).start()
     lo = -(1 << (tb.width - 1))
     good = tb.profiled([Command(LINE, TOP, 4, 1), Command(LINE, ONE // 3, -2, 7, 1)])
@@ -394,6 +396,12 @@ async def bad_commands_keep_the_queue(dut):
     cmds = [good[0], *bad, *profiles, good[1]]
     errors, want_errors, _, _ = await tb.run(cmds, profiled=True, context="bad commands")
     assert errors == want_errors == [E_KIND, E_FEED, E_RANGE, E_PLANE, E_KIND, E_FEED] + [E_PROFILE] * 4
+    for shift in (0, BLOCK_SHIFT_MIN - 1):
+        tb.settings.update(block_shift=shift)
+        # (fault=True: the step models know no settings; no pulse may go out)
+        errors, _, mon, _ = await tb.run([line], profiled=True, fault=True, context=f"block_shift {shift}")
+        assert errors == [E_PROFILE] and not mon.pulses
+    tb.settings.update(block_shift=BLOCK_SHIFT_MIN)
 
 
 @cocotb.test()
@@ -449,7 +457,8 @@ async def path_speed(dut):
     """At cruise (the middle of a long line) the measured path speed equals the feed within 1 %
     for axial, diagonal and 3-axis lines, with the lecture's costs and with true-length costs."""
     tb = await MotionTB(dut).start()
-    for move in [(120, 0, 0), (80, 80, 0), (60, 60, 60), (100, 40, 0)]:
+    # (long enough to cruise over their middle third at one quantum a block)
+    for move in [(480, 0, 0), (320, 320, 0), (240, 240, 240), (400, 160, 0)]:
         for lecture in (True, False):
             feed = ONE // 6
             cmds = tb.profiled([Command(LINE, feed, *move)], accel=QUANTUM, lecture=lecture)

@@ -33,6 +33,7 @@ from pathlib import Path
 from typing import Callable, Iterable, Mapping
 
 from ...cores import UsageError
+from ...models.speed_ramp import BLOCK_SHIFT_MIN
 from ..runner import RTL
 from .build import CLI_PARAMETERS, executable, full_parameters
 
@@ -42,7 +43,7 @@ __all__ = ["CLI_PARAMETERS", "SETTINGS", "run_native", "run_cocotb_job", "write_
 PROGRESS_LOG2 = 22          # a progress line every 2^22 cycles
 NFIELDS = 16
 FIELDS_TEXT = "kind plane feed x y z i j k l limit exit rate cost length budget"
-SETTINGS = {"speed_quantum": 1, "block_shift": 0, "jerk_shift": 0, "override": 100}
+SETTINGS = {"speed_quantum": 1, "block_shift": BLOCK_SHIFT_MIN, "jerk_shift": 0, "override": 100}
 CONTROLS = ("hold", "resume", "override")
 
 
