@@ -64,6 +64,12 @@ module speed_ramp_check #(
     end
     always @(posedge clk) if (f_past_valid && !$past(rst))
         assume ($stable(speed_quantum) && $stable(block_shift));
+`ifdef PIPELINE
+    // (the pipeline task: a plain environment, so that the bounded check reaches the
+    // decisions on the budget at n >= 2: quantum 1, blocks of 4, no hold, no barrier)
+    always @(*) assume (speed_quantum == 6'd1 && block_shift == 4'd2 && !hold && !next_barrier &&
+                        override == 8'd100);
+`endif
 
     // distance: travel since reset against the lengths taken
     reg [15:0] f_travel, f_taken;
@@ -79,7 +85,7 @@ module speed_ramp_check #(
     end
 `ifndef INVARIANTS_ONLY
     always @(posedge clk) if (f_past_valid && !rst && !$past(rst)) begin
-        if (!moving && !next_pop && !f_late)
+        if (!moving && !next_pop && !f_late && !late)     // (a late stop may overshoot)
             assert (f_travel >= f_taken && f_travel < f_taken + {10'd0, speed_quantum});
         if (segment && speed == 6'd0 && $past(speed) != 6'd0) assert ($past(hold) || next_pop);
         if (REST != 0) assert (!late);

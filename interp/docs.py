@@ -544,8 +544,8 @@ _QUAD = [("start", "bit"), ("tick", "bit"), ("x0", "s8"), ("y0", "s8"), ("x1", "
          ("dir_y", "bit"), ("done", "bit"), ("error", "bit")]
 _MT = "motion_top"
 # The G-code build (W 32, FRAC 48) on a machine slowed down for the eye: a 1 kHz clock and
-# 1 step/mm, so F12000 mm/min is 0.2 step per clock, reached in 2 clocks (an acceleration of
-# 100 m/s^2); pulse 2 cycles, set-up 1, hold 1.
+# 1 step/mm, so F12000 mm/min is 0.2 step per clock, reached in about 16 clocks (an
+# acceleration of 12.5 m/s^2); pulse 2 cycles, set-up 1, hold 1.
 _MACHINE = [f"axis.{a}.{k}={v}" for a in "xyz"
             for k, v in (("steps_per_mm", 1), ("max_rate_mm_min", 60000), ("accel_mm_s2", 12500))]
 _GCODE = ["gcode", "G21 G91\nG01 X30 Y-20 F12000\nG01 X-10\n", "--clock-hz", "1000", "--sim", "icarus",

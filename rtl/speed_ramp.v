@@ -339,6 +339,12 @@ module speed_ramp #(
         if (ok_up && ~&n && n + ONE_N > floor_n)
             assert (f_zx >= $signed({{(ZXW-RW){f_r_up[RW-1]}}, f_r_up}));
     end
+    // (formal/speed_ramp.sby's cover task: the pipeline decides every way on its budget)
+    always @(*) if (f_past_valid && !rst && dtick && seen && seg && !hold) begin
+        cover (n > floor_n && !over && st_up);                 // raised on the budget
+        cover (n > floor_n && !over && step == 2'sd0);         // kept on the budget
+        cover (n > floor_n && !over && st_dn);                 // lowered: the budget fell short
+    end
 `endif
 `endif
 

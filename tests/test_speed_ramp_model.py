@@ -2,6 +2,7 @@
 """The path-speed profile generator's cycle model (interp.models.speed_ramp) on its
 own: exact distance, the acceleration bound, braking to rest exactly at the end with a
 short crawl, hold, override, underrun, the braking bound R(n, u) itself."""
+import math
 import random
 
 import pytest
@@ -201,3 +202,34 @@ def test_long_run_speed():
     elapsed = time.perf_counter() - start
     assert len(samples) > 100000
     print(f"{len(samples)} clocks in {elapsed:.2f} s")
+
+
+def test_entry_margin_covers_the_unseen_tick():
+    """A tick within three clocks of a switch keeps n unchecked (the decision pipeline has
+    not seen the new segment).  Two moves, the first entering the second at its braking
+    reach less M quanta, the switch at every phase of a block: with the compiler's margin
+    (EXIT_MARGIN) none ends late; with no margin some do (the case is tight)."""
+    from interp.gcode.compile import EXIT_MARGIN
+
+    rng = rng_for("entry margin")
+    quantum, shift = 1, 2
+    late = {0: 0, EXIT_MARGIN: 0}
+    for _ in range(12):
+        cruise = rng.randint(20, 60)
+        r1, r2 = rng.randint(1 << PF - 2, 1 << PF), rng.randint(1 << PF - 2, 1 << PF)
+        length2 = rng.randint(40, 400) * cruise * quantum // 3
+        budget2 = segment_budget(r2, length2, quantum, shift)
+        for margin in late:
+            entry = min(math.isqrt(budget2 >> PF) - margin, cruise)
+            if entry < 3:
+                continue
+            base = (entry * 4 * (1 << PF) // r1 + 50) * entry * quantum * 2
+            for offset in range(8):                  # the switch at every clock of two blocks
+                length1 = base + offset * entry * quantum
+                segs = [Segment(entry * quantum, entry * quantum, entry, r1, length1,
+                                segment_budget(r1, length1, quantum, shift)),
+                        Segment(cruise * quantum, cruise * quantum, 0, r2, length2, budget2)]
+                samples = run_profile(segs, widths=BENCH, quantum=quantum, block_shift=shift,
+                                      max_cycles=200_000)
+                late[margin] += any(s["late"] for s in samples)
+    assert late[EXIT_MARGIN] == 0 and late[0] > 0, late

@@ -299,7 +299,7 @@ async def hold_resume_override_fuzz(dut):
 
 @cocotb.test()
 async def s_curve_and_blocks(dut):
-    """block_shift > 2 (acceleration changes once per block) and jerk_shift > 0 (the S-curve
+    """block_shift 2 .. 4 (acceleration changes once per block) and jerk_shift > 0 (the S-curve
     filter): every cycle as the model, 0 lost steps, also under feed hold."""
     rng = seeded_rng(dut, "s_curve_and_blocks")
     tb = await MotionTB(dut).start()
