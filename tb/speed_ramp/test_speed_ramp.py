@@ -3,8 +3,10 @@
 planned trapezoid programs, random programs (seed printed), hold, override, barriers,
 look-ahead underruns and resets; the profile's own rules checked on the samples.  Its
 submodules are verified through it: speed_ramp_setup (the successor's p' n, f (f + 1) and
-feed x override) and speed_ramp_mul (the shift-add multiplier they use) — the model
-computes those products exactly, so any wrong product shows as a different speed."""
+feed x override), speed_ramp_mul (the shift-add multiplier they use) — the model
+computes those products exactly, so any wrong product shows as a different speed — and
+speed_ramp_decide (the decision pipeline: the model's Decide, register for register, so a
+wrong threshold or comparison shows as a different step of n)."""
 import cocotb
 import pytest
 
