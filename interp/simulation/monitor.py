@@ -132,7 +132,7 @@ def monitor(rows, compiled, machine, *, controls=(), timing: dict | None = None)
 
     quantum = settings["speed_quantum"] / (1 << FRAC)
     bs, js = settings["block_shift"], settings["jerk_shift"]
-    scurve = getattr(compiled, "profile", "trapezoid") == "scurve" or js > 0    # (the trapezoid has blocks too)
+    scurve = compiled.profile == "scurve"       # (the trapezoid has blocks too: bs alone says nothing)
     window = 1 << (bs + js) if scurve else 0
     feed = np.array([c.feed for c in moves]) / (1 << FRAC)                     # steps / clock
     limit = np.array([c.limit for c in moves]) / (1 << FRAC)
