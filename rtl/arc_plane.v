@@ -5,9 +5,11 @@
 //                            plane 0 XY (u = x, v = y, w = z), 1 ZX (u = z, v = x,
 //                            w = y), 2 YZ (u = y, v = z, w = x)
 //   helix .................. the lecture's linear interpolator (motion_top's idle
-//                            line core A, a lin_exact) with lead N = `count` and
-//                            minor `travel`, advanced once per arc step: the
-//                            normal axis w is spread over the arc by expression (1)
+//                            line core A, a lin_exact) with lead N (the command's
+//                            count, which line_pair loads into core A at
+//                            `helix_start`) and minor `travel`, advanced once per
+//                            arc step: the normal axis w is spread over the arc
+//                            by expression (1)
 //   synchronization ........ the arc's step is held one cycle (arc_q) so that the
 //                            w step of the same arc step, which core A forms a cycle
 //                            later, leaves in the SAME step entry
@@ -40,10 +42,8 @@ module arc_plane #(
     input  wire [W-1:0] centre_u,       // centre relative to the start
     input  wire [W-1:0] centre_v,
     input  wire [W-1:0] travel,         // helix travel along w, steps (signed)
-    input  wire [W-1:0] count,          // N: the host's count of the arc's steps (signed)
     // line core A, lent for the helix
     output wire         helix_start,
-    output wire [W-1:0] helix_lead,     // N, or 0 for N <= 0
     output wire         helix_tick,     // one per arc step
     output wire         helix_abort,    // the arc has ended: core A back to idle
     input  wire         helix_step,     // core A's minor step (w), a cycle after its tick
@@ -83,7 +83,6 @@ module arc_plane #(
     wire in_tail = phase == P_TAIL;
     wire more    = left_q != {W{1'b0}};
     assign helix_start = load & (travel != {W{1'b0}});
-    assign helix_lead  = count[W-1] ? {W{1'b0}} : count;
     assign helix_tick  = in_arc & (arc_sx | arc_sy);
     assign helix_abort = in_arc & (arc_done | arc_error);
     assign busy  = phase != P_IDLE;

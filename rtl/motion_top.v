@@ -201,15 +201,20 @@ module motion_top #(
 
     // ---------------- cores ----------------
     // Line core A also spreads an arc's helix axis (arc_plane borrows it).
+    // line_pair takes its command a cycle ahead: the head, or while the queue is empty the
+    // command being pushed (the head of the next cycle if it is taken).  The head changes
+    // only at a pop (which leaves S_IDLE: no start in the next cycle) or at a push into the
+    // empty queue, so at every start these registers hold the head's command.
     wire [2:0]   line_step, line_dir;
     wire         line_done, helix_start, helix_tick, helix_abort, helix_step, helix_dir;
-    wire [W-1:0] helix_lead;
+    wire [2:0]   next_kind = q_valid ? h_kind : cmd_kind;
     line_pair #(.W(W)) u_lines (
-        .clk(clk), .rst(rst), .start(start_line), .tick(core_tick), .x(h_x), .y(h_y), .z(h_z),
+        .clk(clk), .rst(rst), .start(start_line), .tick(core_tick),
+        .next_x(q_valid ? h_x : cmd_x), .next_y(q_valid ? h_y : cmd_y), .next_z(q_valid ? h_z : cmd_z),
+        .next_arc(next_kind == K_ARC_CW || next_kind == K_ARC_CCW), .next_count(q_valid ? h_k : cmd_k),
         .step(line_step), .dir(line_dir), .done(line_done),
-        .helix_select(is_arc), .helix_start(helix_start), .helix_lead(helix_lead), .helix_travel(h_z),
-        .lent(state == S_ARC), .helix_tick(helix_tick), .helix_abort(helix_abort),
-        .helix_step(helix_step), .helix_dir(helix_dir)
+        .helix_start(helix_start), .lent(state == S_ARC), .helix_tick(helix_tick),
+        .helix_abort(helix_abort), .helix_step(helix_step), .helix_dir(helix_dir)
     );
 
     wire [2:0] arc_step, arc_dir;
@@ -217,8 +222,8 @@ module motion_top #(
     arc_plane #(.W(W)) u_arc (
         .clk(clk), .rst(rst), .start(start_arc), .tick(core_tick), .plane(h_plane),
         .ccw(h_kind == K_ARC_CCW), .end_u(h_x), .end_v(h_y), .centre_u(h_i), .centre_v(h_j),
-        .travel(h_z), .count(h_k),
-        .helix_start(helix_start), .helix_lead(helix_lead), .helix_tick(helix_tick),
+        .travel(h_z),
+        .helix_start(helix_start), .helix_tick(helix_tick),
         .helix_abort(helix_abort), .helix_step(helix_step), .helix_dir(helix_dir),
         .step(arc_step), .dir(arc_dir), .busy(arc_busy), .done(arc_done), .error(arc_error)
     );

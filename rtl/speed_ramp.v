@@ -191,8 +191,10 @@ module speed_ramp #(
     wire signed [SW+NW:0] rem_wide = {{(NW+1){remaining[SW-1]}}, remaining};
     wire signed [SW+NW:0] a_wide   = {{(SW+NW+1-FEED_W){1'b0}}, speed_quantum};
     wire signed [SW+NW:0] a_k      = $signed({{(SW+1-FEED_W){1'b0}}, speed_quantum, {NW{1'b0}}}) - a_wide;
-    wire        carry_small = rem_wide + a_wide > 0;
-    wire signed [SW+NW:0] load_r = rem_wide + (carry_small ? a_wide : a_k);
+    wire signed [SW+NW:0] load_small = rem_wide + a_wide;   // both sums at once, then the choice
+    wire signed [SW+NW:0] load_large = rem_wide + a_k;
+    wire        carry_small = load_small > 0;
+    wire signed [SW+NW:0] load_r = carry_small ? load_small : load_large;
     wire [MW+SW+NW:0] load_r_ext = {{MW{1'b0}}, load_r};
     wire [MW-1:0] ref_load_r  = switch_s ? rem_ext[MW-1:0] : load_r[SW+NW] ? {MW{1'b0}} : load_r_ext[MW-1:0];
     wire          ref_load_hit = ref_load_r >= {1'b0, speed_quantum, {(NW-1){1'b0}}};

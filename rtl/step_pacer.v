@@ -59,10 +59,18 @@ module step_pacer #(
     wire [3:0]    used = jerk_shift > DEEPEST ? DEEPEST : jerk_shift;
     wire [CW-1:0] cost = step_cost != {FEED_W{1'b0}} ? {{(CW-FEED_W){1'b0}}, step_cost} : lecture;
     wire [PW-1:0] need = {{(PW-CW){1'b0}}, cost} << used;
-    wire [PW:0]   left = {1'b0, phase} - {1'b0, need};
-    assign due  = ~left[PW];
+    assign due  = phase >= need;
     assign fire = step_valid & drive_ready & due;
-    wire [PW:0]   next = {1'b0, fire ? left[PW-1:0] : phase} + {{(PW+1-SUM_W){1'b0}}, sum};
+    // The next phase for both outcomes, formed beside the test rather than after it:
+    // phase + sum, and phase - need + sum (>= 0 when the step fires) as one carry-save
+    // layer (phase, sum, ~need) and one adder; bit PW of either is the overflow.
+    wire [PW:0]   sum_w = {{(PW+1-SUM_W){1'b0}}, sum};
+    wire [PW:0]   keep  = {1'b0, phase} + sum_w;
+    wire [PW:0]   neg   = ~{1'b0, need};
+    wire [PW:0]   bits  = {1'b0, phase} ^ sum_w ^ neg;
+    wire [PW-1:0] carry = (phase & sum_w[PW-1:0]) | (phase & neg[PW-1:0]) | (sum_w[PW-1:0] & neg[PW-1:0]);
+    wire [PW:0]   taken = bits + {carry, 1'b1};             // phase + sum - need mod 2^(PW+1)
+    wire [PW:0]   next  = fire ? taken : keep;
 
     always @(posedge clk) begin
         if (rst) begin

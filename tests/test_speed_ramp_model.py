@@ -28,8 +28,8 @@ def run(segments, **options):
 
 
 def rules(samples, segments, quantum, *, late_ok=False):
-    """Exact distance, n by one a clock after a block end (or the last quantum at a
-    stop), no late stop.  Returns the number of n changes (for sanity)."""
+    """Exact distance, n by one a clock after a block end (or to 0 at the end of a
+    segment that stops), no late stop.  Returns the number of n changes (for sanity)."""
     total = sum(s["speed"] for s in samples)
     length = sum(g.length for g in segments if not g.barrier)
     assert total == length - samples[-1]["remaining"]
@@ -40,7 +40,9 @@ def rules(samples, segments, quantum, *, late_ok=False):
         changes += dn != 0
         if not late_ok:
             assert abs(dn) <= 1
-        if dn and not (cur["n"] == 0 and cur["remaining"] <= 0):
+        # n drops to 0 at the end of a segment that stops (exit 0), whether a successor
+        # is loaded in the same clock or not
+        if dn and not (cur["n"] == 0 and prev["remaining"] <= prev["speed"]):
             assert prev["block"]
     if not late_ok:
         assert not any(s["late"] for s in samples)

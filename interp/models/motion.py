@@ -474,12 +474,11 @@ class ArcPlane(CycleModel):
         return int(self.phase != P_IDLE)
 
     def nets(self, i) -> dict[str, int]:
-        """The combinational outputs for inputs `i` (start, travel, count)."""
+        """The combinational outputs for inputs `i` (start, travel)."""
         arc, in_arc = self.arc, self.phase == P_ARC
         travel = _signed(i.get("travel", 0), self.w)
         load = int(bool(i.get("start")) and self.phase == P_IDLE)
         return {"load": load, "helix_start": int(load and travel != 0),
-                "helix_lead": max(_signed(i.get("count", 0), self.w), 0),
                 "helix_tick": int(in_arc and bool(arc.step_x or arc.step_y)),
                 "helix_abort": int(in_arc and bool(arc.done or arc.error)),
                 "done": int((in_arc and arc.done and not self.helix_q)
@@ -704,7 +703,7 @@ class MotionTop(CycleModel):
             line_dir = a.dir_y | b.dir_y << 1 | self.lead_neg_q << 2
         arc_in = {"start": start_arc, "tick": core_tick, "plane": h["plane"], "ccw": int(kind == ARC_CCW),
                   "end_u": h["x"], "end_v": h["y"], "centre_u": h["i"], "centre_v": h["j"],
-                  "travel": h["z"], "count": h["k"]}
+                  "travel": h["z"]}
         arc_nets = self.arc.nets(arc_in)
         helix_step = a.step_y
         arc_step, arc_dir = self.arc.outputs(a.step_y, a.dir_y)
@@ -738,7 +737,7 @@ class MotionTop(CycleModel):
             lead_len = mags[lead]
             self.line_a.clock({"rst": arc_nets["helix_abort"], "start": start_line | arc_nets["helix_start"],
                                "tick": arc_nets["helix_tick"] if self.state == S_ARC else core_tick,
-                               "x": arc_nets["helix_lead"] if is_arc else lead_len,
+                               "x": max(_signed(h["k"], w), 0) if is_arc else lead_len,
                                "y": h["z"] if is_arc else minor1})
             self.line_b.clock({"start": start_line, "tick": core_tick, "x": lead_len, "y": minor2})
             self.arc.clock(arc_in, arc_nets, helix_step)
