@@ -29,21 +29,25 @@ def run(segments, **options):
 
 def rules(samples, segments, quantum, *, late_ok=False):
     """Exact distance, n by one a clock after a block end (or to 0 at the end of a
-    segment that stops), no late stop.  Returns the number of n changes (for sanity)."""
+    segment with no successor yet or with exit 0), no late stop.  Returns the number of n changes (for sanity)."""
     total = sum(s["speed"] for s in samples)
     length = sum(g.length for g in segments if not g.barrier)
     assert total == length - samples[-1]["remaining"]
     assert 0 <= -samples[-1]["remaining"] < quantum
-    changes = 0
+    moves = [g for g in segments if not g.barrier]
+    changes = ended = 0
     for prev, cur in zip(samples, samples[1:]):
         dn = cur["n"] - prev["n"]
         changes += dn != 0
         if not late_ok:
             assert abs(dn) <= 1
-        # n drops to 0 at the end of a segment that stops (exit 0), whether a successor
-        # is loaded in the same clock or not
-        if dn and not (cur["n"] == 0 and prev["remaining"] <= prev["speed"]):
+        # n drops to 0 at the end of a segment with no successor yet (the queue ran dry)
+        # or one that stops (exit 0), also with a successor loaded in the same clock
+        crossing = bool(prev["segment"]) and prev["remaining"] <= prev["speed"]
+        stops = crossing and (cur["remaining"] <= 0 or moves[ended].exit == 0)
+        if dn and not (cur["n"] == 0 and stops):
             assert prev["block"]
+        ended += crossing
     if not late_ok:
         assert not any(s["late"] for s in samples)
     return changes
