@@ -28,7 +28,8 @@
 // (the decision pipeline below; blocks of at least 4 clocks, block_shift >= 2), so a
 // tick decides on registered bits; floor(Zx / 2^bs) >= R is Zx >= R << bs for an
 // integer R, so one shifter serves both thresholds.  The block end, the refinement's
-// quotient bit and the set-up's `known` are formed a clock ahead.
+// quotient bit, the set-up's `known`, the DDA's carry and the crossing (from S - v,
+// kept beside S) are formed a clock ahead.
 module speed_ramp #(
     parameter integer FEED_W = 16,  // speed word: path units per clock (>= 2)
     parameter integer NW     = 16,  // speed in quanta n (2 .. 64)
@@ -91,6 +92,8 @@ module speed_ramp #(
     reg  [PW-1:0]   p;           // rate * n
     reg  [NAW-1:0]  na;          // n * acc
     reg  signed [SW-1:0]  remaining;   // S
+    reg  signed [SW-1:0]  gap;         // S - v: S after this clock's travel
+    reg             cross_q;     // seg and gap <= 0: this clock crosses the segment's end
     reg  signed [ZXW-1:0] budget_x;    // Zx
     reg             seg;         // a segment in progress
     reg  [PF:0]     rate;
@@ -114,7 +117,7 @@ module speed_ramp #(
     wire [QW-1:0] f_pre;
     wire [FEED_W+7:0] fo_next;
     wire        fn_valid;
-    wire        succ      = move_head & known;
+    wire        succ      = known;   // (the set-up runs only while a move is at the head)
     wire [NW-1:0] fx_cur  = exit_cur == {NW{1'b0}} ? ONE_N : exit_cur;
     wire [NW-1:0] floor_n = succ ? fx_cur : ONE_N;
     wire [QW-1:0] f_sq    = succ ? f_sq_cur : {{(QW-2){1'b0}}, 2'd2};
@@ -130,7 +133,8 @@ module speed_ramp #(
     wire [14:0]   mask_n  = (15'd1 << block_shift) - 15'd1;
     assign block = bend;
     wire [PF:0]   acc_sum = {1'b0, acc} + rate;
-    wire          dtick   = bend & acc_sum[PF];
+    reg           carry_q;    // acc + rate overflows (formed a clock ahead)
+    wire          dtick   = bend & carry_q;
     wire [PF-1:0] acc_n   = bend ? acc_sum[PF-1:0] : acc;
     wire [NAW-1:0] na_p   = na + {{(NAW-PW){1'b0}}, p};          // n * acc + n * rate
     wire [NAW-1:0] na_t   = na_p - {n, {PF{1'b0}}};              // ... less n 2^PF at a tick
@@ -156,6 +160,7 @@ module speed_ramp #(
     wire seen, ok_hold, ok_up, over, room;
     wire [FEED_W:0]   va    = {1'b0, speed} + {1'b0, speed_quantum};
 
+    wire n_many = |n[NW-1:1];   // n >= 2 (a reduction, not a carry chain shared with n - 1)
     reg signed [1:0] step;
     always @* begin
         step = 2'sd0;
@@ -164,17 +169,18 @@ module speed_ramp #(
             else if (!seg) step = 2'sd0;
             else if (n == {NW{1'b0}}) step = 2'sd1;
             else if (!seen) step = 2'sd0;
-            else if (over && n > ONE_N) step = -2'sd1;
+            else if (over && n_many) step = -2'sd1;
             else if (room && ok_up) step = 2'sd1;
             else if (ok_hold) step = 2'sd0;
-            else if (n > ONE_N) step = -2'sd1;
+            else if (n_many) step = -2'sd1;
         end
     end
     wire st_up = step == 2'sd1, st_dn = step == -2'sd1;
 
-    // crossing the end of the segment, switch, load, barrier
-    wire signed [SW-1:0] rem1 = remaining - $signed({{(SW-FEED_W){1'b0}}, speed});
-    wire crossing    = seg & (rem1 <= 0);
+    // crossing the end of the segment, switch, load, barrier: S - v is kept in `gap`
+    // (formed with S and v at the edge before), so the crossing is a register
+    wire signed [SW-1:0] rem1 = gap;
+    wire crossing    = cross_q;
     wire final_q  = crossing & exit_zero;
     wire switch_s = crossing & succ;
     wire end_s    = crossing & ~succ;
@@ -183,7 +189,7 @@ module speed_ramp #(
     wire pop      = switch_s | load | bar_pop;
     wire [NW-1:0] n_d = st_up ? n + ONE_N : st_dn ? n - ONE_N : n;
     wire [NW-1:0] n_less  = n - ONE_N;                         // st_dn only with n >= 1
-    wire late_n   = crossing & (exit_zero ? n > ONE_N :
+    wire late_n   = crossing & (exit_zero ? n_many :
                                 st_up ? n >= floor_n : st_dn ? n_less > floor_n : n > floor_n);
     wire [MW+SW-1:0] rem_ext = {{MW{1'b0}}, remaining};    // S > 0 at a switch
     // a load carries S = c <= 0: charged as K quanta-clocks, K = 1 if c > -A, else
@@ -197,8 +203,19 @@ module speed_ramp #(
     wire signed [SW+NW:0] load_r = carry_small ? load_small : load_large;
     wire [MW+SW+NW:0] load_r_ext = {{MW{1'b0}}, load_r};
     wire [MW-1:0] ref_load_r  = switch_s ? rem_ext[MW-1:0] : load_r[SW+NW] ? {MW{1'b0}} : load_r_ext[MW-1:0];
-    wire          ref_load_hit = ref_load_r >= {1'b0, speed_quantum, {(NW-1){1'b0}}};
+    wire          ref_load_hit = ref_load_r[MW-1:NW-1] >= {1'b0, speed_quantum};  // r >= A 2^(NW-1)
     wire signed [ZXW-1:0] budget_next = $signed({{(ZXW-ZW){1'b0}}, next_budget}) <<< bs_q;
+
+    // S and v after this clock, and the next clock's gap and crossing (v = 0 while no
+    // segment is in progress, so S + length is gap + length at a load as at a switch)
+    wire [FEED_W-1:0] speed_next = final_q ? {FEED_W{1'b0}} : st_up ? va[FEED_W-1:0] :
+                                   st_dn ? speed - speed_quantum : speed;
+    wire signed [SW-1:0] rem_start = gap + $signed({2'b00, next_length});
+    wire signed [SW-1:0] rem_next  = (switch_s | load) ? rem_start : seg ? rem1 : remaining;
+    wire signed [SW-1:0] gap_next  = rem_next - $signed({{(SW-FEED_W){1'b0}}, speed_next});
+    wire        seg_next  = (switch_s | load) | (seg & ~end_s);
+    wire [PF:0] rate_next = (switch_s | load) ? next_rate : rate;
+    wire [PF:0] acc_sum_next = {1'b0, acc_n} + rate_next;
 
     // the cap's feed * override, recomputed all the time
     wire          mo_busy, mo_done;
@@ -222,7 +239,7 @@ module speed_ramp #(
         if (rst) begin
             bc <= 15'd0; bs_q <= 4'd0; bend <= 1'b1; acc <= {PF{1'b0}};
             n <= {NW{1'b0}}; speed <= {FEED_W{1'b0}}; q <= {QW{1'b0}}; p <= {PW{1'b0}}; na <= {NAW{1'b0}};
-            remaining <= {SW{1'b0}}; budget_x <= {ZXW{1'b0}};
+            remaining <= {SW{1'b0}}; gap <= {SW{1'b0}}; cross_q <= 1'b0; carry_q <= 1'b0; budget_x <= {ZXW{1'b0}};
             seg <= 1'b0; rate <= {(PF+1){1'b0}}; feed <= {FEED_W{1'b0}}; limit <= {FEED_W{1'b0}};
             exit_cur <= {NW{1'b0}}; f_sq_cur <= {QW{1'b0}};
             ref_count <= 8'd0; ref_r <= {MW{1'b0}}; ref_d <= {(MW-1){1'b0}}; ref_m <= {(PW+1){1'b0}}; ref_hit <= 1'b0;
@@ -231,10 +248,9 @@ module speed_ramp #(
         end else begin
             // speed and its companions
             if (final_q) begin
-                n <= {NW{1'b0}}; speed <= {FEED_W{1'b0}}; q <= {QW{1'b0}}; p <= {PW{1'b0}}; na <= {NAW{1'b0}};
+                n <= {NW{1'b0}}; q <= {QW{1'b0}}; p <= {PW{1'b0}}; na <= {NAW{1'b0}};
             end else begin
                 n     <= n_d;
-                speed <= st_up ? va[FEED_W-1:0] : st_dn ? speed - speed_quantum : speed;
                 q     <= st_up ? q_up : st_dn ? q - {{(QW-NW-1){1'b0}}, n, 1'b0} : q;
                 na    <= st_up ? na_t_up : st_dn ? na_t - {{NW{1'b0}}, acc_sum[PF-1:0]} : na1;
                 if (switch_s)
@@ -245,6 +261,11 @@ module speed_ramp #(
                 else
                     p <= st_up ? p_up : st_dn ? p - {{(PW-PF-1){1'b0}}, rate} : p;
             end
+            speed     <= speed_next;
+            remaining <= rem_next;
+            gap       <= gap_next;
+            cross_q   <= seg_next & (gap_next[SW-1] | (gap_next == {SW{1'b0}}));
+            carry_q   <= acc_sum_next[PF];
             up       <= final_q ? 1'b0 : st_up;
             down     <= final_q ? n != {NW{1'b0}} : st_dn;
             late     <= late_n;
@@ -257,18 +278,17 @@ module speed_ramp #(
             bar_count <= bar_count + {7'd0, barrier_done} - {7'd0, bar_pop};
             // the segment
             if (switch_s | load) begin
-                rate <= next_rate; feed <= next_feed; limit <= next_limit;
+                rate <= rate_next; feed <= next_feed; limit <= next_limit;
                 exit_cur <= next_exit; f_sq_cur <= f_pre;
-                remaining <= (switch_s ? rem1 : remaining) + $signed({2'b00, next_length});
                 budget_x  <= budget_next - (switch_s ? $signed({{(ZXW-PW-1){1'b0}}, p_sh, 1'b0}) :
                                             carry_small ? $signed({{(ZXW-PF-2){1'b0}}, next_rate, 1'b0}) :
                                             $signed({{(ZXW-PW-2){1'b0}}, next_rate, {NW{1'b0}}, 1'b0}) -
                                             $signed({{(ZXW-PF-2){1'b0}}, next_rate, 1'b0}));
                 seg <= 1'b1;
             end else if (end_s) begin
-                remaining <= rem1; budget_x <= {ZXW{1'b0}}; seg <= 1'b0;
+                budget_x <= {ZXW{1'b0}}; seg <= 1'b0;
             end else begin
-                remaining <= seg ? rem1 : remaining; budget_x <= zx1;
+                budget_x <= zx1;
             end
             // feed * override
             if (switch_s | load) begin
@@ -322,6 +342,11 @@ module speed_ramp #(
         assert (rate <= {1'b1, {PF{1'b0}}});
         if (!seg) assert (n == {NW{1'b0}});
         assert (q == f_q);
+        assert (gap == remaining - $signed({{(SW-FEED_W){1'b0}}, speed}));
+        assert (cross_q == (seg && gap <= 0));
+        assert (carry_q == acc_sum[PF]);
+        if (known) assert (move_head);
+        if (!seg) assert (speed == {FEED_W{1'b0}});
         assert (bend == (bc >= (15'd1 << bs_q) - 15'd1));
         assert (ref_hit == ((ref_count != 8'd0) && (ref_r >= {1'b0, ref_d})));
         assert (p == f_p);
@@ -350,6 +375,6 @@ module speed_ramp #(
 `endif
 `endif
 
-    wire unused = &{1'b0, rem_ext[MW+SW-1:MW], load_r_ext[MW+SW+NW:MW]};
+    wire unused = &{1'b0, rem_ext[MW+SW-1:MW], load_r_ext[MW+SW+NW:MW], acc_sum[PF]};   // (carry_q)
 endmodule
 `default_nettype wire
