@@ -18,10 +18,7 @@ import json
 from ..flows import synth
 
 CLI = {"FEED_W": 50, "FRAC": 48, "MW": 12}
-BLOCKS = [
-    synth.Target("jerk_filter", "jerk_filter", {"FEED_W": 50, "MW": 12, "SUM_W": 62}, width=None),
-    synth.Target("step_pacer", "step_pacer", {"FEED_W": 50, "FRAC": 48, "MW": 12, "SUM_W": 62, "GUARD": 8},
-                 width=None),
+BLOCKS = [t for t in synth.CORES if t.toplevel in ("jerk_filter", "step_pacer")] + [
     synth.Target("feed_rate", "feed_rate", {"FEED_W": 50, "FRAC": 48}, width=None),
 ]
 

@@ -87,6 +87,10 @@ CORES = [
     # the path-speed profile generator at the G-code build's widths
     Target("speed_ramp", "speed_ramp", {"FEED_W": 50, "NW": 40, "PF": 24, "LEN_W": 82, "ZW": 108},
            width=None),
+    # the S-curve filter and the step pacer after it, at the same build's widths
+    Target("jerk_filter", "jerk_filter", {"FEED_W": 50, "MW": 12, "SUM_W": 62}, width=None),
+    Target("step_pacer", "step_pacer", {"FEED_W": 50, "FRAC": 48, "MW": 12, "SUM_W": 62, "GUARD": 8},
+           width=None),
     # W: the command fields (X, Y, Z, I, J, K, L) and the cores' coordinates
     Target("motion_top", "motion_top", {"W": WIDTH, "POS_W": WIDTH}, width="W"),
     # the controller's serial link at the boards' clock (12 MHz) and 115200 baud
