@@ -21,9 +21,10 @@
 // target 0 the last quantum drops (n 1 -> 0; `late` if n was higher).  The crossing
 // clock's travel is charged to the next segment's budget whole (2 p' n) and the part
 // that belonged to the old one, 2 p' floor(S / A), is given back over the next NW
-// clocks (restoring division by shifts).  Cap: v <= min(feed * override / 100,
-// limit), compared as 100 v <= feed * override (the product recomputed every 9
-// clocks), lowered at the DDA ticks when exceeded.  hold lowers n at every tick to 0.
+// clocks (restoring division by shifts: speed_ramp_refine).  Cap: v <= min(feed *
+// override / 100, limit), compared as 100 v <= feed * override (the product
+// recomputed every 9 clocks), lowered at the DDA ticks when exceeded.  hold lowers n
+// at every tick to 0.
 // Timing: the thresholds and the cap are compared over the three clocks before a tick
 // (the decision pipeline below; blocks of at least 4 clocks, block_shift >= 2), so a
 // tick decides on registered bits; floor(Zx / 2^bs) >= R is Zx >= R << bs for an
@@ -80,8 +81,6 @@ module speed_ramp #(
     localparam integer SW  = LEN_W + 2;                   // S, signed
     localparam integer MW  = NW + FEED_W;                 // the refinement's remainder
     localparam [NW-1:0] ONE_N = {{(NW-1){1'b0}}, 1'b1};
-    localparam [31:0]   NW32  = NW;
-    localparam [7:0]    NW8   = NW32[7:0];
 
     reg  [14:0]     bc;          // clock in the block
     reg  [3:0]      bs_q;        // block_shift
@@ -100,10 +99,6 @@ module speed_ramp #(
     reg  [FEED_W-1:0] feed, limit;
     reg  [NW-1:0]   exit_cur;    // the segment's exit speed (quanta) and f (f + 1)
     reg  [QW-1:0]   f_sq_cur;
-    reg  [7:0]      ref_count;
-    reg  [MW-1:0]   ref_r;
-    reg  [MW-2:0]   ref_d;
-    reg  [PW:0]     ref_m;
     reg  [FEED_W+7:0] fo;        // feed * override
     reg             fo_valid, fo_ok;
     reg  [7:0]      bar_count;   // finished barriers not yet passed
@@ -141,11 +136,9 @@ module speed_ramp #(
     wire [NAW-1:0] na1    = bend ? (dtick ? na_t : na_p) : na;
 
     // the budget after this clock, with the refinement's quotient bit (added last)
-    reg  ref_hit;                // ref_count != 0 and ref_r >= ref_d, formed a clock ahead
-    wire [MW-1:0] ref_r_less = ref_r - {1'b0, ref_d};
-    wire [MW-2:0] ref_d_half = ref_d >> 1;
+    wire [PW:0] gift;            // speed_ramp_refine
     wire signed [ZXW-1:0] zx_base = budget_x - $signed({{(ZXW-PW-1){1'b0}}, p, 1'b0});
-    wire signed [ZXW-1:0] zx1 = zx_base + (ref_hit ? $signed({{(ZXW-PW-1){1'b0}}, ref_m}) : {ZXW{1'b0}});
+    wire signed [ZXW-1:0] zx1 = zx_base + $signed({{(ZXW-PW-1){1'b0}}, gift});
 
     // q_up, p_up, na_t_up: the companions of n + 1 after a tick (na_t = n acc', acc' the
     // DDA phase after the tick)
@@ -179,8 +172,7 @@ module speed_ramp #(
 
     // crossing the end of the segment, switch, load, barrier: S - v is kept in `gap`
     // (formed with S and v at the edge before), so the crossing is a register
-    wire signed [SW-1:0] rem1 = gap;
-    wire crossing    = cross_q;
+    wire crossing = cross_q;
     wire final_q  = crossing & exit_zero;
     wire switch_s = crossing & succ;
     wire end_s    = crossing & ~succ;
@@ -203,7 +195,6 @@ module speed_ramp #(
     wire signed [SW+NW:0] load_r = carry_small ? load_small : load_large;
     wire [MW+SW+NW:0] load_r_ext = {{MW{1'b0}}, load_r};
     wire [MW-1:0] ref_load_r  = switch_s ? rem_ext[MW-1:0] : load_r[SW+NW] ? {MW{1'b0}} : load_r_ext[MW-1:0];
-    wire          ref_load_hit = ref_load_r[MW-1:NW-1] >= {1'b0, speed_quantum};  // r >= A 2^(NW-1)
     wire signed [ZXW-1:0] budget_next = $signed({{(ZXW-ZW){1'b0}}, next_budget}) <<< bs_q;
 
     // S and v after this clock, and the next clock's gap and crossing (v = 0 while no
@@ -211,7 +202,7 @@ module speed_ramp #(
     wire [FEED_W-1:0] speed_next = final_q ? {FEED_W{1'b0}} : st_up ? va[FEED_W-1:0] :
                                    st_dn ? speed - speed_quantum : speed;
     wire signed [SW-1:0] rem_start = gap + $signed({2'b00, next_length});
-    wire signed [SW-1:0] rem_next  = (switch_s | load) ? rem_start : seg ? rem1 : remaining;
+    wire signed [SW-1:0] rem_next  = (switch_s | load) ? rem_start : seg ? gap : remaining;
     wire signed [SW-1:0] gap_next  = rem_next - $signed({{(SW-FEED_W){1'b0}}, speed_next});
     wire        seg_next  = (switch_s | load) | (seg & ~end_s);
     wire [PF:0] rate_next = (switch_s | load) ? next_rate : rate;
@@ -234,6 +225,10 @@ module speed_ramp #(
         .n_up(st_up & ~final_q), .n_down(st_dn & ~final_q), .n_zero(final_q),
         .next_rate(next_rate), .next_exit(next_exit), .next_feed(next_feed), .ovr(ovr),
         .known(known), .p_sh(p_sh), .f_pre(f_pre), .fo_next(fo_next), .fn_valid(fn_valid));
+    // + 2 p' floor(S / A) over the NW clocks after a switch above rest or a load
+    speed_ramp_refine #(.FEED_W(FEED_W), .NW(NW), .PF(PF)) u_refine (
+        .clk(clk), .rst(rst), .start((switch_s & (n != {NW{1'b0}})) | load), .cancel(crossing),
+        .remainder(ref_load_r), .speed_quantum(speed_quantum), .rate(next_rate), .gift(gift));
 
     always @(posedge clk) begin
         if (rst) begin
@@ -242,7 +237,6 @@ module speed_ramp #(
             remaining <= {SW{1'b0}}; gap <= {SW{1'b0}}; cross_q <= 1'b0; carry_q <= 1'b0; budget_x <= {ZXW{1'b0}};
             seg <= 1'b0; rate <= {(PF+1){1'b0}}; feed <= {FEED_W{1'b0}}; limit <= {FEED_W{1'b0}};
             exit_cur <= {NW{1'b0}}; f_sq_cur <= {QW{1'b0}};
-            ref_count <= 8'd0; ref_r <= {MW{1'b0}}; ref_d <= {(MW-1){1'b0}}; ref_m <= {(PW+1){1'b0}}; ref_hit <= 1'b0;
             fo <= {(FEED_W+8){1'b0}}; fo_valid <= 1'b0; fo_ok <= 1'b0; bar_count <= 8'd0;
             up <= 1'b0; down <= 1'b0; next_pop <= 1'b0; late <= 1'b0; hold_q <= 1'b0;
         end else begin
@@ -299,27 +293,6 @@ module speed_ramp #(
                 end
                 if (~mo_busy) fo_ok <= 1'b1;
             end
-            // refinement: + 2 p' floor(S / A), one quotient bit a clock, MSB first
-            if (switch_s && n != {NW{1'b0}}) begin
-                ref_r <= ref_load_r; ref_d <= {speed_quantum, {(NW-1){1'b0}}};
-                ref_m <= {next_rate, {NW{1'b0}}}; ref_count <= NW8;
-            end else if (load) begin
-                ref_r <= ref_load_r;
-                ref_d <= {speed_quantum, {(NW-1){1'b0}}};
-                ref_m <= {next_rate, {NW{1'b0}}}; ref_count <= NW8;
-            end else if (crossing) begin
-                ref_count <= 8'd0;
-            end else if (ref_count != 8'd0) begin
-                if (ref_hit) ref_r <= ref_r_less;
-                ref_d <= ref_d_half; ref_m <= ref_m >> 1; ref_count <= ref_count - 8'd1;
-            end
-            // the next clock's quotient bit: the divisor halves, the remainder loses it or not
-            if (switch_s || load)
-                ref_hit <= ~(switch_s && n == {NW{1'b0}}) & ref_load_hit;
-            else if (crossing || ref_count <= 8'd1)
-                ref_hit <= 1'b0;
-            else
-                ref_hit <= (ref_hit ? ref_r_less : ref_r) >= {1'b0, ref_d_half};
         end
     end
 
@@ -348,7 +321,6 @@ module speed_ramp #(
         if (known) assert (move_head);
         if (!seg) assert (speed == {FEED_W{1'b0}});
         assert (bend == (bc >= (15'd1 << bs_q) - 15'd1));
-        assert (ref_hit == ((ref_count != 8'd0) && (ref_r >= {1'b0, ref_d})));
         assert (p == f_p);
         assert (na == f_na);
     end

@@ -6,7 +6,9 @@ submodules are verified through it: speed_ramp_setup (the successor's p' n, f (f
 feed x override), speed_ramp_mul (the shift-add multiplier they use) — the model
 computes those products exactly, so any wrong product shows as a different speed — and
 speed_ramp_decide (the decision pipeline: the model's Decide, register for register, so a
-wrong threshold or comparison shows as a different step of n)."""
+wrong threshold or comparison shows as a different step of n) and speed_ramp_refine (the
+give-back 2 p' floor(S / A) after a switch or load, which the model adds bit for bit, so a
+wrong quotient bit shows as a different budget, hence a different step of n)."""
 import cocotb
 import pytest
 
