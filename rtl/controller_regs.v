@@ -10,7 +10,9 @@
 // Read-only registers are composed here from the controller's status inputs; the
 // read-write ones (machine settings) are held here and drive the outputs.  CONTROL:
 // [0] hold (RW; also set by `hold_set`, a pause event), write-1 strobes [1] abort,
-// [2] clear, [3] probe_arm, [4] enable (RW), [5] fill (RW).
+// [2] clear, [3] probe_arm, [4] enable (RW), [5] fill (RW).  QUANTUM_LO/HI and MOTION are
+// taken only while `busy` is low; a write while busy keeps the register and sets
+// STATUS.refused (until CONTROL.clear).
 module controller_regs #(
     parameter integer CLK_HZ   = 50000000,  // board clock, Hz (CLOCK_HZ register; >= 1)
     parameter integer W        = 32,        // command field width (VERSION; 6 .. 255)
@@ -131,6 +133,12 @@ module controller_regs #(
     assign abort_strobe = control_write & wb_dat_w[1];
     assign clear_strobe = control_write & wb_dat_w[2];
     assign arm_strobe   = control_write & wb_dat_w[3];
+    // QUANTUM and MOTION are taken only while nothing runs (the speed generator and the
+    // S-curve filter hold them constant): a write while busy is refused and flagged
+    wire   profile_write = write && (address == REG_QUANTUM_LO[7:0] || address == REG_QUANTUM_HI[7:0] ||
+                                     address == REG_MOTION[7:0]);
+    wire   refuse        = profile_write & busy;
+    reg    refused;                                 // STATUS.refused, until CONTROL.clear
 
     // positions sign-extended to 32 bits
     function [31:0] extended(input [POS_W-1:0] value);
@@ -150,7 +158,7 @@ module controller_regs #(
             REG_BUILD1[7:0]:         value = BUILD1;
             REG_CLOCK_HZ[7:0]:       value = CLOCK;
             REG_QUEUE_SIZE[7:0]:     value = QUEUE_SIZE;
-            REG_STATUS[7:0]:         value = {16'd0, records, 1'b0, enable, probe_valid, stopped, busy, state};
+            REG_STATUS[7:0]:         value = {16'd0, records, refused, enable, probe_valid, stopped, busy, state};
             REG_ERROR[7:0]:          value = {21'd0, error_limits, error_code};
             REG_QUEUE_FREE[7:0]:     value = {free_records, free_bytes};
             REG_POS_X[7:0]:          value = extended(pos_x);
@@ -202,10 +210,12 @@ module controller_regs #(
             jerk_shift       <= 4'd0;
             input_invert     <= 5'd0;
             spindle_period   <= PERIOD_RESET[15:0];
+            refused          <= 1'b0;
         end else begin
+            refused <= refuse | (refused & ~clear_strobe);
             if (hold_set)
                 hold <= 1'b1;
-            if (write) begin
+            if (write & ~refuse) begin
                 case (address)
                     REG_CONTROL[7:0]: begin
                         hold   <= wb_dat_w[0];

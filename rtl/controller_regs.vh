@@ -85,6 +85,8 @@ localparam integer STATUS_PROBE_VALID_LSB = 5;
 localparam integer STATUS_PROBE_VALID_WIDTH = 1;
 localparam integer STATUS_ENABLED_LSB = 6;
 localparam integer STATUS_ENABLED_WIDTH = 1;
+localparam integer STATUS_REFUSED_LSB = 7;
+localparam integer STATUS_REFUSED_WIDTH = 1;
 localparam integer STATUS_RECORDS_LSB = 8;
 localparam integer STATUS_RECORDS_WIDTH = 8;
 // ERROR

@@ -12,6 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from interp.link import driver as driver_module
 from interp.link import protocol as p
 from interp.link.devicemodel import DeviceModel
 from interp.link.driver import (Driver, LinkError, MismatchError, check_controller, configure, run_program)
@@ -98,6 +99,37 @@ def test_curves_refused_when_left_out():
     driver.connect()
     with pytest.raises(MismatchError, match="CURVES"):
         check_controller(driver, clock_hz=50e6, curves=True)
+
+
+def test_speed_settings_wait_for_idle(monkeypatch):
+    """QUANTUM and MOTION are taken only while the controller is not busy (as the RTL's
+    register block): written while busy they keep their values and set STATUS.refused
+    until CONTROL.clear; `configure` refuses a busy controller in one line, and configures
+    one in ALARM (which flushes: not busy)."""
+    settings = {"speed_quantum": (7 << 32) | 5, "block_shift": 3, "jerk_shift": 2}
+    timing = {"pulse_width": 30, "setup": 40, "hold": 50}
+    model = DeviceModel()
+    driver = Driver(model)
+    driver.connect()
+    model.busy, model.running_until = True, 1e9                  # a record running
+    driver.write_register("QUANTUM_LO", 9)
+    driver.write_register("OVERRIDE", 50)                       # not a speed setting: taken
+    assert driver.read_register("QUANTUM_LO") == 1 and driver.read_register("OVERRIDE") == 50
+    assert driver.read_register("STATUS") & p.STATUS_REFUSED
+    with pytest.raises(LinkError, match="the controller is busy"):
+        configure(driver, timing, settings)
+    with monkeypatch.context() as m:                            # busy after the check: read back
+        m.setattr(driver_module, "check_idle", lambda driver: 0)
+        with pytest.raises(LinkError, match="did not take QUANTUM_LO"):
+            configure(driver, timing, settings)
+    model.busy = False
+    assert driver.read_register("STATUS") & p.STATUS_REFUSED              # sticky
+    driver.write_register("CONTROL", p.CONTROL_CLEAR)
+    assert not driver.read_register("STATUS") & p.STATUS_REFUSED
+    model.error = 17
+    assert driver.read_register("STATUS") & 7 == p.ALARM
+    configure(driver, timing, settings)
+    assert driver.read_register("QUANTUM_HI") == 7 and driver.read_register("MOTION") == 3 | 2 << 4
 
 
 def test_machine_error_names_the_record():

@@ -170,9 +170,10 @@ def test_verilog_include_lints_clean(tmp_path):
 
 
 @pytest.mark.parametrize("name, value, expected", [
-    ("STATUS", 0x0000_0301, "STATUS 0x00000301: state=RUN busy=0 stopped=0 probe_valid=0 enabled=0 records=3"),
-    ("STATUS", 0x0000_FF7C, "STATUS 0x0000FF7C: state=ALARM busy=1 stopped=1 probe_valid=1 enabled=1 records=255"),
-    ("STATUS", 0x0000_0007, "STATUS 0x00000007: state=7 busy=0 stopped=0 probe_valid=0 enabled=0 records=0"),
+    ("STATUS", 0x0000_0301, "STATUS 0x00000301: state=RUN busy=0 stopped=0 probe_valid=0 enabled=0 refused=0 records=3"),
+    ("STATUS", 0x0000_FF7C, "STATUS 0x0000FF7C: state=ALARM busy=1 stopped=1 probe_valid=1 enabled=1 refused=0 records=255"),
+    ("STATUS", 0x0000_0007, "STATUS 0x00000007: state=7 busy=0 stopped=0 probe_valid=0 enabled=0 refused=0 records=0"),
+    ("STATUS", 0x0000_0080, "STATUS 0x00000080: state=IDLE busy=0 stopped=0 probe_valid=0 enabled=0 refused=1 records=0"),
     ("ERROR", 0x0000_0511, "ERROR 0x00000511: code=LIMIT_SWITCH limits=5"),
     ("ERROR", 0x0000_0010, "ERROR 0x00000010: code=ESTOP limits=0"),
     ("ERROR", 0x0000_0063, "ERROR 0x00000063: code=99 limits=0"),

@@ -64,6 +64,7 @@ class DeviceModel:
         self.executed: list[dict] = []              # every record the executor took, in order
         self.running_until = 0.0
         self.busy = False
+        self.refused = False                        # STATUS.refused
         self.error = 0
         self.limits = 0
         self.position = [0, 0, 0]
@@ -331,7 +332,7 @@ class DeviceModel:
             a["CLOCK_HZ"]: self.clock_hz,
             a["QUEUE_SIZE"]: (self.queue_size & 0xFFFF) | self.queue_aw << 16 | int(self.curves) << 24,
             a["STATUS"]: (self.state() | int(self.busy or self._whole()) << 3 | int(self.state() == p.HELD) << 4
-                          | int(self.enabled) << 6 | min(records, 255) << 8),
+                          | int(self.enabled) << 6 | int(self.refused) * p.STATUS_REFUSED | min(records, 255) << 8),
             a["ERROR"]: self.error | self.limits << 8,
             a["QUEUE_FREE"]: (free & 0xFFFF) | (free // self.record_len) << 16,
             a["POS_X"]: self.position[0] & 0xFFFFFFFF, a["POS_Y"]: self.position[1] & 0xFFFFFFFF,
@@ -363,7 +364,9 @@ class DeviceModel:
                 self.reader = RecordReader(self.build)
                 self.busy = False
             if value & p.CONTROL_CLEAR:
-                self.error, self.limits = 0, 0
+                self.error, self.limits, self.refused = 0, 0, False
             self._execute()
+        elif name in p.SPEED_SETTINGS and (self.busy or self._whole()):
+            self.refused = True                     # taken only while not busy
         elif name in self.regs:
             self.regs[name] = value

@@ -429,10 +429,27 @@ def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
             ("OVERRIDE", int(settings.get("override", 100)))]
 
 
+def check_idle(driver: Driver) -> int:
+    """STATUS, or LinkError when the controller is busy with a program (ALARM is not busy:
+    an abort flushes it)."""
+    status = driver.read_register("STATUS")
+    if field(status, 3, 1) and field(status, 0, 3) != p.ALARM:
+        raise LinkError(f"the controller is busy ({p.STATE_NAMES.get(field(status, 0, 3), '?')}): "
+                        "wait for its program to end or abort it")
+    return status
+
+
 def configure(driver: Driver, timing: dict, settings: dict) -> None:
-    """The machine settings `interp gcode` runs with, written through the link."""
-    for name, value in settings_writes(timing, settings):
+    """The machine settings `interp gcode` runs with, written through the link.  The
+    controller takes the speed settings (QUANTUM, MOTION) only while it is not busy (ALARM
+    is not: it flushes): LinkError when it is busy with a program, or did not take them."""
+    check_idle(driver)
+    writes = settings_writes(timing, settings)
+    for name, value in writes:
         driver.write_register(name, value)
+    for name, value in writes:
+        if name in p.SPEED_SETTINGS and driver.read_register(name) != value:
+            raise LinkError(f"the controller did not take {name} (it became busy): send again when it is idle")
 
 
 POLLED = ("EXECUTED", "QUEUE_FREE", "POS_X", "POS_Y", "POS_Z", "ERROR", "STATUS")   # STATUS after EXECUTED: the end test
@@ -463,10 +480,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     there: the steps come at the cycles `interp gcode` gives while the link keeps up."""
     start = driver.clock()
     # a stale partial record or a latched error of an earlier run: flush and clear
-    status = driver.read_register("STATUS")
-    if field(status, 3, 1) and field(status, 0, 3) != p.ALARM:
-        raise LinkError(f"the controller is busy ({p.STATE_NAMES.get(field(status, 0, 3), '?')}): "
-                        "wait for its program to end or abort it")
+    check_idle(driver)
     driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_CLEAR | p.CONTROL_ENABLE | p.CONTROL_FILL)
     base = driver.read_register("EXECUTED")
     fill_bytes = max(1, min(len(stream), driver.free - driver.lmax))

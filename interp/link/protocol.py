@@ -198,6 +198,9 @@ IDLE, RUN, HOLDING, HELD, ALARM = (next(k for k, v in STATE_NAMES.items() if v =
                                    for name in ("IDLE", "RUN", "HOLDING", "HELD", "ALARM"))
 CONTROL_HOLD, CONTROL_ABORT, CONTROL_CLEAR, CONTROL_PROBE_ARM, CONTROL_ENABLE, CONTROL_FILL = (
     1 << _registers.FIELDS[f"CONTROL.{name}"][0] for name in ("hold", "abort", "clear", "probe_arm", "enable", "fill"))
+STATUS_REFUSED = 1 << _registers.FIELDS["STATUS.refused"][0]
+# taken only while the controller is not busy (a write while busy: STATUS.refused)
+SPEED_SETTINGS = ("QUANTUM_LO", "QUANTUM_HI", "MOTION")
 # ERROR codes beyond motion_top's 1..9
 ERROR_TEXT = {16: "e-stop", 17: "limit switch", 18: "record error (a bad record reached the unpacker)"}
 

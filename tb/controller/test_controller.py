@@ -32,6 +32,7 @@ from interp.testing.tbkit import seeded_rng
 SMALL = {**motion_build.PARAMETERS, "POS_W": 32, "QUEUE_AW": 8, "CLK_HZ": 1_000_000, "CURVES": 0}
 CLI = {**CLI_PARAMETERS, "QUEUE_AW": 12, "CLK_HZ": 50_000, "CURVES": 1}
 ONE = 1 << 16
+REFUSED = 1 << 7                                     # STATUS.refused
 
 
 class Bench(ControllerBench):
@@ -542,9 +543,51 @@ async def gcode_program(dut):
     assert await tb.read("EXECUTED") == len(compiled.commands)
 
 
+@cocotb.test()
+async def settings_wait_for_idle(dut):
+    """QUANTUM_LO / HI and MOTION are taken only while not busy: written mid-move they keep
+    their values, the move's steps come at the same cycles (from its first step on) as
+    without the writes and end at its position, STATUS.refused is set until CONTROL.clear,
+    and no error latches; at IDLE the same writes are taken."""
+    tb = await Bench(dut).start()
+    cmds = tb.profiled([Command(LINE, ONE // 2, 30, -20, 5)])
+    end, _ = tb.end_of(cmds)
+    timings = []
+    for meddle in (False, True):
+        tb.steps.edges.clear()
+        await tb.send(tb.records(cmds))
+        await tb.wait_steps(3)
+        quantum, motion = await tb.read("QUANTUM_LO"), await tb.read("MOTION")
+        if meddle:
+            await tb.write("QUANTUM_LO", 4 * quantum)
+            await tb.write("QUANTUM_HI", 1)
+            await tb.write("MOTION", 0x31)
+            assert [await tb.read(n) for n in ("QUANTUM_LO", "QUANTUM_HI", "MOTION")] == [quantum, 0, motion]
+            assert await tb.read("STATUS") & REFUSED and await tb.read("ERROR") == 0
+        await tb.wait_idle()
+        assert await tb.position() == end == tb.steps.position(), f"meddle {meddle}"
+        assert await tb.read("ERROR") == 0
+        first = tb.steps.edges[0][0]
+        timings.append([(t - first, axis, d) for t, axis, d in tb.steps.edges])
+        await tb.reset()
+        await tb.configure()
+        await tb.write("MOTION", motion)
+    assert timings[0] == timings[1]
+    # sticky until clear; taken at IDLE
+    await tb.send(tb.records(cmds))
+    await tb.wait_steps(1)
+    await tb.write("MOTION", 0x21)
+    await tb.wait_idle()
+    assert await tb.read("STATUS") & REFUSED
+    await tb.write("CONTROL", CLEAR)
+    assert not await tb.read("STATUS") & REFUSED
+    await tb.write("MOTION", 0x21)
+    assert await tb.read("MOTION") == 0x21 and not await tb.read("STATUS") & REFUSED
+
+
 SMALL_TESTS = ["registers", "records_to_motion_top", "program_ends_at_its_position", "estop_and_limit_mid_arc",
                "hold_resume_mid_helix", "abort_and_restart", "fill_then_run", "reset_at_random_cycles",
-               "events_drive_outputs", "probe_latch", "bad_records"]
+               "events_drive_outputs", "probe_latch", "bad_records", "settings_wait_for_idle"]
 
 
 def test_controller(sim):
