@@ -3,7 +3,8 @@
 (one cycle high, back-to-back accesses), read data with the ack; a CMD_DATA write held
 until data_ready, then data_write for one cycle with the word; CONTROL's abort / clear /
 probe_arm one-cycle strobes, hold and enable RW, hold_set; the status inputs composed into
-STATUS, ERROR, QUEUE_FREE, OUTPUTS and the sign-extended positions at POS_W 20."""
+STATUS, ERROR, QUEUE_FREE, OUTPUTS and the sign-extended positions at POS_W 20; the speed
+settings refused while busy (STATUS.refused until CONTROL.clear), taken at rest."""
 import cocotb
 from cocotb.triggers import FallingEdge, ReadOnly
 
@@ -70,11 +71,25 @@ async def bus_and_fields(dut):
     assert (await access(tb, REG["POS_Z"]))[1] == 77
     assert (await access(tb, REG["OUTPUTS"]))[1] == 0xBEEF00F3
     assert (await access(tb, REG["EXECUTED"]))[1] == 0xDEADBEEF
-    # quantum: FEED_W 40 across LO and HI
+    # the speed settings while busy: refused (the registers and outputs keep their values),
+    # STATUS.refused (bit 7) until CONTROL.clear; the other settings are taken
+    for name in ("QUANTUM_LO", "QUANTUM_HI", "MOTION"):
+        await access(tb, REG[name], 0x5A)
+    await access(tb, REG["OVERRIDE"], 42)
+    assert (int(dut.quantum.value), int(dut.block_shift.value), int(dut.jerk_shift.value)) == (1, 2, 0)
+    assert (await access(tb, REG["OVERRIDE"]))[1] == 42
+    assert (await access(tb, REG["STATUS"]))[1] == 3 | 8 | 16 | 32 | 128 | 200 << 8
+    await access(tb, REG["CONTROL"], 0b00100)
+    assert (await access(tb, REG["STATUS"]))[1] == 3 | 8 | 16 | 32 | 200 << 8
+    # quantum: FEED_W 40 across LO and HI, at rest
+    tb.drive({"busy": 0})
     await access(tb, REG["QUANTUM_LO"], 0x12345678)
     await access(tb, REG["QUANTUM_HI"], 0xFFFFFFFF)
+    await access(tb, REG["MOTION"], 0x5A)
     assert int(dut.quantum.value) == 0xFF12345678
     assert (await access(tb, REG["QUANTUM_HI"]))[1] == 0xFF
+    assert (int(dut.block_shift.value), int(dut.jerk_shift.value)) == (0xA, 0x5)
+    assert not (await access(tb, REG["STATUS"]))[1] & 128
 
 
 def test_controller_regs(sim):
