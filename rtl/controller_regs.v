@@ -11,8 +11,8 @@
 // read-write ones (machine settings) are held here and drive the outputs.  CONTROL:
 // [0] hold (RW; also set by `hold_set`, a pause event), write-1 strobes [1] abort,
 // [2] clear, [3] probe_arm, [4] enable (RW), [5] fill (RW).  QUANTUM_LO/HI and MOTION are
-// taken only while `busy` is low; a write while busy keeps the register and sets
-// STATUS.refused (until CONTROL.clear).
+// taken only while `busy` is low, and fill rises only then (or with abort in the same
+// write): a write while busy keeps them and sets STATUS.refused (until CONTROL.clear).
 module controller_regs #(
     parameter integer CLK_HZ   = 50000000,  // board clock, Hz (CLOCK_HZ register; >= 1)
     parameter integer W        = 32,        // command field width (VERSION; 6 .. 255)
@@ -137,7 +137,11 @@ module controller_regs #(
     // S-curve filter hold them constant): a write while busy is refused and flagged
     wire   profile_write = write && (address == REG_QUANTUM_LO[7:0] || address == REG_QUANTUM_HI[7:0] ||
                                      address == REG_MOTION[7:0]);
-    wire   refuse        = profile_write & busy;
+    // fill would reset motion_top under a running program: it rises only while not busy,
+    // or with abort in the same write (which flushes)
+    wire   fill_refused  = control_write & wb_dat_w[5] & ~fill & busy & ~wb_dat_w[1];
+    wire   setting_refused = profile_write & busy;
+    wire   refuse        = setting_refused | fill_refused;
     reg    refused;                                 // STATUS.refused, until CONTROL.clear
 
     // positions sign-extended to 32 bits
@@ -215,12 +219,12 @@ module controller_regs #(
             refused <= refuse | (refused & ~clear_strobe);
             if (hold_set)
                 hold <= 1'b1;
-            if (write & ~refuse) begin
+            if (write & ~setting_refused) begin
                 case (address)
                     REG_CONTROL[7:0]: begin
                         hold   <= wb_dat_w[0];
                         enable <= wb_dat_w[4];
-                        fill   <= wb_dat_w[5];
+                        fill   <= wb_dat_w[5] & ~fill_refused;
                     end
                     REG_OVERRIDE[7:0]:       override_percent <= wb_dat_w[7:0];
                     REG_PULSE_WIDTH[7:0]:    pulse_width <= wb_dat_w[TW-1:0];

@@ -103,9 +103,9 @@ def test_curves_refused_when_left_out():
 
 def test_speed_settings_wait_for_idle(monkeypatch):
     """QUANTUM and MOTION are taken only while the controller is not busy (as the RTL's
-    register block): written while busy they keep their values and set STATUS.refused
-    until CONTROL.clear; `configure` refuses a busy controller in one line, and configures
-    one in ALARM (which flushes: not busy)."""
+    register block), and CONTROL.fill rises only then: written while busy they keep their
+    values and set STATUS.refused until CONTROL.clear; `configure` refuses a busy
+    controller in one line, and configures one in ALARM (which flushes: not busy)."""
     settings = {"speed_quantum": (7 << 32) | 5, "block_shift": 3, "jerk_shift": 2}
     timing = {"pulse_width": 30, "setup": 40, "hold": 50}
     model = DeviceModel()
@@ -122,6 +122,11 @@ def test_speed_settings_wait_for_idle(monkeypatch):
         m.setattr(driver_module, "check_idle", lambda driver: 0)
         with pytest.raises(LinkError, match="did not take QUANTUM_LO"):
             configure(driver, timing, settings)
+    driver.write_register("CONTROL", p.CONTROL_CLEAR)
+    assert not driver.read_register("STATUS") & p.STATUS_REFUSED
+    driver.write_register("CONTROL", p.CONTROL_FILL | p.CONTROL_ENABLE)   # fill under a program
+    assert driver.read_register("CONTROL") == p.CONTROL_ENABLE
+    assert driver.read_register("STATUS") & p.STATUS_REFUSED
     model.busy = False
     assert driver.read_register("STATUS") & p.STATUS_REFUSED              # sticky
     driver.write_register("CONTROL", p.CONTROL_CLEAR)

@@ -358,7 +358,11 @@ class DeviceModel:
                 self.hold_since = self.t
             self.hold = bool(value & p.CONTROL_HOLD)
             self.enabled = bool(value & p.CONTROL_ENABLE)
-            self.fill = bool(value & p.CONTROL_FILL)        # records wait in the queue
+            rise = value & p.CONTROL_FILL and not self.fill and not value & p.CONTROL_ABORT
+            if rise and (self.busy or self._whole()):
+                self.refused = True                 # fill would reset a running program
+            else:
+                self.fill = bool(value & p.CONTROL_FILL)    # records wait in the queue
             if value & p.CONTROL_ABORT:
                 self.queue.clear()
                 self.reader = RecordReader(self.build)

@@ -545,8 +545,8 @@ async def gcode_program(dut):
 
 @cocotb.test()
 async def settings_wait_for_idle(dut):
-    """QUANTUM_LO / HI and MOTION are taken only while not busy: written mid-move they keep
-    their values, the move's steps come at the same cycles (from its first step on) as
+    """QUANTUM_LO / HI and MOTION are taken only while not busy, and CONTROL.fill rises only
+    then (it would reset motion_top): written mid-move they keep their values, the move's steps come at the same cycles (from its first step on) as
     without the writes and end at its position, STATUS.refused is set until CONTROL.clear,
     and no error latches; at IDLE the same writes are taken."""
     tb = await Bench(dut).start()
@@ -562,7 +562,9 @@ async def settings_wait_for_idle(dut):
             await tb.write("QUANTUM_LO", 4 * quantum)
             await tb.write("QUANTUM_HI", 1)
             await tb.write("MOTION", 0x31)
+            await tb.write("CONTROL", await tb.read("CONTROL") | FILL)
             assert [await tb.read(n) for n in ("QUANTUM_LO", "QUANTUM_HI", "MOTION")] == [quantum, 0, motion]
+            assert not await tb.read("CONTROL") & FILL
             assert await tb.read("STATUS") & REFUSED and await tb.read("ERROR") == 0
         await tb.wait_idle()
         assert await tb.position() == end == tb.steps.position(), f"meddle {meddle}"

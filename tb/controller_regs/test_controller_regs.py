@@ -4,7 +4,8 @@
 until data_ready, then data_write for one cycle with the word; CONTROL's abort / clear /
 probe_arm one-cycle strobes, hold and enable RW, hold_set; the status inputs composed into
 STATUS, ERROR, QUEUE_FREE, OUTPUTS and the sign-extended positions at POS_W 20; the speed
-settings refused while busy (STATUS.refused until CONTROL.clear), taken at rest."""
+settings refused while busy (STATUS.refused until CONTROL.clear), taken at rest; CONTROL.fill
+rising while busy only with abort."""
 import cocotb
 from cocotb.triggers import FallingEdge, ReadOnly
 
@@ -81,6 +82,17 @@ async def bus_and_fields(dut):
     assert (await access(tb, REG["STATUS"]))[1] == 3 | 8 | 16 | 32 | 128 | 200 << 8
     await access(tb, REG["CONTROL"], 0b00100)
     assert (await access(tb, REG["STATUS"]))[1] == 3 | 8 | 16 | 32 | 200 << 8
+    # CONTROL.fill rises while busy only with abort; the write's other bits are taken
+    await access(tb, REG["CONTROL"], 0b110001)
+    assert (await access(tb, REG["CONTROL"]))[1] == 0b010001 and int(dut.fill.value) == 0
+    assert (await access(tb, REG["STATUS"]))[1] & 128
+    await access(tb, REG["CONTROL"], 0b100110)                  # abort + clear + fill
+    assert (await access(tb, REG["CONTROL"]))[1] == 0b100000 and int(dut.fill.value) == 1
+    assert not (await access(tb, REG["STATUS"]))[1] & 128
+    await access(tb, REG["CONTROL"], 0b110000)                  # kept while busy, then cleared
+    assert (await access(tb, REG["CONTROL"]))[1] == 0b110000
+    await access(tb, REG["CONTROL"], 0)
+    assert (await access(tb, REG["CONTROL"]))[1] == 0 and not (await access(tb, REG["STATUS"]))[1] & 128
     # quantum: FEED_W 40 across LO and HI, at rest
     tb.drive({"busy": 0})
     await access(tb, REG["QUANTUM_LO"], 0x12345678)
