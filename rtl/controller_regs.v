@@ -135,13 +135,13 @@ module controller_regs #(
     assign arm_strobe   = control_write & wb_dat_w[3];
     // QUANTUM and MOTION are taken only while nothing runs (the speed generator and the
     // S-curve filter hold them constant): a write while busy is refused and flagged
-    wire   profile_write = write && (address == REG_QUANTUM_LO[7:0] || address == REG_QUANTUM_HI[7:0] ||
+    wire   speed_write   = write && (address == REG_QUANTUM_LO[7:0] || address == REG_QUANTUM_HI[7:0] ||
                                      address == REG_MOTION[7:0]);
     // fill would reset motion_top under a running program: it rises only while not busy,
     // or with abort in the same write (which flushes)
     wire   fill_refused  = control_write & wb_dat_w[5] & ~fill & busy & ~wb_dat_w[1];
-    wire   setting_refused = profile_write & busy;
-    wire   refuse        = setting_refused | fill_refused;
+    wire   speed_refused = speed_write & busy;
+    wire   refuse        = speed_refused | fill_refused;
     reg    refused;                                 // STATUS.refused, until CONTROL.clear
 
     // positions sign-extended to 32 bits
@@ -219,7 +219,7 @@ module controller_regs #(
             refused <= refuse | (refused & ~clear_strobe);
             if (hold_set)
                 hold <= 1'b1;
-            if (write & ~setting_refused) begin
+            if (write & ~speed_refused) begin
                 case (address)
                     REG_CONTROL[7:0]: begin
                         hold   <= wb_dat_w[0];

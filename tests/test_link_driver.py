@@ -119,7 +119,7 @@ def test_speed_settings_wait_for_idle(monkeypatch):
     with pytest.raises(LinkError, match="the controller is busy"):
         configure(driver, timing, settings)
     with monkeypatch.context() as m:                            # busy after the check: read back
-        m.setattr(driver_module, "check_idle", lambda driver: 0)
+        m.setattr(driver_module, "check_idle", lambda driver: None)
         with pytest.raises(LinkError, match="did not take QUANTUM_LO"):
             configure(driver, timing, settings)
     driver.write_register("CONTROL", p.CONTROL_CLEAR)

@@ -277,7 +277,11 @@ class DeviceModel:
             return p.ALARM
         if self.hold:
             return p.HELD if self.t >= self.hold_since + self.hold_seconds or not self.busy else p.HOLDING
-        return p.RUN if self.busy or self._whole() else p.IDLE
+        return p.RUN if self._busy() else p.IDLE
+
+    def _busy(self) -> bool:
+        """STATUS.busy: a record running or a whole one queued."""
+        return self.busy or self._whole()
 
     def _whole(self) -> bool:
         """A whole record is in the queue."""
@@ -331,7 +335,7 @@ class DeviceModel:
             a["BUILD1"]: b.LEN_W | b.ZW << 8 | b.MW << 16 | b.TW << 24,
             a["CLOCK_HZ"]: self.clock_hz,
             a["QUEUE_SIZE"]: (self.queue_size & 0xFFFF) | self.queue_aw << 16 | int(self.curves) << 24,
-            a["STATUS"]: (self.state() | int(self.busy or self._whole()) << 3 | int(self.state() == p.HELD) << 4
+            a["STATUS"]: (self.state() | int(self._busy()) << 3 | int(self.state() == p.HELD) << 4
                           | int(self.enabled) << 6 | int(self.refused) * p.STATUS_REFUSED | min(records, 255) << 8),
             a["ERROR"]: self.error | self.limits << 8,
             a["QUEUE_FREE"]: (free & 0xFFFF) | (free // self.record_len) << 16,
@@ -359,7 +363,7 @@ class DeviceModel:
             self.hold = bool(value & p.CONTROL_HOLD)
             self.enabled = bool(value & p.CONTROL_ENABLE)
             rise = value & p.CONTROL_FILL and not self.fill and not value & p.CONTROL_ABORT
-            if rise and (self.busy or self._whole()):
+            if rise and self._busy():
                 self.refused = True                 # fill would reset a running program
             else:
                 self.fill = bool(value & p.CONTROL_FILL)    # records wait in the queue
@@ -370,7 +374,7 @@ class DeviceModel:
             if value & p.CONTROL_CLEAR:
                 self.error, self.limits, self.refused = 0, 0, False
             self._execute()
-        elif name in p.SPEED_SETTINGS and (self.busy or self._whole()):
+        elif name in p.SPEED_SETTINGS and self._busy():
             self.refused = True                     # taken only while not busy
         elif name in self.regs:
             self.regs[name] = value

@@ -429,14 +429,13 @@ def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
             ("OVERRIDE", int(settings.get("override", 100)))]
 
 
-def check_idle(driver: Driver) -> int:
-    """STATUS, or LinkError when the controller is busy with a program (ALARM is not busy:
-    an abort flushes it)."""
+def check_idle(driver: Driver) -> None:
+    """LinkError when the controller is busy with a program (ALARM is not busy: an abort
+    flushes it)."""
     status = driver.read_register("STATUS")
     if field(status, 3, 1) and field(status, 0, 3) != p.ALARM:
         raise LinkError(f"the controller is busy ({p.STATE_NAMES.get(field(status, 0, 3), '?')}): "
                         "wait for its program to end or abort it")
-    return status
 
 
 def configure(driver: Driver, timing: dict, settings: dict) -> None:
