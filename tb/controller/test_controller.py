@@ -571,9 +571,8 @@ async def settings_wait_for_idle(dut):
         assert await tb.read("ERROR") == 0
         first = tb.steps.edges[0][0]
         timings.append([(t - first, axis, d) for t, axis, d in tb.steps.edges])
-        await tb.reset()
+        await tb.reset()                                  # (MOTION back at its reset value)
         await tb.configure()
-        await tb.write("MOTION", motion)
     assert timings[0] == timings[1]
     # sticky until clear; taken at IDLE
     await tb.send(tb.records(cmds))
