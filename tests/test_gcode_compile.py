@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from interp.testing.seeds import seeded_random
 from interp.models.speed_ramp import BLOCK_SHIFT_MIN
 from interp.gcode.compile import (ARC_LIMIT, DWELL_MAX, EVENT, EVENT_CODES, EXIT_MARGIN, FRAC, LINE_MAX, PF,
-                                  PWM_FULL, CompileError, Compiler, compile_program)
+                                  PWM_FULL, TAKE_IN_STEPS, CompileError, Compiler, compile_program)
 from interp.gcode.planner import junction_speed
 from interp.gcode.stepcount import arc_count, arc_events, helix_count
 from interp.gcode.machine import SCHEMA, MachineError, default_machine_text, load_machine
@@ -234,6 +234,154 @@ def test_corrected_arc_keeps_its_sweep():
     assert abs(a.x - -10000) <= 1 and abs(a.y - 10000) <= 1
     assert total(out.commands) == [0, 10010, 0]
     assert max(abs(v) for v in (out.commands[2].x, out.commands[2].y)) <= 12
+
+
+def absolute_centre(start_steps, cmd) -> tuple[int, int]:
+    """An arc command's centre in absolute steps (u, v), from the position it starts at."""
+    iu, iv, _ = list(PLANES.values())[cmd.plane]
+    return start_steps[iu] + cmd.i, start_steps[iv] + cmd.j
+
+
+def positions(commands) -> list[list[int]]:
+    """The position (steps) before each command and after the last."""
+    out = [[0, 0, 0]]
+    for n in range(len(commands)):
+        out.append(total(commands[:n + 1]))
+    return out
+
+
+OFF_CIRCLE = Arc((100, 0, 0), (0, 100.1, 0), (0, 0, 0), "XY", True, 1, 1000, 2)   # end 0.1 mm out
+
+
+def test_correction_taken_in_by_the_next_line():
+    # the line after a corrected arc starts where the arc ended: no short line between them
+    prog = [Line((0, 0, 0), (100, 0, 0), None, 1), OFF_CIRCLE, Line((0, 100.1, 0), (-50, 100.1, 0), 1000, 3)]
+    out = compile_program(Program(prog), MACHINE)
+    assert [c.kind for c in out.commands] == [LINE, ARC_CCW, LINE] and out.corrected == 1
+    arc, line = out.commands[1], out.commands[2]
+    assert (arc.x + line.x, arc.y + line.y) == (-15000, 10010)
+    assert total(out.commands) == [-5000, 10010, 0] == list(out.end_steps)
+
+
+@pytest.mark.parametrize("between", ["dwell", "event", "G61", "end"])
+def test_correction_made_before_a_stop(between):
+    # before a dwell, an event, an exact-stop move or the program's end the arc's correction
+    # is a line of its own: the machine stops on the programmed point
+    prog = [Line((0, 0, 0), (100, 0, 0), None, 1), OFF_CIRCLE]
+    modes = []
+    if between == "dwell":
+        prog.append(Dwell(0.5, 3))
+    elif between == "event":
+        prog.append(Event("mist_on", 0, 3))
+    elif between == "G61":
+        modes = [(4, "G61", None, None)]
+    if between != "end":
+        prog.append(Line((0, 100.1, 0), (-50, 100.1, 0), 1000, 4))
+    out = compile_program(Program(prog, path_modes=modes), MACHINE)
+    kinds = [c.kind for c in out.commands]
+    assert kinds[:3] == [LINE, ARC_CCW, LINE] and out.corrected == 1
+    assert total(out.commands[:3]) == [0, 10010, 0]
+    assert max(abs(out.commands[2].x), abs(out.commands[2].y)) <= 12
+    assert total(out.commands) == steps_of(prog[-1].end)
+
+
+def quarter_arcs(radii) -> Program:
+    """Quarter arcs CCW about the origin from (100, 0), the n-th ending at radius radii[n]."""
+    prog, start = [Line((0, 0, 0), (100, 0, 0), None, 1)], (100, 0, 0)
+    for n, r in enumerate(radii):
+        a = math.pi / 2 * (n + 1)
+        end = (round(r * math.cos(a), 9), round(r * math.sin(a), 9), 0)
+        prog.append(Arc(start, end, (0, 0, 0), "XY", True, 1, 1000, n + 2))
+        start = end
+    return Program(prog)
+
+
+def test_correction_taken_in_by_the_next_arc():
+    # ends 0.012 mm out (1.2 steps): each arc after one starts where it ended, within
+    # TAKE_IN_STEPS of its own circle, about the same centre in absolute steps; no short line
+    out = compile_program(quarter_arcs([100.012, 100, 100.012, 100]), MACHINE)
+    assert [c.kind for c in out.commands] == [LINE] + [ARC_CCW] * 4 and out.corrected == 2
+    at = positions(out.commands)
+    assert {absolute_centre(at[n], out.commands[n]) for n in range(1, 5)} == {(0, 0)}
+    assert total(out.commands) == [10000, 0, 0]
+    # 0.1 mm out: farther than TAKE_IN_STEPS from the next circle, a short line goes first
+    out = compile_program(quarter_arcs([100.1, 100, 100.1, 100]), MACHINE)
+    assert [c.kind for c in out.commands] == [LINE] + [ARC_CCW, LINE] * 4
+    assert total(out.commands) == [10000, 0, 0]
+
+
+def test_corrections_in_random_chains():
+    # chains of lines and arcs (ends off their circles within LinuxCNC's tolerance, some of them
+    # sharing the centre before, some in another plane): every arc about its centre rounded
+    # once (nothing drifts), every move starting near its programmed start, the end exact
+    rng, seed = seeded_random()
+    taken_in = 0
+    for n in range(150):
+        here, moves, slack = [rng.uniform(-100, 100) for _ in range(3)], [], 0.0
+        moves.append(Line((0, 0, 0), tuple(here), None, 1))
+        centre = None
+        for k in range(2, 8):
+            if rng.random() < 0.3:
+                end = [h + rng.uniform(-20, 20) for h in here]
+                moves.append(Line(tuple(here), tuple(end), 1000, k))
+                centre = None
+            else:
+                plane = rng.choice(list(PLANES)) if centre is None else moves[-1].plane
+                iu, iv, iw = PLANES[plane]
+                if centre is None:
+                    centre = list(here)
+                    centre[iu] += rng.uniform(-30, 30)
+                    centre[iv] += rng.uniform(-30, 30)
+                r = math.hypot(here[iu] - centre[iu], here[iv] - centre[iv])
+                off = rng.uniform(-1, 1) * linuxcnc_tolerance(r)
+                slack = max(slack, abs(off))
+                a1 = rng.uniform(0, 2 * math.pi)
+                end = list(here)
+                end[iu], end[iv] = centre[iu] + (r + off) * math.cos(a1), centre[iv] + (r + off) * math.sin(a1)
+                moves.append(Arc(tuple(here), tuple(end), tuple(centre), plane, rng.random() < 0.5, 1, 1000, k))
+                if rng.random() < 0.5:
+                    centre = None
+            here = end
+        out = compile_program(Program(moves), MACHINE)
+        assert total(out.commands) == steps_of(here) == list(out.end_steps), (seed, n)
+        at, first = positions(out.commands), {}
+        for c, start in zip(out.commands, at):
+            first.setdefault(c.source, start)
+            if c.kind in (ARC_CW, ARC_CCW):
+                m = moves[c.source - 1]
+                iu, iv, _ = PLANES[m.plane]
+                want = steps_of(m.centre)
+                assert all(abs(a - b) <= 1 for a, b in zip(absolute_centre(start, c), (want[iu], want[iv]))), \
+                    (seed, n, c.source)
+                assert arc_error(c.i, c.j, 0, 0, c.x, c.y, 32) is None, (seed, n, c)
+                r = math.hypot(m.start[iu] - m.centre[iu], m.start[iv] - m.centre[iv])
+                assert abs(math.hypot(c.i, c.j) - 100 * r) <= TAKE_IN_STEPS, (seed, n, c.source)
+        for line, start in first.items():
+            gap = max(abs(a - b) for a, b in zip(start, steps_of(moves[line - 1].start)))
+            assert gap <= 100 * slack + 3, (seed, n, line, gap)
+            taken_in += gap > 0
+    assert taken_in > 20            # the test does exercise moves that take a correction in
+
+
+def test_corrections_do_not_add_up_along_a_spiral():
+    # half circles about one centre, each ending 0.004 mm further out (within the centre
+    # form's tolerance): an arc takes the correction before it in only while it starts within
+    # TAKE_IN_STEPS of its own circle, so the path never drifts from the programmed spiral
+    prog, start, r = [Line((0, 0, 0), (50, 0, 0), None, 1)], (50, 0, 0), 50.0
+    for k in range(40):
+        r += 0.004
+        end = (r if k % 2 else -r, 0, 0)
+        prog.append(Arc(start, end, (0, 0, 0), "XY", True, 1, 1000, k + 2))
+        start = end
+    out = compile_program(Program(prog), MACHINE)
+    at = positions(out.commands)
+    for c, here in zip(out.commands, at):
+        if c.kind == ARC_CCW:
+            m = prog[c.source - 1]
+            assert abs(math.hypot(c.i, c.j) - 100 * math.hypot(*m.start[:2])) <= TAKE_IN_STEPS, c.source
+            assert max(abs(v) for v in absolute_centre(here, c)) <= 1
+    assert total(out.commands) == steps_of(start)
+    assert 0 < out.corrected
 
 
 def test_tiny_arcs_never_become_full_circles():

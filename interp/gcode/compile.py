@@ -14,9 +14,13 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
     YZ (y, z, x)): the centre is rounded once relative to the rounded start, the
     end absolutely.  If the rounded end is not within half a step of the circle
     through the start (the arc core would refuse it), the arc runs to the
-    lattice point on that circle nearest the programmed end's direction, and a
-    short line then goes to the rounded end: the motion ends exactly at the
-    programmed end point.  P turns are full circles before the last part.  An
+    lattice point on that circle nearest the programmed end's direction, and the
+    difference is `pending`: the next line takes it in (it starts there and ends
+    on its own rounded end), so does the next arc in the plane if it then starts
+    within TAKE_IN_STEPS of its programmed circle (its centre is rounded
+    relative to its rounded start, so nothing drifts); otherwise, and before a
+    dwell, an event, an exact-stop move or the program's end, a short line goes
+    to the rounded end (settle).  P turns are full circles before the last part.  An
     arc whose rounded start and end coincide but which is short in the source
     (under half a turn) runs as nothing or a line, never as a full circle.
     Arcs whose radius is beyond the core's limit (2^29 steps) or whose plane
@@ -79,6 +83,7 @@ LEN_MAX, ZW_MAX, NW_MAX = (1 << LEN_W) - 1, (1 << ZW) - 1, (1 << NW) - 1
 SEGMENT_CLOCKS = 2 * (NW + 3)
 COST_MODES = ("true", "even", "lecture")
 PWM_FULL = 65535                             # spindle duty of S = max_s
+TAKE_IN_STEPS = 2.0                          # an arc takes in a correction within this of its circle
 CHORD_SAGITTA = 0.25                         # chords stay within this many steps of the true arc
 PLANE_CODE = {"XY": 0, "ZX": 1, "YZ": 2}     # cmd_plane
 WARNINGS_PER_KIND = 20                       # then one "... and N more" line per kind
@@ -182,7 +187,7 @@ class Compiled:
     moves: int = 0              # lines and arcs of the program
     arcs: int = 0
     chords: int = 0             # arcs run as chords
-    corrected: int = 0          # arcs whose end needed the short line
+    corrected: int = 0          # arcs whose end is off their circle (a correction: taken in or a line)
     events: list[tuple[str, float, int]] = field(default_factory=list)   # (name, value, line), in order
     command_time: list[float] = field(default_factory=list)             # machine seconds at each command's end
     # the harness's settings: speed_quantum (A), block_shift, jerk_shift, override
@@ -229,6 +234,9 @@ class Compiler:
         self.clock = machine.clock_hz
         self.pause_cycles = _round(pause_seconds * self.clock)
         self.here = [0, 0, 0]
+        # an arc's correction not yet made: (the rounded end, feed mm/s, source line) of an
+        # arc that ended on the lattice point beside it; the next line or arc takes it in
+        self.pending: tuple[list[int], float, int] | None = None
         self.out = Compiled(profile=self.profile_name, costs=costs)
         self.stop_next = True           # an exact stop before the next move
         self.modes: list = []           # the program's path-control modes (line, mode, P, Q)
@@ -317,10 +325,25 @@ class Compiler:
                            math.sqrt(sum(d * d for d in mm)))
             done = part
 
+    def settle(self) -> None:
+        """Make the pending correction: a short line to the arc's rounded end."""
+        if self.pending is not None:
+            target, feed, line = self.pending
+            self.pending = None
+            self.line_to(target, feed, line)
+
+    def exact_stop(self, line: int) -> bool:
+        """Whether the move on `line` starts with an exact stop (its path-control mode)."""
+        return self.path_mode(line)[0] in ("G61", "G61.1")
+
     def segment(self, start, end, feed, line: int) -> None:
-        """A straight move between two points in mm (a G0/G1 line or a chord)."""
+        """A straight move between two points in mm (a G0/G1 line or a chord); it takes in a
+        pending correction (it starts where the arc before it ended)."""
         for k in range(3):
             self.check_travel(line, k, end[k])
+        if self.exact_stop(line):
+            self.settle()
+        self.pending = None
         target = self.steps(end)
         if target == self.here:
             return
@@ -365,14 +388,26 @@ class Compiler:
             caps.append(self.axes[iw].max_rate_mm_min * length / abs(dw))
         feed = self.feed_used(m.feed, min(caps), m.line)
 
+        def centre(start_steps) -> tuple[int, int]:
+            """The centre in steps, rounded relative to the rounded start."""
+            return start_steps[iu] + _round(-su * s_u), start_steps[iv] + _round(-sv * s_v)
+
+        # a pending correction in this plane is taken in (the arc starts where the one
+        # before ended) if that start is within TAKE_IN_STEPS of the programmed circle
+        if self.pending is not None:
+            cu, cv = centre(self.pending[0])
+            if self.exact_stop(m.line) or self.pending[0][iw] != self.here[iw] or \
+                    abs(math.hypot(cu - self.here[iu], cv - self.here[iv]) - r * s_u) > TAKE_IN_STEPS:
+                self.settle()
+            self.pending = None
+        else:
+            cu, cv = centre(self.here)
         start = list(self.here)
-        su_s, sv_s = start[iu], start[iv]
-        ci, cj = _round(-su * s_u), _round(-sv * s_v)          # centre relative to the rounded start
+        ci, cj = cu - start[iu], cv - start[iv]                 # the centre relative to the start
         r2 = ci * ci + cj * cj
         end = self.steps(m.end)
         if r2 == 0:                                             # radius under half a step: a line
             return self.line_to(end, feed, m.line)
-        cu, cv = su_s + ci, sv_s + cj                           # the centre in steps
         w0 = start[iw]
         kind = ARC_CCW if m.ccw else ARC_CW
         plane = PLANE_CODE[m.plane]
@@ -402,7 +437,8 @@ class Compiler:
         here = [0, 0, 0]
         here[iu], here[iv], here[iw] = cu + pu, cv + pv, end[iw]
         self.here = here
-        self.line_to(end, feed, m.line)                         # the correction, if any
+        if here != end:                     # the correction: the next line or arc takes it in
+            self.pending = (end, feed, m.line)
 
     def arc_command(self, kind, plane, ci, cj, x, y, travel, sweep, feed, m: Arc, a_start) -> None:
         """An ARC command (start 0, centre (ci, cj), end (x, y) in the plane, w travel) with
@@ -493,6 +529,7 @@ class Compiler:
 
     # ---------------- the rest ----------------
     def dwell(self, m: Dwell) -> None:
+        self.settle()
         if not m.seconds >= 0 or not math.isfinite(m.seconds):
             raise CompileError(f"line {m.line}: dwell of {m.seconds:g} s")
         self.pause(_round(m.seconds * self.clock), m.line, always=True)
@@ -506,6 +543,7 @@ class Compiler:
             cycles -= part
 
     def event(self, m: Event) -> None:
+        self.settle()
         if m.name not in EVENT_CODES:
             raise CompileError(f"line {m.line}: unknown event {m.name!r}")
         if m.name in SPINDLE_DUTY:
@@ -749,6 +787,7 @@ class Compiler:
                 self.event(m)
             else:
                 raise TypeError(f"not a move: {m!r}")
+        self.settle()
         self.out.end_steps = tuple(self.here)
         self.profile()
         for kind, seen in self._warnings.items():
