@@ -153,42 +153,44 @@ module controller_regs #(
     wire [63:0] quantum_lo   = {quantum_wide[63:32], wb_dat_w};
     wire [63:0] quantum_hi   = {wb_dat_w, quantum_wide[31:0]};
 
-    reg [31:0] value;
+    // The read-back table: word n at byte address 4n, 0x00 .. 0x7C (a mux tree on
+    // wb_adr[6:2]; the generator keeps the map there); CMD_DATA, which is write-only,
+    // unknown addresses and those from 0x80 read 0.
+    reg [32*32-1:0] words;
     always @* begin
-        case (address)
-            REG_ID[7:0]:             value = ID;
-            REG_VERSION[7:0]:        value = VERSION;
-            REG_BUILD0[7:0]:         value = BUILD0;
-            REG_BUILD1[7:0]:         value = BUILD1;
-            REG_CLOCK_HZ[7:0]:       value = CLOCK;
-            REG_QUEUE_SIZE[7:0]:     value = QUEUE_SIZE;
-            REG_STATUS[7:0]:         value = {16'd0, records, refused, enable, probe_valid, stopped, busy, state};
-            REG_ERROR[7:0]:          value = {21'd0, error_limits, error_code};
-            REG_QUEUE_FREE[7:0]:     value = {free_records, free_bytes};
-            REG_POS_X[7:0]:          value = extended(pos_x);
-            REG_POS_Y[7:0]:          value = extended(pos_y);
-            REG_POS_Z[7:0]:          value = extended(pos_z);
-            REG_PROBE_X[7:0]:        value = extended(probe_x);
-            REG_PROBE_Y[7:0]:        value = extended(probe_y);
-            REG_PROBE_Z[7:0]:        value = extended(probe_z);
-            REG_INPUTS[7:0]:         value = {27'd0, inputs};
-            REG_CONTROL[7:0]:        value = {26'd0, fill, enable, 3'd0, hold};
-            REG_OVERRIDE[7:0]:       value = {24'd0, override_percent};
-            REG_PULSE_WIDTH[7:0]:    value = {{(32 - TW){1'b0}}, pulse_width};
-            REG_DIR_SETUP[7:0]:      value = {{(32 - TW){1'b0}}, dir_setup};
-            REG_DIR_HOLD[7:0]:       value = {{(32 - TW){1'b0}}, dir_hold};
-            REG_QUANTUM_LO[7:0]:     value = quantum_wide[31:0];
-            REG_QUANTUM_HI[7:0]:     value = quantum_wide[63:32];
-            REG_MOTION[7:0]:         value = {24'd0, jerk_shift, block_shift};
-            REG_INPUT_INVERT[7:0]:   value = {27'd0, input_invert};
-            REG_SPINDLE_PERIOD[7:0]: value = {16'd0, spindle_period};
-            REG_OUTPUTS[7:0]:        value = {duty, outputs};
-            REG_LINK_FRAMES[7:0]:    value = {link_duplicates, link_frames};
-            REG_LINK_ERRORS[7:0]:    value = {link_gaps, link_errors};
-            REG_EXECUTED[7:0]:       value = executed;
-            default:                 value = 32'd0;         // CMD_DATA (write-only), unknown
-        endcase
+        words = {(32*32){1'b0}};
+        words[REG_ID[6:2] * 32 +: 32]             = ID;
+        words[REG_VERSION[6:2] * 32 +: 32]        = VERSION;
+        words[REG_BUILD0[6:2] * 32 +: 32]         = BUILD0;
+        words[REG_BUILD1[6:2] * 32 +: 32]         = BUILD1;
+        words[REG_CLOCK_HZ[6:2] * 32 +: 32]       = CLOCK;
+        words[REG_QUEUE_SIZE[6:2] * 32 +: 32]     = QUEUE_SIZE;
+        words[REG_STATUS[6:2] * 32 +: 32]         = {16'd0, records, refused, enable, probe_valid, stopped, busy, state};
+        words[REG_ERROR[6:2] * 32 +: 32]          = {21'd0, error_limits, error_code};
+        words[REG_QUEUE_FREE[6:2] * 32 +: 32]     = {free_records, free_bytes};
+        words[REG_POS_X[6:2] * 32 +: 32]          = extended(pos_x);
+        words[REG_POS_Y[6:2] * 32 +: 32]          = extended(pos_y);
+        words[REG_POS_Z[6:2] * 32 +: 32]          = extended(pos_z);
+        words[REG_PROBE_X[6:2] * 32 +: 32]        = extended(probe_x);
+        words[REG_PROBE_Y[6:2] * 32 +: 32]        = extended(probe_y);
+        words[REG_PROBE_Z[6:2] * 32 +: 32]        = extended(probe_z);
+        words[REG_INPUTS[6:2] * 32 +: 32]         = {27'd0, inputs};
+        words[REG_CONTROL[6:2] * 32 +: 32]        = {26'd0, fill, enable, 3'd0, hold};
+        words[REG_OVERRIDE[6:2] * 32 +: 32]       = {24'd0, override_percent};
+        words[REG_PULSE_WIDTH[6:2] * 32 +: 32]    = {{(32 - TW){1'b0}}, pulse_width};
+        words[REG_DIR_SETUP[6:2] * 32 +: 32]      = {{(32 - TW){1'b0}}, dir_setup};
+        words[REG_DIR_HOLD[6:2] * 32 +: 32]       = {{(32 - TW){1'b0}}, dir_hold};
+        words[REG_QUANTUM_LO[6:2] * 32 +: 32]     = quantum_wide[31:0];
+        words[REG_QUANTUM_HI[6:2] * 32 +: 32]     = quantum_wide[63:32];
+        words[REG_MOTION[6:2] * 32 +: 32]         = {24'd0, jerk_shift, block_shift};
+        words[REG_INPUT_INVERT[6:2] * 32 +: 32]   = {27'd0, input_invert};
+        words[REG_SPINDLE_PERIOD[6:2] * 32 +: 32] = {16'd0, spindle_period};
+        words[REG_OUTPUTS[6:2] * 32 +: 32]        = {duty, outputs};
+        words[REG_LINK_FRAMES[6:2] * 32 +: 32]    = {link_duplicates, link_frames};
+        words[REG_LINK_ERRORS[6:2] * 32 +: 32]    = {link_gaps, link_errors};
+        words[REG_EXECUTED[6:2] * 32 +: 32]       = executed;
     end
+    wire [31:0] value = address[7] ? 32'd0 : words[address[6:2] * 32 +: 32];
 
     always @(posedge clk) begin
         if (rst) begin

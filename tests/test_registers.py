@@ -206,7 +206,7 @@ def test_every_register_is_described():
 @pytest.mark.parametrize("bad, where", [
     ("reg { field { sw = rw; } a[3:0] = 4'd0; } X @ 0x02;\n", "overlaps with 'ID'"),
     ("reg { field { sw = rw; } a[3:0] = 4'd0; } X @ 0x82;\n", "X: address 0x82 is not a multiple of 4"),
-    ("reg { field { sw = rw; } a[3:0] = 4'd0; } X @ 0x100;\n", "X: address 0x100 is beyond the 8-bit address bus"),
+    ("reg { field { sw = rw; } a[3:0] = 4'd0; } X @ 0x80;\n", "X: address 0x80 is beyond the register block's read-back table"),
     ("reg { field { sw = rw; } a[3:0] = 4'd0; } STATUS @ 0x80;\n", "Multiple declarations of instance 'STATUS'"),
     ("reg { field { sw = rw; } a[3:0] = 4'd0 } Y @ 0x80;\n", "error: missing ';'"),
 ])
