@@ -506,7 +506,9 @@ def word(mm_s: float, spm: float, clock: float) -> float:
 def test_cruise_word_accuracy(clock, feed):
     m = load_machine(clock_hz=clock)
     out = compile_program(Program([Line((0, 0, 0), (500, 0, 0), feed, 1)]), m)
-    assert out.commands[0].feed == round(word(feed / 60, 100, clock)) and not out.warnings
+    assert out.commands[0].feed == round(word(feed / 60, 100, clock))
+    # whole quanta of 0.12 mm/min at 1 MHz: F1 runs at 0.96 mm/min (a warning), F10 at 9.96
+    assert bool(out.warnings) == (clock == 1e6 and feed == 1), out.warnings
 
 
 def test_feed_caps_rapids_and_errors():
@@ -729,8 +731,14 @@ def test_dwells_split():
     assert max(cycles) <= DWELL_MAX and len(cycles) == 4 and cycles[-1] == 0
     assert out.commands[0].fields()[3] == -1            # 2^32 - 1 as the port's signed bits
     assert abs(out.machine_time_s - 60) < 1e-9
-    with pytest.raises(CompileError, match="line 3: dwell"):
+    with pytest.raises(CompileError, match="line 3: a dwell of -1 s is out of range"):
         compile_program(Program([Dwell(-1, 3)]), m)
+    # a day at most (a longer one would be millions of DWELL commands), a pause too
+    assert len(compile_program(Program([Dwell(86_400, 1)]), m).commands) == 4024
+    with pytest.raises(CompileError, match=r"line 2: a dwell of 86401 s is out of range \(0 \.\. 86400 s"):
+        compile_program(Program([Dwell(86_401, 2)]), m)
+    with pytest.raises(CompileError, match="a pause of 1e\\+300 s is longer than a day"):
+        compile_program(Program([Event("pause", 0, 1)]), m, pause_seconds=1e300)
 
 
 def test_events_and_pauses():
@@ -753,14 +761,16 @@ def test_machine_time_and_counts():
                     Arc((60, 0, 0), (60, 0, 0), (50, 0, 0), "XY", True, 1, 600, 2),   # 2 pi 10 mm at 10 mm/s
                     Dwell(1.5, 3)])
     out = compile_program(prog, MACHINE)
-    assert out.machine_time_s == pytest.approx(sum(p.time_s for p in out.plans) + 1.5)
+    # (the cruise the hardware holds is whole quanta: 250 000 of them at 600 mm/min here)
+    assert out.machine_time_s == pytest.approx(sum(p.time_s for p in out.plans) + 1.5, rel=1e-5)
     assert 6 + 2 * math.pi + 1.5 < out.machine_time_s < 6 + 2 * math.pi + 1.5 + 0.1   # + the ramps
     assert out.command_time[-1] == out.machine_time_s and out.command_time == sorted(out.command_time)
     assert (out.moves, out.arcs) == (2, 1)
     # the S-curve's filter adds its window to each run between stops (here one run)
     s = compile_program(prog, MACHINE, profile="scurve")
     window = (1 << (s.settings["block_shift"] + s.settings["jerk_shift"])) / 50e6
-    assert s.machine_time_s == pytest.approx(sum(p.time_s for p in s.plans) + 1.5 + window)
+    # (its blocks are 2^10 clocks: quanta 256 times coarser, about 1000 in 600 mm/min)
+    assert s.machine_time_s == pytest.approx(sum(p.time_s for p in s.plans) + 1.5 + window, rel=1e-3)
     # (and its junctions are planned a W / 2 slower, docs/planner.md: never faster)
     assert s.machine_time_s >= out.machine_time_s + window
 
@@ -833,9 +843,10 @@ def test_scurve_shifts():
     slow = load_machine(clock_hz=50e3)          # 2500 cycles: 2^12, blocks of the least 2^2 clocks
     out = compile_program(Program([Line((0, 0, 0), (10, 0, 0), 600, 1)]), slow, profile="scurve")
     assert (out.settings["jerk_shift"], out.settings["block_shift"]) == (10, BLOCK_SHIFT_MIN)
-    with pytest.raises(CompileError, match="S-curve's window"):
-        compile_program(Program([Line((0, 0, 0), (10, 0, 0), 600, 1)]),
-                        load_machine(sets=["motion.jerk_mm_s3=0.001"]), profile="scurve")
+    for jerk in ("0.001", "1e-301"):            # (2 accel / jerk overflows to inf: the same error)
+        with pytest.raises(CompileError, match="S-curve's window"):
+            compile_program(Program([Line((0, 0, 0), (10, 0, 0), 600, 1)]),
+                            load_machine(sets=[f"motion.jerk_mm_s3={jerk}"]), profile="scurve")
 
 
 # ---------------- the commands through the step-level model of motion_top ----------------
@@ -885,3 +896,26 @@ def test_commands_through_the_step_model():
         assert len(steps) == out.step_events, seed
         assert [sum(s[k] for s in steps) for k in range(3)] == list(out.end_steps) == steps_of(here), seed
         assert all(max(abs(v) for v in s) <= 1 for s in steps), seed
+
+
+def test_outputs_are_the_controllers():
+    out = compile_program(Program([Event("output_on", 3, 1), Event("output_off", 0, 2)]), MACHINE)
+    assert [(c.x, c.y) for c in out.commands] == [(EVENT_CODES["output_on"], 3), (EVENT_CODES["output_off"], 0)]
+    with pytest.raises(CompileError, match=r"^line 2: output 4: the controller has digital outputs 0 \.\. 3"):
+        compile_program(Program([Event("output_on", 3, 1), Event("output_off", 4, 2)]), MACHINE)
+
+
+def test_speeds_are_whole_quanta():
+    # speed_ramp holds the cruise at whole quanta (at least one): at 200 kHz and 20000 mm/s^2 a
+    # quantum is 24 mm/min, so F30 runs at 24 (the RTL: 0.2 mm in 100 054 clocks, 0.50027 s);
+    # the warning says so and the machine time counts it
+    slow = load_machine(clock_hz=200e3, sets=["axis.x.accel_mm_s2=20000"])
+    out = compile_program(Program([Line((0, 0, 0), (0.2, 0, 0), 30, 1)]), slow)
+    assert abs(out.machine_time_s - 0.5) < 1e-3
+    assert out.warnings == ["line 1: feed 30 mm/min runs at 24 mm/min: the speed generator holds whole quanta "
+                            "of 24 mm/min (2^block_shift x the largest acceleration per clock at 200000 Hz): "
+                            "raise the clock or lower the accelerations"]
+    out = compile_program(Program([Line((0, 0, 0), (0.2, 0, 0), 1e-3, 1)]), slow)     # below one quantum
+    assert abs(out.machine_time_s - 0.2 / 24 * 60) < 1e-3 and "runs at 24 mm/min" in out.warnings[0]
+    out = compile_program(Program([Line((0, 0, 0), (0.2, 0, 0), 2400, 1)]), slow)     # 100 quanta: exact
+    assert out.warnings == []

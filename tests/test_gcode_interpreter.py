@@ -5,6 +5,7 @@ programs against an independent model of the position, and the public corpus end
 import math
 import os
 import random
+import time
 from pathlib import Path
 
 import pytest
@@ -96,6 +97,13 @@ def test_error_is_a_usage_error_with_the_exact_format():
     ("G4", "line 1, column 1: G4: needs a P word (seconds)"),
     ("G4 P-1", "line 1, column 4: P-1: the dwell time cannot be negative"),
     ("M62", "line 1, column 1: M62: needs a P word (the output number)"),
+    ("M62 P1.5", "line 1, column 5: P1.5: the output number must be a whole number >= 0"),
+    ("M65 P-1", "line 1, column 5: P-1: the output number must be a whole number >= 0"),
+    ("G20 G0 X[10**308]", "line 1, column 8: X[10**308]: the value is out of range (beyond 1e+15)"),
+    ("G[10**308]", "line 1, column 1: G[10**308]: the value is out of range (beyond 1e+15)"),
+    ("G4 P[10**16]", "line 1, column 4: P[10**16]: the value is out of range (beyond 1e+15)"),
+    ("G20\n#5221=[10**308]\nG54", "line 3, column 1: a position or offset is out of range (not a finite "
+                                  "number)"),
     ("G53 G2 X1 I1 F10", "line 1, column 1: G53: G53 needs G0 or G1"),
     ("G91 G53 G0 X1", "line 1, column 5: G53: G53 cannot be used in incremental mode (G91)"),
     ("G92", "line 1, column 1: G92: G92 needs at least one axis word"),
@@ -253,7 +261,9 @@ def test_full_circles_turns_and_helix():
     assert ms[1] == Arc((10, 0, 0), (10, 0, 0), (0, 0, 0), "XY", True, 1, 100, 2)
     assert ms[2].turns == 3 and ms[2].end == (10, 0, -3) and ms[2].centre == (0, 0, 0)
     assert error("G2 X1 I1 P0 F10") == (
-        "line 1, column 10: P0: the number of turns must be a whole number >= 1")
+        "line 1, column 10: P0: the number of turns must be a whole number 1 .. 10000")
+    assert error("G2 X1 I1 P10001 F10").endswith("P10001: the number of turns must be a whole number 1 .. 10000")
+    assert paths("G2 X0 Y0 I1 P10000 F10")[0].turns == 10000
 
 
 def test_planes():
@@ -469,6 +479,16 @@ def test_overrides_are_ignored_with_a_warning_and_messages_are_collected():
     assert program.warnings == ["line 1: M48: overrides are not modelled; ignored",
                                 "line 3: M50: overrides are not modelled; ignored"]
     assert program.messages == ["line 2: hello there"]
+    # a message reaches a terminal: control characters escaped, other text kept
+    program = interpret("(MSG, clear\x1b[2J\x07 Привет)")
+    assert program.messages == ["line 1: clear\\x1b[2J\\x07 Привет"]
+
+
+def test_an_endless_loop_with_moves_stops_within_seconds():
+    start = time.perf_counter()
+    assert error("F100\no1 while [1]\nG1 X1\nG1 X0\no1 endwhile").endswith(
+        "o1 endwhile: more than 100000 loop iterations: a loop that never ends?")
+    assert time.perf_counter() - start < 30
 
 
 def test_unused_axes_at_zero_are_accepted():

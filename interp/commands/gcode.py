@@ -102,7 +102,7 @@ def read_program(path: str) -> str:
 
 
 def fmt(value: float) -> str:
-    return f"{value:.6g}" if value != int(value) else str(int(value))
+    return str(int(value)) if value == int(value) and abs(value) < 1e15 else f"{value:.6g}"
 
 
 def summary(program, compiled: Compiled, machine: Machine) -> dict:

@@ -73,6 +73,8 @@ EXIT_MARGIN = 4                              # quanta kept below the next comman
 LINE_MAX = (1 << (W - 1)) - 1                # longest line command per axis (-2^31 is refused)
 ARC_LIMIT = 1 << (W - 3)                     # circ_arc: |point - centre| < 2^(W-3) per axis
 DWELL_MAX = (1 << W) - 1                     # cycles of one DWELL command (unsigned)
+DWELL_SECONDS_MAX = 86_400                   # a dwell or pause of more than a day is refused
+DIGITAL_OUTPUTS = 4                          # the controller's dout[3:0]: M62..M65 P 0 .. 3
 FEED_MAX = (1 << FEED_W) - 1
 VALUE_MAX = (1 << (W - 1)) - 1               # event values are signed W bits
 LEN_MAX, ZW_MAX, NW_MAX = (1 << LEN_W) - 1, (1 << ZW) - 1, (1 << NW) - 1
@@ -208,6 +210,12 @@ def write_commands(path, commands: list[Cmd]) -> None:
         f.write("".join(" ".join(map(str, c.fields())) + "\n" for c in commands))
 
 
+def held_speed(feed: int, quantum: int) -> int:
+    """The cruise speed_ramp holds for a feed word: whole quanta, at least one (its cap lowers n
+    while n A > feed, down to 1)."""
+    return max(1, feed // quantum) * quantum
+
+
 def _round(value: float) -> int:
     return math.floor(value + 0.5)
 
@@ -232,6 +240,8 @@ class Compiler:
         self.spm = machine.steps_per_mm
         self.axes = machine.axes
         self.clock = machine.clock_hz
+        if not 0 <= pause_seconds <= DWELL_SECONDS_MAX:
+            raise CompileError(f"a pause of {pause_seconds:g} s is longer than a day ({DWELL_SECONDS_MAX} s)")
         self.pause_cycles = _round(pause_seconds * self.clock)
         self.here = [0, 0, 0]
         # an arc's correction not yet made: (the rounded end, feed mm/s, source line) of an
@@ -530,8 +540,9 @@ class Compiler:
     # ---------------- the rest ----------------
     def dwell(self, m: Dwell) -> None:
         self.settle()
-        if not m.seconds >= 0 or not math.isfinite(m.seconds):
-            raise CompileError(f"line {m.line}: dwell of {m.seconds:g} s")
+        if not 0 <= m.seconds <= DWELL_SECONDS_MAX:
+            raise CompileError(f"line {m.line}: a dwell of {m.seconds:g} s is out of range (0 .. {DWELL_SECONDS_MAX} s, "
+                               f"a day)")
         self.pause(_round(m.seconds * self.clock), m.line, always=True)
 
     def pause(self, cycles: int, line: int, always: bool = False) -> None:
@@ -553,6 +564,9 @@ class Compiler:
                           f"{self.machine.max_s:g}; it runs at full duty")
                 s = self.machine.max_s
             value = _round(s / self.machine.max_s * PWM_FULL)
+        elif m.name in ("output_on", "output_off") and m.value not in range(DIGITAL_OUTPUTS):
+            raise CompileError(f"line {m.line}: output {m.value:g}: the controller has digital outputs "
+                               f"0 .. {DIGITAL_OUTPUTS - 1} (M62..M65 P)")
         else:
             if not math.isfinite(m.value) or abs(m.value) > VALUE_MAX:
                 raise CompileError(f"line {m.line}: {m.name} value {m.value:g} does not fit the event "
@@ -578,7 +592,10 @@ class Compiler:
             return BLOCK_SHIFT_MIN, 0
         jerk = self.machine.values["motion"]["jerk_mm_s3"]
         cycles = 2 * accel_mm_s2 / jerk * self.clock
-        total = max(0, math.ceil(math.log2(cycles) - 1e-12)) if cycles > 1 else 0
+        if cycles <= 1:
+            total = 0
+        else:                                                # (cycles is inf for a tiny jerk)
+            total = math.ceil(math.log2(cycles) - 1e-12) if cycles < math.inf else math.inf
         jerk_shift = min(MW, max(0, total - BLOCK_SHIFT_MIN))
         block_shift = max(BLOCK_SHIFT_MIN, total - jerk_shift)
         if block_shift > BLOCK_SHIFT_MAX:
@@ -725,6 +742,7 @@ class Compiler:
             raise CompileError(f"the speed quantum {quantum} does not fit cmd_feed's {FEED_W} bits")
         self.out.settings = {"speed_quantum": quantum, "block_shift": block_shift, "jerk_shift": jerk_shift,
                              "override": 100}
+        slower = {}                     # planned cruise over the speed the hardware holds
         for n, (cmd, p, k, a) in enumerate(zip(moves, plans, scale, a_pu)):
             feed = _round(p.cruise_mm_s * k)
             if feed <= 0:
@@ -733,11 +751,13 @@ class Compiler:
                                    f"the controller: its speed word rounds to 0 (slowest {slowest:.3g} mm/min "
                                    f"at {clock:g} Hz)")
             cmd.feed = min(feed, FEED_MAX)
-            if cmd.feed < quantum:
-                self.warn("quantum", cmd.source, f"feed {p.cruise_mm_s * 60:g} mm/min is below the speed "
-                          f"generator's quantum ({quantum / k * 60:.3g} mm/min: 2^block_shift x the largest "
-                          f"acceleration per clock at {clock:g} Hz); the move runs at one quantum: raise "
-                          f"the clock or lower the accelerations")
+            held = held_speed(cmd.feed, quantum)
+            slower[id(cmd)] = p.cruise_mm_s * k / held
+            if not 0.99 * cmd.feed <= held <= cmd.feed:
+                self.warn("quantum", cmd.source, f"feed {p.cruise_mm_s * 60:g} mm/min runs at {held / k * 60:.3g} "
+                          f"mm/min: the speed generator holds whole quanta of {quantum / k * 60:.3g} mm/min "
+                          f"(2^block_shift x the largest acceleration per clock at {clock:g} Hz): raise the "
+                          f"clock or lower the accelerations")
             cmd.limit = max(cmd.feed, min(FEED_MAX, math.floor(caps[n] * k)))
             cmd.exit = min(NW_MAX, math.floor(p.exit_mm_s * min(scale[n:n + 2]) / quantum))
             cmd.rate = max(1, min(1 << PF, math.floor(a * (1 << block_shift) * (1 << PF) / quantum)))
@@ -762,7 +782,8 @@ class Compiler:
         self.out.command_time = []
         for n, cmd in enumerate(commands):
             if cmd.motion is not None:
-                t += plan_of[id(cmd)].time_s
+                # at the speed the hardware holds, whole quanta (the warning above)
+                t += plan_of[id(cmd)].time_s * slower[id(cmd)]
                 following = commands[n + 1] if n + 1 < len(commands) else None
                 if following is None or following.motion is None or following.motion.stop_before:
                     t += window

@@ -27,6 +27,12 @@ def printable(text: str) -> str:
     return "".join(out)
 
 
+def without_controls(text: str) -> str:
+    """`text` with its control characters (and any other non-printable one) escaped as
+    printable() does; printable non-ASCII text (a message in Russian) is kept."""
+    return "".join(ch if ch.isprintable() else printable(ch) for ch in text)
+
+
 WORD_SHOWN = 40         # a longer word is shortened in the message
 
 

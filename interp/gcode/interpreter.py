@@ -21,8 +21,8 @@ import math
 from dataclasses import dataclass
 
 from . import cycles
-from .errors import GcodeError
-from .language import Block, Parameters, Word, iterate_blocks
+from .errors import GcodeError, without_controls
+from .language import Block, ExpressionError, Parameters, Word, iterate_blocks
 from .moves import PLANES, Arc, Dwell, Event, Line, Point, Program
 
 MM_PER_INCH = 25.4
@@ -36,6 +36,8 @@ CENTRE_ABSOLUTE_TOLERANCE = {"inch": 0.05, "mm": 0.5}
 CENTRE_SMALL_TOLERANCE = {"inch": 0.0005, "mm": 0.005}
 CENTRE_RELATIVE_TOLERANCE = 0.001
 MAX_CYCLE_MOVES = 1_000_000     # one canned-cycle block expands to at most this many moves
+MAX_TURNS = 10_000              # an arc's P (turns): 10,000 compile in about 6 s
+WORD_LIMIT = 1e15               # a word's value beyond this is refused (no position overflows)
 SAME_POINT_MM = 1e-9            # an arc's end this close to its start is a full circle
 
 AXES = "XYZ"
@@ -219,7 +221,10 @@ class _Machine:
             self.settings_changed = False
         for key, value in values.items():
             if self.written.get(key) != value:
-                self.params.set(key, value)
+                try:
+                    self.params.set(key, value)
+                except ExpressionError:                     # an offset or position overflowed
+                    self._fail(None, "a position or offset is out of range (not a finite number)")
                 self.written[key] = value
 
     def _read_offsets(self, system: int) -> None:
@@ -254,7 +259,7 @@ class _Machine:
         for comment in block.comments:
             text = comment.strip()
             if text[:4].upper() == "MSG,":
-                self.program.messages.append(f"line {block.line}: {text[4:].strip()}")
+                self.program.messages.append(f"line {block.line}: {without_controls(text[4:].strip())}")
         words = self._sort_words(block)
         line = block.line
         if words.g.keys() & {"non-modal", "units", "tool length", "coordinate system"} or \
@@ -300,6 +305,8 @@ class _Machine:
             if not words.has("P"):
                 self._fail(word, "needs a P word (the output number)")
             number = words.value("P")
+            if number < 0 or number != int(number):
+                self._fail(words.word("P"), "the output number must be a whole number >= 0")
             self._event("output_on" if code in (62, 64) else "output_off", number, line)
         # 8. tool change
         if "tool change" in words.m:
@@ -449,6 +456,8 @@ class _Machine:
         letters: dict[str, Word] = {}
         coolant: list[tuple[int, Word]] = []
         for word in block.words:
+            if not abs(word.value) <= WORD_LIMIT:
+                self._fail(word, f"the value is out of range (beyond {WORD_LIMIT:g})")
             letter = word.letter.upper()
             if letter == "G":
                 code = round(word.value * 10)
@@ -618,8 +627,8 @@ class _Machine:
         turns = 1
         if words.has("P"):
             p = words.value("P")
-            if p != int(p) or p < 1:
-                self._fail(words.word("P"), "the number of turns must be a whole number >= 1")
+            if p != int(p) or not 1 <= p <= MAX_TURNS:
+                self._fail(words.word("P"), f"the number of turns must be a whole number 1 .. {MAX_TURNS}")
             turns = int(p)
         su, sv = start[iu], start[iv]
         eu, ev = target[iu], target[iv]

@@ -32,8 +32,8 @@ from interp.gcode.errors import GcodeError, printable
 NUMBERED = 5602                 # numbered parameters #1 .. #5602
 CALL_ARGUMENTS = 30             # #1 .. #30 are a subroutine's arguments, local to the call
 MAX_DIGITS = 60                 # digits in one number
-MAX_LOOP_ITERATIONS = 10**6     # all loops of one run together
-MAX_CALLS = 10**6               # subroutine calls in one run
+MAX_LOOP_ITERATIONS = 10**5     # all loops of one run together (a few seconds with moves inside)
+MAX_CALLS = 10**5               # subroutine calls in one run
 MAX_CALL_DEPTH = 100            # nested subroutine calls
 MAX_NESTING = 200               # brackets / operators nested in one expression
 EQUAL_TOLERANCE = 1e-4          # EQ and NE compare with this tolerance, as LinuxCNC does
