@@ -310,6 +310,60 @@ def test_correction_taken_in_by_the_next_arc():
     assert total(out.commands) == [10000, 0, 0]
 
 
+def test_correction_in_another_plane_or_before_an_exact_stop():
+    # the correction of OFF_CIRCLE (an XY arc) is along y: an arc whose normal is y (ZX) cannot
+    # take it in, nor an arc in G61; an arc whose normal is x (YZ) takes it in
+    start, end = (0, 100.1, 0), (0, 100.1, 20)
+    cases = [(Arc(start, end, (0, 100.1, 10), "ZX", True, 1, 1000, 3), [], [LINE, ARC_CCW, LINE, ARC_CCW]),
+             (Arc(start, end, (0, 100.1, 10), "YZ", True, 1, 1000, 3), [(3, "G61", None, None)],
+              [LINE, ARC_CCW, LINE, ARC_CCW]),
+             (Arc(start, end, (0, 100.1, 10), "YZ", True, 1, 1000, 3), [], [LINE, ARC_CCW, ARC_CCW])]
+    for arc, modes, kinds in cases:
+        out = compile_program(Program([Line((0, 0, 0), (100, 0, 0), None, 1), OFF_CIRCLE, arc], path_modes=modes),
+                              MACHINE)
+        assert [c.kind for c in out.commands][:len(kinds)] == kinds, (arc.plane, modes)
+        assert total(out.commands) == steps_of(end)
+
+
+def test_take_in_keeps_the_arc_core_limit():
+    # an arc whose radius is just inside the core's limit (2^29 steps), starting where a small
+    # arc before it ended 1.8 steps inside that arc's circle: taken in, its points would reach
+    # the limit; it runs as chords instead (found by review)
+    machine = load_machine(sets=["axis.x.steps_per_mm=1e5", "axis.y.steps_per_mm=1e5", "axis.x.min_mm=-6000",
+                                 "axis.x.max_mm=6000", "axis.y.min_mm=-6000", "axis.y.max_mm=6000"])
+    r2 = (ARC_LIMIT - 2.01) / 1e5
+    a, rho, d = 1.0292e-4, 0.5425, 1.8274e-5
+    s2 = (r2 * math.cos(-a), r2 * math.sin(-a), 0.0)
+    c1 = (s2[0] - rho * math.cos(-a), s2[1] - rho * math.sin(-a), 0.0)
+    s1 = (c1[0] + (rho + d) * math.cos(-a - 0.5), c1[1] + (rho + d) * math.sin(-a - 0.5), 0.0)
+    prog = [Line((0, 0, 0), s1, None, 1), Arc(s1, s2, c1, "XY", True, 1, 1000, 2),
+            Arc(s2, (r2, 0.0, 0.0), (0.0, 0.0, 0.0), "XY", True, 1, 1000, 3)]
+    out = compile_program(Program(prog), machine)
+    for c in arc_commands(out):
+        assert arc_error(c.i, c.j, 0, 0, c.x, c.y, 32) is None, c
+    assert total(out.commands) == steps_of((r2, 0, 0), (1e5, 1e5, 100))
+
+
+def test_huge_radius_runs_as_chords():
+    # R 1e14 mm: beyond the core, a chord's angle underflowed to 0 (a division by zero)
+    out = compile_program(Program([Arc((0, 0, 0), (1, 0, 0), (0.5, -1e14, 0), "XY", False, 1, 100, 1)]), MACHINE)
+    assert out.chords == 1 and total(out.commands) == [100, 0, 0]
+
+
+def test_command_limit(monkeypatch):
+    # a program that would make more than MAX_COMMANDS commands stops with one line, before it
+    # makes them (a chord arc's count is known in advance)
+    import interp.gcode.compile as compiler
+    monkeypatch.setattr(compiler, "MAX_COMMANDS", 50)
+    prog = [Line((0, 0, 0), (k + 1, 0, 0), 1000, k + 1) for k in range(60)]
+    with pytest.raises(CompileError, match="^line 51: the program makes more than 50 motion_top commands"):
+        compile_program(Program(prog), MACHINE)
+    uneven = load_machine(sets=["axis.y.steps_per_mm=80"])
+    arc = Arc((10, 0, 0), (10, 0, 0), (0, 0, 0), "XY", True, 1, 1000, 7)
+    with pytest.raises(CompileError, match="^line 7: the program makes more than 50"):
+        compile_program(Program([arc]), uneven)
+
+
 def test_corrections_in_random_chains():
     # chains of lines and arcs (ends off their circles within LinuxCNC's tolerance, some of them
     # sharing the centre before, some in another plane): every arc about its centre rounded
@@ -737,7 +791,7 @@ def test_dwells_split():
     assert len(compile_program(Program([Dwell(86_400, 1)]), m).commands) == 4024
     with pytest.raises(CompileError, match=r"line 2: a dwell of 86401 s is out of range \(0 \.\. 86400 s"):
         compile_program(Program([Dwell(86_401, 2)]), m)
-    with pytest.raises(CompileError, match="a pause of 1e\\+300 s is longer than a day"):
+    with pytest.raises(CompileError, match="a pause of 1e\\+300 s is out of range"):
         compile_program(Program([Event("pause", 0, 1)]), m, pause_seconds=1e300)
 
 

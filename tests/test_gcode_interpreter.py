@@ -484,6 +484,16 @@ def test_overrides_are_ignored_with_a_warning_and_messages_are_collected():
     assert program.messages == ["line 1: clear\\x1b[2J\\x07 Привет"]
 
 
+def test_move_limit(monkeypatch):
+    # the moves of a program, an arc's turns counted, are at most MAX_MOVES: loops of many-turn
+    # arcs stop within seconds
+    import interp.gcode.interpreter as interpreter
+    monkeypatch.setattr(interpreter, "MAX_MOVES", 1000)
+    assert error("F100\nG2 X0 I1 P600\nG2 X0 I1 P600") == \
+        "line 3, column 1: the program makes more than 1000 moves (an arc's turns counted): split it"
+    assert error("F100\no1 repeat [600]\nG1 X1\nG1 X0\no1 endrepeat").startswith("line 3, column 1: the program")
+
+
 def test_an_endless_loop_with_moves_stops_within_seconds():
     start = time.perf_counter()
     assert error("F100\no1 while [1]\nG1 X1\nG1 X0\no1 endwhile").endswith(

@@ -16,8 +16,8 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
     through the start (the arc core would refuse it), the arc runs to the
     lattice point on that circle nearest the programmed end's direction, and the
     difference is `pending`: the next line takes it in (it starts there and ends
-    on its own rounded end), so does the next arc in the plane if it then starts
-    within TAKE_IN_STEPS of its programmed circle (its centre is rounded
+    on its own rounded end), so does the next arc if the difference lies in its
+    plane and it then starts within TAKE_IN_STEPS of its programmed circle (its centre is rounded
     relative to its rounded start, so nothing drifts); otherwise, and before a
     dwell, an event, an exact-stop move or the program's end, a short line goes
     to the rounded end (settle).  P turns are full circles before the last part.  An
@@ -73,6 +73,7 @@ EXIT_MARGIN = 4                              # quanta kept below the next comman
 LINE_MAX = (1 << (W - 1)) - 1                # longest line command per axis (-2^31 is refused)
 ARC_LIMIT = 1 << (W - 3)                     # circ_arc: |point - centre| < 2^(W-3) per axis
 DWELL_MAX = (1 << W) - 1                     # cycles of one DWELL command (unsigned)
+MAX_COMMANDS = 2_000_000                     # commands of one program (minutes to plan)
 DWELL_SECONDS_MAX = 86_400                   # a dwell or pause of more than a day is refused
 DIGITAL_OUTPUTS = 4                          # the controller's dout[3:0]: M62..M65 P 0 .. 3
 FEED_MAX = (1 << FEED_W) - 1
@@ -241,7 +242,7 @@ class Compiler:
         self.axes = machine.axes
         self.clock = machine.clock_hz
         if not 0 <= pause_seconds <= DWELL_SECONDS_MAX:
-            raise CompileError(f"a pause of {pause_seconds:g} s is longer than a day ({DWELL_SECONDS_MAX} s)")
+            raise CompileError(f"a pause of {pause_seconds:g} s is out of range (0 .. {DWELL_SECONDS_MAX} s, a day)")
         self.pause_cycles = _round(pause_seconds * self.clock)
         self.here = [0, 0, 0]
         # an arc's correction not yet made: (the rounded end, feed mm/s, source line) of an
@@ -273,7 +274,14 @@ class Compiler:
             raise CompileError(f"line {line}: {name} {value:.6g} mm is beyond the {name} travel "
                                f"{a.min_mm:g} .. {a.max_mm:g} mm (machine file)")
 
+    def room(self, count: int, line: int) -> None:
+        """Refuse a program that would make more than MAX_COMMANDS commands."""
+        if len(self.out.commands) + count > MAX_COMMANDS:
+            raise CompileError(f"line {line}: the program makes more than {MAX_COMMANDS} motion_top commands: "
+                               f"split it")
+
     def emit(self, cmd: Cmd) -> None:
+        self.room(1, cmd.source)
         if cmd.motion is None:                      # a dwell or an event: a barrier, a stop after it
             self.stop_next = True
         self.out.commands.append(cmd)
@@ -281,6 +289,7 @@ class Compiler:
     def emit_move(self, cmd: Cmd, feed_mm_s: float, start_mm, end_mm, steps: float, events: int,
                   length_mm: float, radius_mm: float | None = None, plane_axes=None) -> None:
         """A LINE or ARC command with what the planner needs of it."""
+        self.room(1, cmd.source)
         mode, tolerance = self.path_mode(cmd.source)
         cmd.motion = Motion(length_mm, _unit(start_mm), _unit(end_mm), feed_mm_s, steps, events, radius_mm,
                             plane_axes, stop_before=self.stop_next or mode in ("G61", "G61.1"),
@@ -389,7 +398,7 @@ class Compiler:
         if s_u != s_v:
             return self.chords(m, r, a0, turn * sweep, "the plane's axes have different steps_per_mm "
                                "(an ellipse in steps)")
-        if (r * s_u + 2) >= ARC_LIMIT:
+        if (r * s_u + 2 + TAKE_IN_STEPS) >= ARC_LIMIT:       # (+ a start taken in off the circle)
             return self.chords(m, r, a0, turn * sweep, f"its radius is beyond the arc core's limit "
                                f"({ARC_LIMIT} steps)")
         caps = [min(self.axes[iu].max_rate_mm_min, self.axes[iv].max_rate_mm_min) * length / plane_len
@@ -517,10 +526,13 @@ class Compiler:
         """The arc as lines within CHORD_SAGITTA steps of it."""
         iu, iv, iw = PLANES[m.plane]
         big = r * max(self.spm[iu], self.spm[iv])
-        step = 2 * math.acos(1 - CHORD_SAGITTA / big) if big > CHORD_SAGITTA else math.pi / 2
+        # the angle whose chord is CHORD_SAGITTA inside: 1 - cos(step / 2) = sagitta / big, in a form
+        # that stays above 0 for any radius
+        step = 4 * math.asin(math.sqrt(CHORD_SAGITTA / (2 * big))) if big > CHORD_SAGITTA else math.pi / 2
         n = max(1, math.ceil(abs(signed_sweep) / step - 1e-9))
         w0 = m.start[iw] if start_w is None else start_w
         dw = m.end[iw] - w0
+        self.room(n, m.line)
         if reason:
             self.out.chords += 1
             self.warn("chords", m.line, f"arc run as {n} chords: {reason}")

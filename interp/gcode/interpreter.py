@@ -37,6 +37,7 @@ CENTRE_SMALL_TOLERANCE = {"inch": 0.0005, "mm": 0.005}
 CENTRE_RELATIVE_TOLERANCE = 0.001
 MAX_CYCLE_MOVES = 1_000_000     # one canned-cycle block expands to at most this many moves
 MAX_TURNS = 10_000              # an arc's P (turns): 10,000 compile in about 6 s
+MAX_MOVES = 2_000_000           # moves of one program, an arc's turns counted (minutes to compile)
 WORD_LIMIT = 1e15               # a word's value beyond this is refused (no position overflows)
 SAME_POINT_MM = 1e-9            # an arc's end this close to its start is a full circle
 
@@ -157,6 +158,7 @@ class _Machine:
     def __init__(self, params: Parameters, g28: Point, g30: Point, tools: dict[int, dict]):
         self.params = params
         self.program = Program()
+        self.moves_made = 0
         self.tools = {int(t): dict(v) for t, v in tools.items()}
         self.position = [0.0, 0.0, 0.0]          # machine mm
         self.units = "mm"
@@ -241,8 +243,16 @@ class _Machine:
                 vector[a] = self.params.get(base + a) * self.scale
 
     # ---- output ---------------------------------------------------------------------
+    def _add(self, move) -> None:
+        """Append a move (an arc's turns count as moves towards MAX_MOVES)."""
+        self.moves_made += move.turns if isinstance(move, Arc) else 1
+        if self.moves_made > MAX_MOVES:
+            self._fail(None, f"the program makes more than {MAX_MOVES} moves (an arc's turns counted): "
+                             "split it")
+        self.program.moves.append(move)
+
     def _event(self, name: str, value: float, line: int) -> None:
-        self.program.moves.append(Event(name, float(value), line))
+        self._add(Event(name, float(value), line))
 
     def _warn(self, line: int, text: str) -> None:
         self.program.warnings.append(f"line {line}: {text}")
@@ -251,7 +261,7 @@ class _Machine:
         start = tuple(self.position)
         end = tuple(target)
         if start != end:
-            self.program.moves.append(Line(start, end, feed, line))
+            self._add(Line(start, end, feed, line))
         self.position = list(target)
 
     # ---- one block ------------------------------------------------------------------
@@ -348,7 +358,7 @@ class _Machine:
             p = words.value("P")
             if p < 0:
                 self._fail(words.word("P"), "the dwell time cannot be negative")
-            self.program.moves.append(Dwell(p, line))
+            self._add(Dwell(p, line))
         # 15. plane, 16. units
         if "plane" in words.g:
             self.plane = PLANE_OF[words.g["plane"][0]]
@@ -698,8 +708,7 @@ class _Machine:
         radius_mm = math.hypot(su - cu, sv - cv)
         length = math.hypot(radius_mm * sweep, target[iw] - start[iw])
         feed = self._feed_for(length, inverse_f, mword)
-        self.program.moves.append(Arc(tuple(start), tuple(target), tuple(centre), self.plane,
-                                      ccw, turns, feed, self._line))
+        self._add(Arc(tuple(start), tuple(target), tuple(centre), self.plane, ccw, turns, feed, self._line))
         self.position = target
 
     def _cycle(self, words: _Words, mode: int, motion) -> None:
@@ -820,7 +829,7 @@ class _Machine:
                                          holes=holes, r=r, bottom=bottom, clear=clear, q=q * s,
                                          p=p):
             if kind == "dwell":
-                self.program.moves.append(Dwell(value, line))
+                self._add(Dwell(value, line))
             else:
                 self._line_to(list(value), None if kind == "rapid" else self.feed, line)
 
