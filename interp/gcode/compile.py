@@ -17,10 +17,11 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
     lattice point on that circle nearest the programmed end's direction, and the
     difference is `pending`: the next line takes it in (it starts there and ends
     on its own rounded end), so does the next arc if the difference lies in its
-    plane and it then starts within TAKE_IN_STEPS of its programmed circle (its centre is rounded
-    relative to its rounded start, so nothing drifts); otherwise, and before a
-    dwell, an event, an exact-stop move or the program's end, a short line goes
-    to the rounded end (settle).  P turns are full circles before the last part.  An
+    plane and it then starts within TAKE_IN_STEPS of its programmed circle (its
+    centre is rounded relative to its rounded start, so nothing drifts);
+    otherwise, and before a dwell, an event, an exact-stop move or the program's
+    end, a short line goes to the rounded end (settle).  P turns are full circles
+    before the last part.  An
     arc whose rounded start and end coincide but which is short in the source
     (under half a turn) runs as nothing or a line, never as a full circle.
     Arcs whose radius is beyond the core's limit (2^29 steps) or whose plane
