@@ -554,8 +554,8 @@ class Compiler:
     def dwell(self, m: Dwell) -> None:
         self.settle()
         if not 0 <= m.seconds <= DWELL_SECONDS_MAX:
-            raise CompileError(f"line {m.line}: a dwell of {m.seconds:g} s is out of range (0 .. {DWELL_SECONDS_MAX} s, "
-                               f"a day)")
+            raise CompileError(f"line {m.line}: a dwell of {m.seconds:g} s is out of range "
+                               f"(0 .. {DWELL_SECONDS_MAX} s, a day)")
         self.pause(_round(m.seconds * self.clock), m.line, always=True)
 
     def pause(self, cycles: int, line: int, always: bool = False) -> None:
