@@ -973,3 +973,19 @@ def test_speeds_are_whole_quanta():
     assert abs(out.machine_time_s - 0.2 / 24 * 60) < 1e-3 and "runs at 24 mm/min" in out.warnings[0]
     out = compile_program(Program([Line((0, 0, 0), (0.2, 0, 0), 2400, 1)]), slow)     # 100 quanta: exact
     assert out.warnings == []
+
+
+def test_exact_stop_before_each_programmed_move_only():
+    # G61 stops before every programmed move, not inside one: not between an arc's turns or
+    # chords, nor before the correction that finishes an arc (the reviewer's double stop)
+    g61 = [(1, "G61", None, None)]
+    prog = [Line((0, 0, 0), (100, 0, 0), None, 1), OFF_CIRCLE, Line((0, 100.1, 0), (0, 50, 0), 1000, 3)]
+    out = compile_program(Program(prog, path_modes=g61), MACHINE)
+    assert [(c.kind, c.motion.stop_before) for c in out.commands] == \
+        [(LINE, True), (ARC_CCW, True), (LINE, False), (LINE, True)]
+    turns = Arc((100, 0, 0), (100, 0, 0), (0, 0, 0), "XY", True, 3, 1000, 2)
+    out = compile_program(Program([prog[0], turns], path_modes=g61), MACHINE)
+    assert [c.motion.stop_before for c in arc_commands(out)] == [True, False, False]
+    chords = compile_program(Program([prog[0], turns], path_modes=g61), load_machine(sets=["axis.y.steps_per_mm=80"]))
+    stops = [c.motion.stop_before for c in chords.commands[1:]]
+    assert len(stops) > 100 and stops == [True] + [False] * (len(stops) - 1)

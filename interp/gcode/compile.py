@@ -251,6 +251,7 @@ class Compiler:
         self.pending: tuple[list[int], float, int] | None = None
         self.out = Compiled(profile=self.profile_name, costs=costs)
         self.stop_next = True           # an exact stop before the next move
+        self.first = True               # no command of the programmed move made yet (emit_move)
         self.modes: list = []           # the program's path-control modes (line, mode, P, Q)
         self._warnings: dict[str, list[str]] = {}
         self._more: dict[str, int] = {}
@@ -288,14 +289,18 @@ class Compiler:
         self.out.commands.append(cmd)
 
     def emit_move(self, cmd: Cmd, feed_mm_s: float, start_mm, end_mm, steps: float, events: int,
-                  length_mm: float, radius_mm: float | None = None, plane_axes=None) -> None:
-        """A LINE or ARC command with what the planner needs of it."""
+                  length_mm: float, radius_mm: float | None = None, plane_axes=None, piece: bool = False) -> None:
+        """A LINE or ARC command with what the planner needs of it.  An exact-stop mode stops
+        before the first command of a programmed move only: not before its other pieces (an
+        arc's turns and chords, a long line's parts) nor before a correction (`piece`) that
+        finishes the move before it."""
         self.room(1, cmd.source)
         mode, tolerance = self.path_mode(cmd.source)
+        exact = mode in ("G61", "G61.1") and self.first and not piece
         cmd.motion = Motion(length_mm, _unit(start_mm), _unit(end_mm), feed_mm_s, steps, events, radius_mm,
-                            plane_axes, stop_before=self.stop_next or mode in ("G61", "G61.1"),
-                            tolerance_mm=tolerance)
+                            plane_axes, stop_before=self.stop_next or exact, tolerance_mm=tolerance)
         self.stop_next = False
+        self.first = self.first and piece
         self.out.commands.append(cmd)
 
     def path_mode(self, line: int) -> tuple[str, float | None]:
@@ -324,12 +329,12 @@ class Compiler:
         return feed / 60
 
     # ---------------- lines ----------------
-    def line_to(self, target: list[int], feed_mm_s: float, line: int) -> None:
+    def line_to(self, target: list[int], feed_mm_s: float, line: int, piece: bool = False) -> None:
         """LINE commands from here to target (steps), split into pieces below 2^31 steps."""
-        self.line_by([t - h for t, h in zip(target, self.here)], feed_mm_s, line)
+        self.line_by([t - h for t, h in zip(target, self.here)], feed_mm_s, line, piece)
         self.here = list(target)
 
-    def line_by(self, delta: list[int], feed_mm_s: float, line: int) -> None:
+    def line_by(self, delta: list[int], feed_mm_s: float, line: int, piece: bool = False) -> None:
         """LINE commands moving by delta (steps), split into pieces below 2^31 steps."""
         big = max(abs(d) for d in delta)
         if big == 0:
@@ -342,7 +347,7 @@ class Compiler:
             mm = [d / s for d, s in zip(step, self.spm)]
             self.emit_move(Cmd(LINE, 0, *step, source=line), feed_mm_s, mm, mm,
                            math.sqrt(sum(d * d for d in step)), line_count(*step),
-                           math.sqrt(sum(d * d for d in mm)))
+                           math.sqrt(sum(d * d for d in mm)), piece=piece)
             done = part
 
     def settle(self) -> None:
@@ -350,7 +355,7 @@ class Compiler:
         if self.pending is not None:
             target, feed, line = self.pending
             self.pending = None
-            self.line_to(target, feed, line)
+            self.line_to(target, feed, line, piece=True)
 
     def exact_stop(self, line: int) -> bool:
         """Whether the move on `line` starts with an exact stop (its path-control mode)."""
@@ -808,6 +813,7 @@ class Compiler:
     def run(self, program: Program) -> Compiled:
         self.modes = sorted(program.path_modes, key=lambda mode: mode[0])
         for m in program.moves:
+            self.first = True
             if isinstance(m, Line):
                 self.out.moves += 1
                 self.segment(m.start, m.end, m.feed, m.line)
