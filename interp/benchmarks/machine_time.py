@@ -28,6 +28,7 @@ from bisect import bisect_right
 from dataclasses import dataclass
 
 from ..cores import UsageError
+from ..gcode.compile import EXACT_STOP_MODES
 from ..gcode.errors import GcodeError
 from ..gcode.interpreter import interpret
 from ..gcode.machine import Machine, load_machine
@@ -37,7 +38,6 @@ from . import grbl_planner
 from .gcode_corpus import CORPUS, corpus_files
 
 STREAM_WINDOW = 32
-EXACT_STOP_MODES = ("G61", "G61.1")
 
 
 def _path_mode(program: Program):

@@ -87,6 +87,7 @@ LEN_MAX, ZW_MAX, NW_MAX = (1 << LEN_W) - 1, (1 << ZW) - 1, (1 << NW) - 1
 SEGMENT_CLOCKS = 2 * (NW + 3)
 COST_MODES = ("true", "even", "lecture")
 PWM_FULL = 65535                             # spindle duty of S = max_s
+EXACT_STOP_MODES = ("G61", "G61.1")            # path-control modes that stop before every move
 TAKE_IN_STEPS = 2.0                          # an arc takes in a correction within this of its circle
 CHORD_SAGITTA = 0.25                         # chords stay within this many steps of the true arc
 PLANE_CODE = {"XY": 0, "ZX": 1, "YZ": 2}     # cmd_plane
@@ -296,7 +297,7 @@ class Compiler:
         finishes the move before it."""
         self.room(1, cmd.source)
         mode, tolerance = self.path_mode(cmd.source)
-        exact = mode in ("G61", "G61.1") and self.first and not piece
+        exact = mode in EXACT_STOP_MODES and self.first and not piece
         cmd.motion = Motion(length_mm, _unit(start_mm), _unit(end_mm), feed_mm_s, steps, events, radius_mm,
                             plane_axes, stop_before=self.stop_next or exact, tolerance_mm=tolerance)
         self.stop_next = False
@@ -359,7 +360,7 @@ class Compiler:
 
     def exact_stop(self, line: int) -> bool:
         """Whether the move on `line` starts with an exact stop (its path-control mode)."""
-        return self.path_mode(line)[0] in ("G61", "G61.1")
+        return self.path_mode(line)[0] in EXACT_STOP_MODES
 
     def segment(self, start, end, feed, line: int) -> None:
         """A straight move between two points in mm (a G0/G1 line or a chord); it takes in a
