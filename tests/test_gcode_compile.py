@@ -989,3 +989,32 @@ def test_exact_stop_before_each_programmed_move_only():
     chords = compile_program(Program([prog[0], turns], path_modes=g61), load_machine(sets=["axis.y.steps_per_mm=80"]))
     stops = [c.motion.stop_before for c in chords.commands[1:]]
     assert len(stops) > 100 and stops == [True] + [False] * (len(stops) - 1)
+
+
+def test_a_program_compiled_from_the_machines_position():
+    """compile_text(start_steps=...): the program starts where the machine is (interp send reads
+    it from the controller).  G90 targets are machine coordinates, so the commands differ from a
+    start at 0 by the start; G91 moves and arcs about their start are the same; the end and
+    the travel limits are absolute."""
+    from interp.commands.gcode import compile_text
+
+    machine = load_machine(None, ["axis.x.max_mm=20"])
+    start = (801, -400, 3)                                  # steps: 8.01, -4, 0.03 mm
+    absolute = "G21 G90\nG1 X10 Y0 Z0 F600\nG2 X10 Y0 I5 J0\nG1 Y1\n"
+    relative = "G21 G91\nG1 X2 F600\nG3 X0 Y0 I-1 J0\nG1 Y1\n"
+
+    def geometry(commands):
+        return [c.fields()[:2] + c.fields()[3:10] for c in commands]
+
+    _, home = compile_text(absolute, machine)
+    _, there = compile_text(absolute, machine, start_steps=start)
+    assert home.end_steps == (1000, 100, 0) == there.end_steps
+    assert (there.commands[0].x, there.commands[0].y, there.commands[0].z) == (1000 - 801, 400, -3)
+    assert geometry(there.commands[1:]) == geometry(home.commands[1:])
+    _, home = compile_text(relative, machine)
+    _, there = compile_text(relative, machine, start_steps=start)
+    assert geometry(there.commands) == geometry(home.commands)
+    assert there.end_steps == tuple(s + e for s, e in zip(start, home.end_steps))
+    compile_text("G21 G91\nG1 X12.5 F600\n", machine)                   # within the 20 mm from 0 ...
+    with pytest.raises(CompileError, match="X 20.51 mm is beyond the X travel"):
+        compile_text("G21 G91\nG1 X12.5 F600\n", machine, start_steps=start)  # ... not from 8.01

@@ -62,6 +62,26 @@ def test_machine_error_line(capsys, program):
                            f"{len(compiled.commands)}, line {line}")
 
 
+def test_a_program_starts_where_the_machine_is(capsys, tmp_path, monkeypatch):
+    """The controller's position counters survive a run (only its reset clears them): the next
+    program is compiled from there, as Grbl runs it, so G90 X0 goes back to machine zero.  A
+    program compiled from 0 would run shifted by where the last one ended."""
+    device = DeviceModel()
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
+    first, second = tmp_path / "first.nc", tmp_path / "second.nc"
+    first.write_text("G21 G90\nG1 X8 Y-4 F600\nM2\n")
+    second.write_text("G21 G90\nG1 X1 F600\nG0 X0 Y0\nM2\n")
+    code, out, err = run(capsys, "send", str(first), "--sim-model")
+    assert code == 0 and err == "" and out.rstrip().endswith("end (800, -400, 0) steps")
+    code, out, err = run(capsys, "send", str(second), "--sim-model")
+    assert code == 0, err
+    assert err.strip() == ("interp send: the machine is at X8.000 Y-4.000 Z0.000 mm (machine coordinates): "
+                           "the program starts there")
+    assert out.rstrip().endswith("end (0, 0, 0) steps")
+    moves = [(r["x"], r["y"], r["z"]) for r in device.executed if r["kind"] == 0]
+    assert moves[-2:] == [(-700, 0, 0), (-100, 400, 0)]          # from (800, -400), not from 0
+
+
 def test_build_mismatch_exit_2(capsys, program, monkeypatch):
     monkeypatch.setattr(send, "open_transport", lambda args, machine: (DeviceModel(build=Build(MW=10)), 115200))
     code, out, err = run(capsys, "send", program, "--sim-model")

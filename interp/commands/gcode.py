@@ -57,19 +57,25 @@ DEMO_OPTIONS = ["--clock-hz", "50000"]
 
 # ---------------- the layers below, behind small functions (tests replace them) ----------------
 
-def interpret_program(text: str, machine: Machine):
-    """The program's moves in machine mm (interface 1)."""
+def interpret_program(text: str, machine: Machine, start_steps=(0, 0, 0)):
+    """The program's moves in machine mm (interface 1), from start_steps (the machine's
+    position)."""
+    from ..gcode.compile import start_mm
     from ..gcode.interpreter import interpret
 
-    return interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools)
+    return interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools,
+                     start=start_mm(machine, start_steps))
 
 
 def compile_text(text: str, machine: Machine | None = None, pause_seconds: float = 0.0,
-                 profile: str | None = None, costs: str = "true"):
-    """(Program, Compiled) of a program's text, as `interp gcode` makes them (default machine)."""
+                 profile: str | None = None, costs: str = "true", start_steps=(0, 0, 0)):
+    """(Program, Compiled) of a program's text, as `interp gcode` makes them (default machine),
+    from start_steps: the machine's position in steps (`interp send`: the controller's POS_X/Y/Z;
+    a fresh controller is at 0)."""
     machine = machine or load_machine()
-    program = interpret_program(text, machine)
-    return program, compile_program(program, machine, pause_seconds, profile=profile, costs=costs)
+    program = interpret_program(text, machine, start_steps)
+    return program, compile_program(program, machine, pause_seconds, profile=profile, costs=costs,
+                                    start_steps=start_steps)
 
 
 def run_simulation(commands_path: str, sim: str, *, steps_path, timing: dict, max_cycles: int,

@@ -22,7 +22,8 @@ from ..cores import UsageError
 from ..gcode import compile as gc
 from ..gcode.machine import Machine, load_machine
 from ..link import protocol as p
-from ..link.driver import Driver, LinkError, MachineError, MismatchError, check_controller, configure, run_program
+from ..link.driver import (Driver, LinkError, MachineError, MismatchError, check_controller, check_idle, configure,
+                           read_position, run_program)
 from ..link.records import DEFAULT_BUILD, Build, encode_program
 from .gcode import compile_text, read_program
 
@@ -132,6 +133,11 @@ class Keyboard:
 
 # ---------------- progress ----------------
 
+def mm_text(machine: Machine, steps) -> str:
+    """A position in steps as "X1.000 Y2.000 Z0.000" (mm)."""
+    return " ".join(f"{a}{v / s:.3f}" for a, v, s in zip("XYZ", steps, machine.steps_per_mm))
+
+
 class Progress:
     """tqdm bar over the records (stderr, only on a terminal): line, position (mm), queue, state."""
 
@@ -146,7 +152,7 @@ class Progress:
     def __call__(self, snap) -> None:
         if self.bar is None:
             return
-        mm = " ".join(f"{a}{v / s:.3f}" for a, v, s in zip("XYZ", snap.position, self.machine.steps_per_mm))
+        mm = mm_text(self.machine, snap.position)
         self.bar.set_postfix_str(f"line {line_of(self.compiled, snap.executed)} {mm} mm, queue {snap.queue_records}, "
                                  f"{p.STATE_NAMES.get(snap.state, '?')}", refresh=False)
         self.bar.update(min(snap.executed, self.bar.total) - self.bar.n)
@@ -180,16 +186,9 @@ def limit_names(limits: int) -> str:
 def cmd_send(args) -> int:
     check_link_args(args)
     machine = load_machine(args.machine, [], None)
-    program, compiled = compile_text(read_program(args.file), machine)
-    for message in program.messages:
-        print(f"interp: message: {message}", file=sys.stderr)
-    for warning in program.warnings + compiled.warnings:
-        print(f"interp: warning: {warning}", file=sys.stderr)
+    text = read_program(args.file)
+    program, compiled = compile_text(text, machine)      # G-code errors before the link opens
     build = compile_build()
-    stream = encode_program(compiled.commands, build)
-    records = len(compiled.commands)
-    if not records:
-        print("interp: warning: the program has no command to send", file=sys.stderr)
     try:
         transport, baud = open_transport(args, machine)
     except LinkError as err:
@@ -200,7 +199,25 @@ def cmd_send(args) -> int:
     try:
         driver = Driver(transport, baud=baud)
         driver.connect()
-        check_controller(driver, build, machine.clock_hz, curves=any(c.kind == CURVE for c in compiled.commands))
+        check_controller(driver, build, machine.clock_hz)
+        check_idle(driver)
+        # the program starts where the machine is: the controller's position counters
+        # (machine coordinates, zero at its reset), as Grbl's and LinuxCNC's programs do
+        start = read_position(driver)
+        if any(start):
+            print(f"interp send: the machine is at {mm_text(machine, start)} mm (machine coordinates): "
+                  "the program starts there", file=sys.stderr)
+            program, compiled = compile_text(text, machine, start_steps=start)
+        for message in program.messages:
+            print(f"interp: message: {message}", file=sys.stderr)
+        for warning in program.warnings + compiled.warnings:
+            print(f"interp: warning: {warning}", file=sys.stderr)
+        stream = encode_program(compiled.commands, build)
+        records = len(compiled.commands)
+        if not records:
+            print("interp: warning: the program has no command to send", file=sys.stderr)
+        if any(c.kind == CURVE for c in compiled.commands):
+            check_controller(driver, build, machine.clock_hz, curves=True)
         configure(driver, machine.timing(), compiled.settings)
         interactive = sys.stdin.isatty() and sys.stderr.isatty()
         keyboard = Keyboard(interactive)

@@ -234,7 +234,7 @@ def _unit(vector) -> tuple[float, float, float]:
 
 class Compiler:
     def __init__(self, machine: Machine, pause_seconds: float = 0.0, profile: str | None = None,
-                 costs: str = "true"):
+                 costs: str = "true", start_steps=(0, 0, 0)):
         if costs not in COST_MODES:
             raise ValueError(f"costs must be one of {COST_MODES}")
         self.machine = machine
@@ -246,7 +246,7 @@ class Compiler:
         if not 0 <= pause_seconds <= DWELL_SECONDS_MAX:
             raise CompileError(f"a pause of {pause_seconds:g} s is out of range (0 .. {DWELL_SECONDS_MAX} s, a day)")
         self.pause_cycles = _round(pause_seconds * self.clock)
-        self.here = [0, 0, 0]
+        self.here = [int(v) for v in start_steps]      # the machine's position, steps
         # an arc's correction not yet made: (the rounded end, feed mm/s, source line) of an
         # arc that ended on the lattice point beside it; the next line or arc takes it in
         self.pending: tuple[list[int], float, int] | None = None
@@ -839,10 +839,18 @@ class Compiler:
 
 
 def compile_program(program: Program, machine: Machine, pause_seconds: float = 0.0, *,
-                    profile: str | None = None, costs: str = "true") -> Compiled:
+                    profile: str | None = None, costs: str = "true", start_steps=(0, 0, 0)) -> Compiled:
     """The program's motion_top commands with their speed profile, the harness settings, end
     point, time estimate and warnings.  profile: "trapezoid" | "scurve" (default: the machine
     file's); costs: "true" (lines, helices: cmd_cost = true length / N; flat arcs: the lecture's costs, their
     speeds scaled to the true length), "even" (every move cmd_cost = true length / N, for
-    comparison) or "lecture" (every move cmd_cost 0, unscaled, for tests)."""
-    return Compiler(machine, pause_seconds, profile, costs).run(program)
+    comparison) or "lecture" (every move cmd_cost 0, unscaled, for tests); start_steps: the
+    machine's position when the program starts (steps; the program's interpretation must start
+    at start_mm(machine, start_steps))."""
+    return Compiler(machine, pause_seconds, profile, costs, start_steps).run(program)
+
+
+def start_mm(machine: Machine, start_steps) -> tuple[float, float, float]:
+    """A position in steps as machine mm (the interpreter's start for compile_program's
+    start_steps: rounded back to steps it is start_steps exactly)."""
+    return tuple(int(v) / s for v, s in zip(start_steps, machine.steps_per_mm))

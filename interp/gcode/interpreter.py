@@ -104,16 +104,17 @@ VALID_LETTERS = set("ABCDFGHIJKLMNPQRSTUVWXYZ@^")
 
 
 def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0, 0.0),
-              tools: dict[int, dict] | None = None) -> Program:
+              tools: dict[int, dict] | None = None, start: Point = (0.0, 0.0, 0.0)) -> Program:
     """Run a G-code program: text -> Program of moves in machine mm (see moves.py).
 
     g28, g30: the G28 / G30 home positions in machine mm (#5161.., #5181..);
     tools: T -> {"length_mm": float, "diameter_mm": float}, the tool table
-    (G10 L1/L10 change a copy of it).  Raises GcodeError for anything it
-    cannot run.
+    (G10 L1/L10 change a copy of it); start: where the machine is when the program
+    starts, machine mm (the first move starts there).  Raises GcodeError for anything
+    it cannot run.
     """
     params = Parameters()
-    machine = _Machine(params, g28, g30, tools or {})
+    machine = _Machine(params, g28, g30, tools or {}, start)
     for block in iterate_blocks(text, params):
         if block.delete:
             continue                                  # block delete switch on
@@ -155,12 +156,13 @@ class _Words:
 
 
 class _Machine:
-    def __init__(self, params: Parameters, g28: Point, g30: Point, tools: dict[int, dict]):
+    def __init__(self, params: Parameters, g28: Point, g30: Point, tools: dict[int, dict],
+                 start: Point = (0.0, 0.0, 0.0)):
         self.params = params
         self.program = Program()
         self.moves_made = 0
         self.tools = {int(t): dict(v) for t, v in tools.items()}
-        self.position = [0.0, 0.0, 0.0]          # machine mm
+        self.position = [float(v) for v in start]   # machine mm
         self.units = "mm"
         self.plane = "XY"
         self.absolute = True                     # G90

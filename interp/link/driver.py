@@ -429,6 +429,19 @@ def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
             ("OVERRIDE", int(settings.get("override", 100)))]
 
 
+POSITION = ("POS_X", "POS_Y", "POS_Z")
+
+
+def signed32(value: int) -> int:
+    return value - (1 << 32) if value >> 31 else value
+
+
+def read_position(driver: Driver) -> tuple[int, int, int]:
+    """POS_X/Y/Z: the machine's position in steps, the step pulses counted since the
+    controller's reset (an abort or an alarm keeps it)."""
+    return tuple(signed32(driver.read_register(name)) for name in POSITION)
+
+
 def check_idle(driver: Driver) -> None:
     """LinkError when the controller is busy with a program (ALARM is not busy: an abort
     flushes it)."""
@@ -522,7 +535,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
         driver.fresh.difference_update(REG[n] for n in POLLED)
         snap.executed = (v["EXECUTED"] - base) & 0xFFFFFFFF
         snap.state, snap.queue_records = field(v["STATUS"], 0, 3), field(v["STATUS"], 8, 8)
-        snap.position = [x - (1 << 32) if x >> 31 else x for x in (v["POS_X"], v["POS_Y"], v["POS_Z"])]
+        snap.position = [signed32(v[name]) for name in POSITION]
         snap.error, snap.acked_bytes = field(v["ERROR"], 0, 8), driver.acked_bytes
         if progress is not None:
             progress(snap)
