@@ -176,9 +176,10 @@ def test_hold_resume_abort_keys():
     _, outcome = run(model, cmds, keys=lambda: next(script, ""))
     controls = [v for name, v in model.writes if name == "CONTROL"]
     enable, fill = p.CONTROL_ENABLE, p.CONTROL_FILL
+    # Ctrl-X: a feed hold, and the abort once the machine is held (at rest on its path)
     assert controls == [p.CONTROL_ABORT | p.CONTROL_CLEAR | enable | fill, enable, p.CONTROL_HOLD | enable,
-                        enable, p.CONTROL_ABORT | enable]
-    assert outcome.status == "aborted" and 0 < outcome.executed < 40
+                        enable, p.CONTROL_HOLD | enable, p.CONTROL_ABORT | enable]
+    assert outcome.status == "aborted" and 0 < outcome.executed < 40 and outcome.message == ""
     assert executed_fields(model, cmds) == cmds[:len(model.executed)]
     # a hold key while the queue fills: the fill stays on until the release, which keeps the hold
     model = DeviceModel(records_per_second=100)
@@ -191,6 +192,32 @@ def test_hold_resume_abort_keys():
     assert controls[:3] == [p.CONTROL_ABORT | p.CONTROL_CLEAR | enable | fill, p.CONTROL_HOLD | enable | fill,
                             p.CONTROL_HOLD | enable]
     assert outcome.status == "timeout" and len(model.executed) == 0     # held from the start
+
+
+def test_stop_key_aborts_at_rest():
+    """Ctrl-X holds first and aborts only once the controller reports HELD: the machine has come
+    to rest on its path, so the position counters are the motors' position."""
+    cmds = commands(40)
+    model = DeviceModel(records_per_second=5, hold_seconds=0.15)         # a 150 ms deceleration
+    script = iter([""] * 300 + ["\x18"])
+    _, outcome = run(model, cmds, keys=lambda: next(script, ""))
+    found = [(v, state) for (name, v), state in zip(model.writes, model.write_states) if name == "CONTROL"]
+    enable = p.CONTROL_ENABLE
+    assert found[-2:] == [(p.CONTROL_HOLD | enable, p.RUN), (p.CONTROL_ABORT | enable, p.HELD)]
+    assert outcome.status == "aborted" and outcome.message == "" and 0 < outcome.executed < 40
+
+
+def test_stop_key_twice_aborts_at_once():
+    """A second Ctrl-X while the feed hold decelerates aborts at once, and says the motors may
+    have lost steps; a '~' while stopping does not release the hold."""
+    cmds = commands(40)
+    model = DeviceModel(records_per_second=100, hold_seconds=1.0)         # a long deceleration
+    script = iter([""] * 200 + ["!", "", "\x18", "", "~", "", "\x18"])
+    _, outcome = run(model, cmds, keys=lambda: next(script, ""))
+    controls = [v for name, v in model.writes if name == "CONTROL"]
+    enable = p.CONTROL_ENABLE
+    assert controls[-3:] == [p.CONTROL_HOLD | enable, p.CONTROL_HOLD | enable, p.CONTROL_ABORT | enable]
+    assert outcome.status == "aborted" and "may have lost steps" in outcome.message
 
 
 class Silent:

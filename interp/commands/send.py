@@ -10,7 +10,8 @@ The program is compiled as `interp gcode` compiles it (interp.commands.gcode.com
 encoded into records (interp.link.records) and streamed by the driver (interp.link.driver).
 --port takes a device or a pyserial URL (loop://, socket://HOST:PORT); --sim runs the
 Verilator model of rtl/uart_controller.v (interp.link.simlink).  Keys while it runs
-(stdin a terminal): '!' feed hold, '~' resume, Ctrl-X abort.  Exit status: 0 done,
+(stdin a terminal): '!' feed hold, '~' resume, Ctrl-X abort (after a feed hold has brought
+the machine to rest; twice: at once).  Exit status: 0 done,
 1 machine or link error (or an abort), 2 usage or G-code error.
 """
 from __future__ import annotations
@@ -29,8 +30,7 @@ from .gcode import compile_text, read_program
 
 DEFAULT_BAUD = 115200
 CURVE = 3
-ABORT_KEY = "\x18"          # Ctrl-X
-KEYS_HELP = "keys: ! hold, ~ resume, Ctrl-X abort"
+KEYS_HELP = "keys: ! hold, ~ resume, Ctrl-X abort (twice: at once)"
 
 
 def compile_build() -> Build:
@@ -259,7 +259,8 @@ def cmd_send(args) -> int:
               file=sys.stderr)
         return 1
     if outcome.status == "aborted":
-        print(f"interp: aborted at {where}", file=sys.stderr)
+        how = f" ({outcome.message})" if outcome.message else ""
+        print(f"interp: aborted at {where}{how}", file=sys.stderr)
         return 1
     if outcome.status != "done":
         print(f"interp: error: the run did not end ({where})", file=sys.stderr)

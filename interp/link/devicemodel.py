@@ -75,6 +75,7 @@ class DeviceModel:
         self.regs = {"OVERRIDE": 100, "PULSE_WIDTH": 25, "DIR_SETUP": 25, "DIR_HOLD": 25, "QUANTUM_LO": 1,
                      "QUANTUM_HI": 0, "MOTION": 0, "INPUT_INVERT": 0, "SPINDLE_PERIOD": clock_hz // 20000}
         self.writes: list[tuple[str, int]] = []     # register writes executed, in order
+        self.write_states: list[int] = []           # ... and the state each found
 
     # ---------------- transport API ----------------
 
@@ -357,6 +358,7 @@ class DeviceModel:
         if name is None:
             return
         self.writes.append((name, value))
+        self.write_states.append(self.state())
         if name == "CONTROL":
             if value & p.CONTROL_HOLD and not self.hold:
                 self.hold_since = self.t

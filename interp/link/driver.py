@@ -430,6 +430,7 @@ def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
 
 
 POSITION = ("POS_X", "POS_Y", "POS_Z")
+STOP_SECONDS = 10.0         # Ctrl-X: the longest wait for the feed hold before the abort
 
 
 def signed32(value: int) -> int:
@@ -482,7 +483,11 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                 on_pause=None) -> Outcome:
     """Stream the records and follow the run to its end: all records executed and the
     controller not busy.  progress(Snapshot) after every poll round; keys() -> the keys
-    typed since the last call ('!' hold, '~' resume, Ctrl-X abort).
+    typed since the last call ('!' hold, '~' resume, Ctrl-X stop).  Ctrl-X stops as a
+    sender keeps the position: nothing more is sent, a feed hold brings the machine to
+    rest on its path, then CONTROL.abort flushes the queue (within STOP_SECONDS in any
+    case); a second Ctrl-X aborts at once (at speed the motors may lose steps that the
+    position counters have counted).
     A program pause (M0, M1, M6: the controller holds by itself) is released
     pause_resume seconds after the machine has stopped, or, with None, by the '~' key;
     on_pause(Snapshot) is told once per pause.
@@ -498,7 +503,8 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     fill_bytes = max(1, min(len(stream), driver.free - driver.lmax))
     driver.start_stream(stream)
     snap = Snapshot(records=records, total_bytes=len(stream))
-    held = aborted = paused = False
+    held = aborted = paused = at_speed = False
+    stopping = None                         # link time of a Ctrl-X: holding, then the abort
     filling = True
 
     def control(bits: int) -> None:         # hold / resume / abort keep the fill bit while filling
@@ -520,14 +526,21 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                 if key == "!" and not held:
                     control(p.CONTROL_HOLD)
                     held = True
-                elif key == "~" and (held or paused):
+                elif key == "~" and (held or paused) and stopping is None:
                     control(0)
                     held = paused = False
                     paused_since = None
-                elif key == "\x18" and not aborted:
+                elif key == "\x18" and not aborted and filling:
                     driver.drop_stream()
-                    control(p.CONTROL_ABORT)
+                    control(p.CONTROL_ABORT)       # nothing has moved yet
                     aborted = True
+                elif key == "\x18" and not aborted and stopping is None:
+                    driver.drop_stream()
+                    control(p.CONTROL_HOLD)
+                    stopping = driver.clock()
+                elif key == "\x18" and not aborted:
+                    control(p.CONTROL_ABORT)       # a second Ctrl-X: at once
+                    aborted, at_speed = True, True
         if not fresh_round:
             continue
         polling = False
@@ -544,18 +557,23 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
             # motion has stopped: EXECUTED no longer moves (the round's value may be older)
             snap.executed = (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
             return Outcome("error", snap.executed, seconds, snap.error, field(v["ERROR"], 8, 3))
-        if snap.state in (p.HOLDING, p.HELD) and not held and not aborted and not paused:
+        if snap.state in (p.HOLDING, p.HELD) and not held and not aborted and not paused and stopping is None:
             paused = True                       # the program's own pause: the controller held
             if on_pause is not None:
                 on_pause(snap)
-        if paused and snap.state == p.HELD and pause_resume is not None:
+        if paused and snap.state == p.HELD and pause_resume is not None and stopping is None:
             paused_since = driver.clock() if paused_since is None else paused_since
             if driver.clock() - paused_since >= pause_resume:
                 control(0)
                 paused, paused_since = False, None
         busy = field(v["STATUS"], 3, 1)
+        if stopping is not None and not aborted and (snap.state == p.HELD or not busy
+                                                     or driver.clock() - stopping >= STOP_SECONDS):
+            control(p.CONTROL_ABORT)               # at rest on the path (or out of time)
+            aborted, at_speed = True, snap.state not in (p.HELD, p.IDLE)
         if aborted and driver.stream_done() and not busy:
-            return Outcome("aborted", snap.executed, seconds)
+            return Outcome("aborted", snap.executed, seconds,
+                           message="at once, moving: the motors may have lost steps" if at_speed else "")
         if driver.stream_done() and snap.executed >= records and not busy and snap.queue_records == 0:
             return Outcome("done", snap.executed, seconds)
         if max_seconds is not None and seconds > max_seconds:
