@@ -47,7 +47,9 @@ module step_sync #(
 
     wire [EW-1:0] head;
     wire          refused, full;
-    sync_fifo #(.WIDTH(EW), .DEPTH(DEPTH), .LW(LW)) u_store (
+    // The oldest step comes from a register (HEAD_REG): the drive side (the step pacer's
+    // compare of its cost, the output stage) starts at a flip-flop, not at a memory read.
+    sync_fifo #(.WIDTH(EW), .DEPTH(DEPTH), .LW(LW), .HEAD_REG(1)) u_store (
         .clk(clk), .rst(rst), .push(|in_step), .din({in_data, in_dir, in_step}),
         .pop(tick), .dout(head), .valid(out_valid), .full(full), .level(level),
         .overflow(refused)

@@ -11,10 +11,16 @@
 // distributed RAM (ECP5) or, the read address being a register, to block RAM
 // (iCE40) instead of WIDTH x DEPTH flip-flops and a DEPTH-way read multiplexer.
 // While empty, `dout` is zero.
+// HEAD_REG 1 keeps the oldest entry in a register as well (WIDTH more flip-flops):
+// the memory is read a clock ahead, at the entry after the oldest, so `dout` comes
+// straight from a flip-flop and the read is off the path of whatever `dout`
+// feeds.  `dout` is the same in every cycle (formal/sync_fifo.sby proves either
+// form's `dout` equal to mem[rd_q] while valid, zero while empty).
 module sync_fifo #(
-    parameter integer WIDTH = 8,    // bits per entry (>= 1)
-    parameter integer DEPTH = 4,    // number of entries (>= 1, any value)
-    parameter integer LW    = 3     // width of `level` (2^LW > DEPTH)
+    parameter integer WIDTH    = 8,    // bits per entry (>= 1)
+    parameter integer DEPTH    = 4,    // number of entries (>= 1, any value)
+    parameter integer LW       = 3,    // width of `level` (2^LW > DEPTH)
+    parameter integer HEAD_REG = 0     // 1: `dout` from a register (see above); 0 or 1
 ) (
     input  wire             clk,
     input  wire             rst,
@@ -31,6 +37,7 @@ module sync_fifo #(
         if (WIDTH < 1) $error("%m: WIDTH must be at least 1");
         if (DEPTH < 1) $error("%m: DEPTH must be at least 1");
         if (LW < 1 || (1 << LW) <= DEPTH) $error("%m: LW must satisfy 2^LW > DEPTH");
+        if (HEAD_REG != 0 && HEAD_REG != 1) $error("%m: HEAD_REG must be 0 or 1");
     end
 
     localparam integer PW = LW;         // pointers 0 .. DEPTH-1 fit in LW bits
@@ -45,7 +52,6 @@ module sync_fifo #(
     wire   take     = pop & valid;
     wire   put      = push & (~full | take);
     assign overflow = push & ~put;
-    assign dout     = valid ? mem[rd_q] : {WIDTH{1'b0}};
     assign level    = level_q;
 
     function [PW-1:0] next_ptr(input [PW-1:0] p);
@@ -77,5 +83,51 @@ module sync_fifo #(
                 level_q <= level_q - 1'b1;
         end
     end
+
+    generate
+        if (HEAD_REG == 0) begin : g_read
+            assign dout = valid ? mem[rd_q] : {WIDTH{1'b0}};
+        end else begin : g_head
+            // head_q = mem[rd_q] while valid (stale while empty: `dout` is gated).  After a
+            // take the next oldest is mem[after_q] if a second entry was stored, else the
+            // entry pushed now.  (Clearing head_q when the queue empties, instead of the
+            // gate, costs about 400 LUT4s on ECP5: Yosys then keeps a wide read mux.)
+            reg [PW-1:0]    after_q;     // next_ptr(rd_q)
+            reg [WIDTH-1:0] head_q;
+            wire second = level_q > {{(LW-1){1'b0}}, 1'b1};
+            always @(posedge clk) begin
+                if (rst) begin
+                    after_q <= next_ptr({PW{1'b0}});
+                    head_q  <= {WIDTH{1'b0}};
+                end else begin
+                    if (take)
+                        after_q <= next_ptr(after_q);
+                    if (take & second)
+                        head_q <= mem[after_q];
+                    else if ((take | ~valid) & put)
+                        head_q <= din;
+                end
+            end
+            assign dout = valid ? head_q : {WIDTH{1'b0}};
+`ifdef FORMAL
+            always @(*) if (f_reset_seen) assert (after_q == next_ptr(rd_q));
+`endif
+        end
+    endgenerate
+
+`ifdef FORMAL
+    // (formal/sync_fifo.sby) after a reset: the level is at most DEPTH, the write
+    // pointer is the read pointer plus the level (mod DEPTH), and `dout` is mem[rd_q]
+    // while valid, zero while empty, in either read form.
+    reg f_reset_seen = 1'b0;
+    always @(posedge clk) if (rst) f_reset_seen <= 1'b1;
+    wire [LW:0] f_end = {1'b0, rd_q} + {1'b0, level_q};
+    always @(*) if (f_reset_seen) begin
+        assert (level_q <= DEPTH[LW-1:0]);
+        assert (rd_q < DEPTH[PW-1:0] && wr_q < DEPTH[PW-1:0]);
+        assert ({1'b0, wr_q} == (f_end >= DEPTH[LW:0] ? f_end - DEPTH[LW:0] : f_end));
+        assert (dout == (valid ? mem[rd_q] : {WIDTH{1'b0}}));
+    end
+`endif
 endmodule
 `default_nettype wire

@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
-"""sync_fifo: RTL vs cycle model every cycle; order, no loss, overflow refused."""
+"""sync_fifo: RTL vs cycle model every cycle, both read forms (HEAD_REG 0 and 1); order, no
+loss, overflow refused."""
 
 import cocotb
+import pytest
 
 from interp.models.motion import SyncFifo
 from interp.simulation.runner import run_cocotb
@@ -85,6 +87,8 @@ async def reset_with_full_queue(dut):
                      context="reset")
 
 
-def test_sync_fifo(sim):
+@pytest.mark.parametrize("head_reg", [0, 1])
+def test_sync_fifo(sim, head_reg):
     run_cocotb(toplevel="sync_fifo", test_module="test_sync_fifo", sim=sim,
-               parameters={"WIDTH": 8, "DEPTH": 3, "LW": 2}, name="sync_fifo_d3")
+               parameters={"WIDTH": 8, "DEPTH": 3, "LW": 2, "HEAD_REG": head_reg},
+               name=f"sync_fifo_d3_head{head_reg}")
