@@ -220,6 +220,14 @@ def test_stop_key_twice_aborts_at_once():
     assert outcome.status == "aborted" and "may have lost steps" in outcome.message
 
 
+def test_stop_key_twice_at_rest_says_nothing_of_lost_steps():
+    """Held already ('!', then HELD): a double Ctrl-X aborts at once but the machine was at rest."""
+    model = DeviceModel(records_per_second=5)
+    script = iter([""] * 200 + ["!"] + [""] * 300 + ["\x18\x18"])
+    _, outcome = run(model, commands(40), keys=lambda: next(script, ""))
+    assert outcome.status == "aborted" and outcome.message == ""
+
+
 class Silent:
     """A port with nothing on it: reads time out in link time."""
 

@@ -80,6 +80,23 @@ def test_a_program_starts_where_the_machine_is(capsys, tmp_path, monkeypatch):
     assert out.rstrip().endswith("end (0, 0, 0) steps")
     moves = [(r["x"], r["y"], r["z"]) for r in device.executed if r["kind"] == 0]
     assert moves[-2:] == [(-700, 0, 0), (-100, 400, 0)]          # from (800, -400), not from 0
+    # compiled only from there: this half circle of radius 1 is too small for a start at 0
+    assert run(capsys, "send", str(first), "--sim-model")[0] == 0
+    second.write_text("G21 G90\nG2 X10 Y-4 R1 F600\nM2\n")
+    code, out, err = run(capsys, "send", str(second), "--sim-model")
+    assert code == 0, err
+
+
+def test_a_run_after_an_alarm_warns_of_lost_steps(capsys, program, monkeypatch):
+    """A limit switch stops the steps at once (ALARM): the next run starts from the counters but
+    says they may not be where the motors are."""
+    device = DeviceModel(fail_at=3)
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
+    assert run(capsys, "send", program, "--sim-model")[0] == 1
+    code, out, err = run(capsys, "send", program, "--sim-model")
+    assert code == 0, err
+    assert ("interp send: warning: the controller stopped on error 17 (limit switch): its steps stopped at "
+            "once, so the motors may have lost steps the position counts") in err.splitlines()
 
 
 def test_build_mismatch_exit_2(capsys, program, monkeypatch):

@@ -187,7 +187,6 @@ def cmd_send(args) -> int:
     check_link_args(args)
     machine = load_machine(args.machine, [], None)
     text = read_program(args.file)
-    program, compiled = compile_text(text, machine)      # G-code errors before the link opens
     build = compile_build()
     try:
         transport, baud = open_transport(args, machine)
@@ -202,12 +201,17 @@ def cmd_send(args) -> int:
         check_controller(driver, build, machine.clock_hz)
         check_idle(driver)
         # the program starts where the machine is: the controller's position counters
-        # (machine coordinates, zero at its reset), as Grbl's and LinuxCNC's programs do
+        # (machine coordinates, zero at its reset), as Grbl's and LinuxCNC's programs do;
+        # compiled from there (travel limits and arcs depend on the start)
         start = read_position(driver)
         if any(start):
             print(f"interp send: the machine is at {mm_text(machine, start)} mm (machine coordinates): "
                   "the program starts there", file=sys.stderr)
-            program, compiled = compile_text(text, machine, start_steps=start)
+        error = driver.read_register("ERROR") & 0xFF
+        if error:
+            print(f"interp send: warning: the controller stopped on error {error} ({p.error_text(error)}): its "
+                  "steps stopped at once, so the motors may have lost steps the position counts", file=sys.stderr)
+        program, compiled = compile_text(text, machine, start_steps=start)
         for message in program.messages:
             print(f"interp: message: {message}", file=sys.stderr)
         for warning in program.warnings + compiled.warnings:

@@ -431,6 +431,7 @@ def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
 
 POSITION = ("POS_X", "POS_Y", "POS_Z")
 STOP_SECONDS = 10.0         # Ctrl-X: the longest wait for the feed hold before the abort
+AT_SPEED = "the motors may have lost steps"
 
 
 def signed32(value: int) -> int:
@@ -503,18 +504,22 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     fill_bytes = max(1, min(len(stream), driver.free - driver.lmax))
     driver.start_stream(stream)
     snap = Snapshot(records=records, total_bytes=len(stream))
-    held = aborted = paused = at_speed = False
+    held = aborted = paused = False
+    stop_note = ""                          # Outcome.message of an abort
     stopping = None                         # link time of a Ctrl-X: holding, then the abort
+    hold_write = -1                         # ... the id of its hold write
+    after_hold = False                      # this poll round started after that write was acknowledged
     filling = True
 
-    def control(bits: int) -> None:         # hold / resume / abort keep the fill bit while filling
-        driver.queue_write("CONTROL", bits | p.CONTROL_ENABLE | (p.CONTROL_FILL if filling else 0))
+    def control(bits: int) -> int:          # hold / resume / abort keep the fill bit while filling
+        return driver.queue_write("CONTROL", bits | p.CONTROL_ENABLE | (p.CONTROL_FILL if filling else 0))
     paused_since = None
     next_round, polling = driver.clock(), False
     while True:
         if not polling and driver.clock() >= next_round:
             driver.fresh.difference_update(REG[n] for n in POLLED)
             driver.poll(POLLED)                 # a new round of polls, at most every poll_seconds
+            after_hold = stopping is not None and driver.writes_done > hold_write
             next_round, polling = driver.clock() + driver.poll_seconds, True
         fresh_round = polling and all(REG[n] in driver.fresh for n in POLLED)
         driver.pump()
@@ -536,11 +541,12 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                     aborted = True
                 elif key == "\x18" and not aborted and stopping is None:
                     driver.drop_stream()
-                    control(p.CONTROL_HOLD)
+                    hold_write = control(p.CONTROL_HOLD)
                     stopping = driver.clock()
                 elif key == "\x18" and not aborted:
                     control(p.CONTROL_ABORT)       # a second Ctrl-X: at once
-                    aborted, at_speed = True, True
+                    aborted = True
+                    stop_note = "" if snap.state in (p.HELD, p.IDLE) else f"while moving: {AT_SPEED}"
         if not fresh_round:
             continue
         polling = False
@@ -567,13 +573,13 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                 control(0)
                 paused, paused_since = False, None
         busy = field(v["STATUS"], 3, 1)
-        if stopping is not None and not aborted and (snap.state == p.HELD or not busy
-                                                     or driver.clock() - stopping >= STOP_SECONDS):
-            control(p.CONTROL_ABORT)               # at rest on the path (or out of time)
-            aborted, at_speed = True, snap.state not in (p.HELD, p.IDLE)
+        late = stopping is not None and driver.clock() - stopping >= STOP_SECONDS
+        if stopping is not None and not aborted and (late or after_hold and (snap.state == p.HELD or not busy)):
+            control(p.CONTROL_ABORT)               # at rest on the path (a round read after the hold)
+            aborted = True
+            stop_note = "" if snap.state in (p.HELD, p.IDLE) else f"not at rest after {STOP_SECONDS:g} s: {AT_SPEED}"
         if aborted and driver.stream_done() and not busy:
-            return Outcome("aborted", snap.executed, seconds,
-                           message="at once, moving: the motors may have lost steps" if at_speed else "")
+            return Outcome("aborted", snap.executed, seconds, message=stop_note)
         if driver.stream_done() and snap.executed >= records and not busy and snap.queue_records == 0:
             return Outcome("done", snap.executed, seconds)
         if max_seconds is not None and seconds > max_seconds:
