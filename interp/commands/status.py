@@ -1,14 +1,15 @@
 # SPDX-License-Identifier: Apache-2.0
 """`interp status --port DEVICE` (or --sim): every register of the board controller with
-its decoded fields (docs/host-driver.md, docs/registers.md)."""
+its decoded fields (docs/host-driver.md, docs/registers.md), then the machine position in
+mm (POS_X/Y/Z at the machine file's steps/mm: where `interp send` starts a program)."""
 from __future__ import annotations
 
 import sys
 
 from ..gcode.machine import load_machine
 from ..link import registers
-from ..link.driver import Driver, LinkError
-from .send import add_link_options, check_link_args, open_transport
+from ..link.driver import Driver, LinkError, read_position
+from .send import add_link_options, check_link_args, mm_text, open_transport
 
 
 def cmd_status(args) -> int:
@@ -28,6 +29,8 @@ def cmd_status(args) -> int:
             if registers.ACCESS.get(name) == "wo":
                 continue
             lines.append(registers.describe(name, driver.read_register(address)))
+        # where a program sent now starts (interp send), at the machine file's steps/mm
+        lines.append(f"machine position {mm_text(machine, read_position(driver))} mm")
     except LinkError as err:
         print(f"interp: error: link: {err}", file=sys.stderr)
         return 1
