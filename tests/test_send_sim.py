@@ -16,6 +16,8 @@ through its UART pins in simulated time.
   * determinism: the same seed, the same frames and figures;
   * bad input: one line, no traceback;
   * a program pause (M0, M6) is released after --pause-seconds without a terminal;
+  * Ctrl-X in a move: the RTL's hold slows the steps to rest before the abort, and the
+    position registers count the steps that went out;
   * a short corpus program that starts with an event (slow; skipped without
     ../shared/gcode), without noise and at line noise 0.01: the steps CSV equals
     `interp gcode`'s byte for byte.
@@ -177,9 +179,10 @@ def test_program_pause_is_released(files, capsys):
     assert "line 3: resuming after 0.01 s" in captured.err, captured.err
 
 
-def run_driver(files, steps, noise: float, seed: int = 1, before=None):
+def run_driver(files, steps, noise: float, seed: int = 1, before=None, keys=None):
     """The host driver's run through SimLink; (outcome, registers after the run, link result, records).
-    before(link, stream): what an earlier session did on the link."""
+    before(link, stream): what an earlier session did on the link; keys(link): the keys typed
+    since the last call (run_program's keys)."""
     from interp.commands.gcode import compile_text, read_program
     from interp.commands.send import compile_build, encode_program
     from interp.gcode.machine import load_machine
@@ -195,7 +198,8 @@ def run_driver(files, steps, noise: float, seed: int = 1, before=None):
     driver.connect()
     check_controller(driver, compile_build(), machine.clock_hz)
     configure(driver, machine.timing(), compiled.settings)
-    outcome = run_program(driver, stream, len(compiled.commands))
+    outcome = run_program(driver, stream, len(compiled.commands),
+                          keys=None if keys is None else lambda: keys(link))
     registers = {name: driver.read_register(name) for name in ("POS_X", "POS_Y", "POS_Z", "EXECUTED",
                                                                 "LINK_FRAMES", "LINK_ERRORS")}
     return outcome, registers, link.close(), compiled
@@ -245,6 +249,34 @@ def test_a_half_sent_record_does_not_block_the_next_run(files, gcode_steps):
     assert outcome.status == "done" and outcome.executed == len(compiled.commands), outcome
     assert steps.read_text() == gcode_steps
     assert tuple(signed(regs[n]) for n in ("POS_X", "POS_Y", "POS_Z")) == PROGRAM_END
+
+
+def test_stop_key_decelerates_then_aborts(files):
+    """Ctrl-X in the first move (50 mm/s): the RTL's feed hold brings the machine to rest on the
+    path before the abort, so the steps slow down to the last one (no stop at speed), the
+    position registers count exactly the steps that went out, and the outcome carries no
+    lost-steps warning."""
+    steps = files / "stopped.csv"
+    start, typed = [], []
+
+    def keys(link):
+        start.append(start[0] if start else link.now())
+        if not typed and link.now() > start[0] + 0.015:      # well inside the first move (at cruise)
+            typed.append(link.now())
+            return "\x18"
+        return ""
+
+    outcome, regs, _, compiled = run_driver(files, steps, 0.0, keys=keys)
+    assert typed and outcome.status == "aborted" and outcome.message == "", outcome
+    rows = [tuple(int(v) for v in line.split(",")) for line in steps.read_text().splitlines()[1:]]
+    position = tuple(signed(regs[n]) for n in ("POS_X", "POS_Y", "POS_Z"))
+    assert position == tuple(sum(r[k] for r in rows) for k in (1, 2, 3))
+    assert 0 < position[0] < 100, (typed, position, outcome)          # stopped inside the first move
+    gaps = [b[0] - a[0] for a, b in zip(rows, rows[1:])]
+    cruise = min(gaps)
+    after = gaps[gaps.index(cruise):]                                 # from the fastest step on
+    assert len(after) >= 4 and after == sorted(after), after          # slowing down to the last
+    assert gaps[-1] > 2 * cruise, (cruise, gaps[-5:])
 
 
 def test_same_seed_same_run(files):
