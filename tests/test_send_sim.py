@@ -32,6 +32,7 @@ import pytest
 
 from interp.cli import main
 from interp.link import protocol as p
+from interp.link.driver import POSITION, signed32
 from interp.link.simlink import SimLink, SimLinkError
 from interp.simulation.runner import RTL
 from interp.testing.seeds import seeded_random
@@ -205,10 +206,6 @@ def run_driver(files, steps, noise: float, seed: int = 1, before=None, keys=None
     return outcome, registers, link.close(), compiled
 
 
-def signed(value: int) -> int:
-    return value - (1 << 32) if value >> 31 else value
-
-
 def test_line_noise_completes_with_the_same_steps(files, gcode_steps):
     """--line-noise 0.01: the steps CSV is the gcode run's, cycles included (the program fits
     the queue, which the driver fills before the run starts); the registers show the
@@ -221,7 +218,7 @@ def test_line_noise_completes_with_the_same_steps(files, gcode_steps):
     assert outcome.status == "done", outcome
     assert result["flipped_to_device"] > 0 and result["flipped_from_device"] > 0
     assert steps.read_text() == gcode_steps
-    end = tuple(signed(regs[n]) for n in ("POS_X", "POS_Y", "POS_Z"))
+    end = tuple(signed32(regs[n]) for n in POSITION)
     assert end == tuple(compiled.end_steps) == PROGRAM_END
     assert tuple(result["position"]) == PROGRAM_END
     assert outcome.executed == len(compiled.commands)
@@ -248,7 +245,7 @@ def test_a_half_sent_record_does_not_block_the_next_run(files, gcode_steps):
     outcome, regs, _, compiled = run_driver(files, steps, 0.0, before=dead_session)
     assert outcome.status == "done" and outcome.executed == len(compiled.commands), outcome
     assert steps.read_text() == gcode_steps
-    assert tuple(signed(regs[n]) for n in ("POS_X", "POS_Y", "POS_Z")) == PROGRAM_END
+    assert tuple(signed32(regs[n]) for n in POSITION) == PROGRAM_END
 
 
 def test_stop_key_decelerates_then_aborts(files):
@@ -269,7 +266,7 @@ def test_stop_key_decelerates_then_aborts(files):
     outcome, regs, _, compiled = run_driver(files, steps, 0.0, keys=keys)
     assert typed and outcome.status == "aborted" and outcome.message == "", outcome
     rows = [tuple(int(v) for v in line.split(",")) for line in steps.read_text().splitlines()[1:]]
-    position = tuple(signed(regs[n]) for n in ("POS_X", "POS_Y", "POS_Z"))
+    position = tuple(signed32(regs[n]) for n in POSITION)
     assert position == tuple(sum(r[k] for r in rows) for k in (1, 2, 3))
     assert 0 < position[0] < 100, (typed, position, outcome)          # stopped inside the first move
     gaps = [b[0] - a[0] for a, b in zip(rows, rows[1:])]

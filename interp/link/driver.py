@@ -466,7 +466,7 @@ def configure(driver: Driver, timing: dict, settings: dict) -> None:
             raise LinkError(f"the controller did not take {name} (it became busy): send again when it is idle")
 
 
-POLLED = ("EXECUTED", "QUEUE_FREE", "POS_X", "POS_Y", "POS_Z", "ERROR", "STATUS")   # STATUS after EXECUTED: the end test
+POLLED = ("EXECUTED", "QUEUE_FREE", *POSITION, "ERROR", "STATUS")   # STATUS after EXECUTED: the end test
 
 
 @dataclass
