@@ -92,7 +92,7 @@ module sync_fifo #(
             // take the next oldest is mem[after_q] if a second entry was stored, else the
             // entry pushed now.  (Clearing head_q when the queue empties, instead of the
             // gate, cost 337 LUT4s more on ECP5 at 56 x 2: Yosys kept a wide read mux.)
-            reg [PW-1:0]    after_q;     // next_ptr(rd_q)
+            reg [PW-1:0]    after_q;     // next_ptr(rd_q), kept so the read address is a flip-flop
             reg [WIDTH-1:0] head_q;
             localparam [LW-1:0] ONE = 1;
             wire second = level_q != ONE;    // with `take` (level >= 1): a second entry stored
