@@ -70,7 +70,7 @@ def fake_harness(commands_path, sim, *, steps_path, timing, max_cycles, progress
 
 @pytest.fixture
 def fakes(monkeypatch):
-    monkeypatch.setattr(gcode, "interpret_program", lambda text, machine, start_steps=(0, 0, 0): PROGRAM)
+    monkeypatch.setattr(gcode, "interpret_program", lambda text, machine, start_steps=(0, 0, 0), saved=None: PROGRAM)
     monkeypatch.setattr(gcode, "run_simulation", fake_harness)
     return monkeypatch
 
@@ -273,7 +273,7 @@ def test_soft_limit_error_one_line(fakes, nc, capsys):
 def test_bad_bytes_reach_the_interpreter_as_surrogates(monkeypatch, tmp_path, capsys):
     seen = {}
 
-    def interpret(text, machine, start_steps=(0, 0, 0)):
+    def interpret(text, machine, start_steps=(0, 0, 0), saved=None):
         seen["text"] = text
         return Program()
 
@@ -392,7 +392,7 @@ def test_hold_lines_follow_the_steps_csv():
 def test_empty_program_no_numpy_warning(fakes, nc, tmp_path, capsys):
     import warnings
 
-    fakes.setattr(gcode, "interpret_program", lambda text, machine, start_steps=(0, 0, 0): Program(
+    fakes.setattr(gcode, "interpret_program", lambda text, machine, start_steps=(0, 0, 0), saved=None: Program(
         moves=[], warnings=[], end_work=(0.0, 0.0, 0.0), units="mm", end_machine=(0.0, 0.0, 0.0)))
     with warnings.catch_warnings():
         warnings.simplefilter("error")

@@ -57,23 +57,33 @@ DEMO_OPTIONS = ["--clock-hz", "50000"]
 
 # ---------------- the layers below, behind small functions (tests replace them) ----------------
 
-def interpret_program(text: str, machine: Machine, start_steps=(0, 0, 0)):
+def saved_parameters(machine: Machine) -> dict[int, float]:
+    """The parameters the machine's parameter file keeps ({} with none or before its first run)."""
+    from ..gcode.parameter_file import read_parameters
+
+    path = machine.parameter_file
+    return read_parameters(path) if path is not None else {}
+
+
+def interpret_program(text: str, machine: Machine, start_steps=(0, 0, 0), saved=None):
     """The program's moves in machine mm (interface 1), from start_steps (the machine's
-    position)."""
+    position), with the saved parameters (default: the machine's parameter file)."""
     from ..gcode.compile import start_mm
     from ..gcode.interpreter import interpret
 
     return interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools,
-                     start=start_mm(machine, start_steps))
+                     start=start_mm(machine, start_steps),
+                     saved=saved_parameters(machine) if saved is None else saved)
 
 
 def compile_text(text: str, machine: Machine | None = None, pause_seconds: float = 0.0,
-                 profile: str | None = None, costs: str = "true", start_steps=(0, 0, 0)):
+                 profile: str | None = None, costs: str = "true", start_steps=(0, 0, 0), saved=None):
     """(Program, Compiled) of a program's text, as `interp gcode` makes them (default machine),
     from start_steps: the machine's position in steps (`interp send`: the controller's POS_X/Y/Z;
-    a fresh controller is at 0)."""
+    a fresh controller is at 0), with the saved parameters (default: the machine's parameter
+    file; `Program.saved` has the program's end values)."""
     machine = machine or load_machine()
-    program = interpret_program(text, machine, start_steps)
+    program = interpret_program(text, machine, start_steps, saved)
     return program, compile_program(program, machine, pause_seconds, profile=profile, costs=costs,
                                     start_steps=start_steps)
 

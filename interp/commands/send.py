@@ -22,11 +22,12 @@ import sys
 from ..cores import UsageError
 from ..gcode import compile as gc
 from ..gcode.machine import Machine, load_machine
+from ..gcode.parameter_file import describe, write_parameters
 from ..link import protocol as p
 from ..link.driver import (Driver, LinkError, MachineError, MismatchError, check_controller, check_idle, configure,
                            read_position, run_program)
 from ..link.records import DEFAULT_BUILD, Build, encode_program
-from .gcode import compile_text, read_program
+from .gcode import compile_text, read_program, saved_parameters
 
 DEFAULT_BAUD = 115200
 CURVE = 3
@@ -187,6 +188,7 @@ def cmd_send(args) -> int:
     check_link_args(args)
     machine = load_machine(args.machine, [], None)
     text = read_program(args.file)
+    saved = saved_parameters(machine)
     build = compile_build()
     try:
         transport, baud = open_transport(args, machine)
@@ -207,11 +209,13 @@ def cmd_send(args) -> int:
         if any(start):
             print(f"interp send: the machine is at {mm_text(machine, start)} mm (machine coordinates): "
                   "the program starts there", file=sys.stderr)
+        if describe(saved):
+            print(f"interp send: offsets from {machine.parameter_file}: {describe(saved)}", file=sys.stderr)
         error = driver.read_register("ERROR") & 0xFF
         if error:
             print(f"interp send: warning: the controller stopped on error {error} ({p.error_text(error)}): its "
                   "steps stopped at once, so the motors may have lost steps the position counts", file=sys.stderr)
-        program, compiled = compile_text(text, machine, start_steps=start)
+        program, compiled = compile_text(text, machine, start_steps=start, saved=saved)
         for message in program.messages:
             print(f"interp: message: {message}", file=sys.stderr)
         for warning in program.warnings + compiled.warnings:
@@ -269,11 +273,29 @@ def cmd_send(args) -> int:
     if outcome.status != "done":
         print(f"interp: error: the run did not end ({where})", file=sys.stderr)
         return 1
+    save_parameters(args, machine, saved, program.saved)
     position = result.get("position") if isinstance(result, dict) else None
     end = f", end {tuple(position)} steps" if position is not None else ""
     print(f"sent {records} records ({len(stream)} bytes) in {outcome.seconds:.3f} s link time at {baud} baud, "
           f"{stats}{end}")
     return 0
+
+
+def save_parameters(args, machine: Machine, before: dict, after: dict) -> None:
+    """A program that ran to its end leaves its offsets, G92 and G28 / G30 positions in the
+    machine's parameter file for the next one (as LinuxCNC's var file and Grbl's settings keep
+    them); the file is written only when they changed.  A simulated run (--sim) reads the file
+    but leaves it as it is."""
+    from ..gcode.interpreter import interpret
+
+    path = machine.parameter_file
+    if path is None or args.sim:
+        return
+    if after == interpret("", g28=machine.g28, g30=machine.g30, saved=before).saved:
+        return
+    write_parameters(path, after)
+    print(f"interp send: saved the offsets to {path}" + (f": {describe(after)}" if describe(after) else ""),
+          file=sys.stderr)
 
 
 def add_link_options(p_, sim_help: str) -> None:

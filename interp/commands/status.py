@@ -1,14 +1,17 @@
 # SPDX-License-Identifier: Apache-2.0
 """`interp status --port DEVICE` (or --sim): every register of the board controller with
 its decoded fields (docs/host-driver.md, docs/registers.md), then the machine position in
-mm (POS_X/Y/Z at the machine file's steps/mm: where `interp send` starts a program)."""
+mm (POS_X/Y/Z at the machine file's steps/mm: where `interp send` starts a program) and,
+with a parameter file, the work position its offsets give."""
 from __future__ import annotations
 
 import sys
 
 from ..gcode.machine import load_machine
 from ..link import registers
+from ..gcode.parameter_file import describe
 from ..link.driver import Driver, LinkError, read_position
+from .gcode import interpret_program
 from .send import add_link_options, check_link_args, mm_text, open_transport
 
 
@@ -30,7 +33,13 @@ def cmd_status(args) -> int:
                 continue
             lines.append(registers.describe(name, driver.read_register(address)))
         # where a program sent now starts (interp send), at the machine file's steps/mm
-        lines.append(f"machine position {mm_text(machine, read_position(driver))} mm")
+        position = read_position(driver)
+        lines.append(f"machine position {mm_text(machine, position)} mm")
+        if machine.parameter_file is not None:        # and in the work coordinates the file keeps
+            program = interpret_program("", machine, position)
+            work = " ".join(f"{axis}{value:.3f}" for axis, value in zip("XYZ", program.end_work))
+            lines.append(f"work position {work} mm ({describe(program.saved) or 'no offset'}: "
+                         f"{machine.parameter_file})")
     except LinkError as err:
         print(f"interp: error: link: {err}", file=sys.stderr)
         return 1

@@ -104,17 +104,20 @@ VALID_LETTERS = set("ABCDFGHIJKLMNPQRSTUVWXYZ@^")
 
 
 def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0, 0.0),
-              tools: dict[int, dict] | None = None, start: Point = (0.0, 0.0, 0.0)) -> Program:
+              tools: dict[int, dict] | None = None, start: Point = (0.0, 0.0, 0.0),
+              saved: dict[int, float] | None = None) -> Program:
     """Run a G-code program: text -> Program of moves in machine mm (see moves.py).
 
     g28, g30: the G28 / G30 home positions in machine mm (#5161.., #5181..);
     tools: T -> {"length_mm": float, "diameter_mm": float}, the tool table
     (G10 L1/L10 change a copy of it); start: where the machine is when the program
-    starts, machine mm (the first move starts there).  Raises GcodeError for anything
-    it cannot run.
+    starts, machine mm (the first move starts there); saved: the persistent parameters
+    an earlier program left (parameter_file.py: offsets, G92, coordinate system, G28 /
+    G30 positions in machine mm; they override g28 and g30).  The program's own end
+    values are `Program.saved`.  Raises GcodeError for anything it cannot run.
     """
     params = Parameters()
-    machine = _Machine(params, g28, g30, tools or {}, start)
+    machine = _Machine(params, g28, g30, tools or {}, start, saved or {})
     for block in iterate_blocks(text, params):
         if block.delete:
             continue                                  # block delete switch on
@@ -128,6 +131,7 @@ def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0
     program.end_machine = tuple(machine.position)
     program.end_work = machine.work_position()
     program.units = machine.units
+    program.saved = machine.saved_parameters()
     return program
 
 
@@ -157,7 +161,7 @@ class _Words:
 
 class _Machine:
     def __init__(self, params: Parameters, g28: Point, g30: Point, tools: dict[int, dict],
-                 start: Point = (0.0, 0.0, 0.0)):
+                 start: Point = (0.0, 0.0, 0.0), saved: dict[int, float] | None = None):
         self.params = params
         self.program = Program()
         self.moves_made = 0
@@ -188,7 +192,40 @@ class _Machine:
         self.ended = False
         self.written: dict[int, float] = {}
         self.settings_changed = True             # the offset parameters need writing
+        self._restore(saved or {})
         self._write_parameters()
+
+    # ---- the persistent parameters (parameter_file.py) ------------------------------
+    def _restore(self, saved: dict[int, float]) -> None:
+        """Start from the parameters an earlier program saved (machine mm)."""
+        for a in range(3):
+            self.homes[280][a] = saved.get(5161 + a, self.homes[280][a])
+            self.homes[300][a] = saved.get(5181 + a, self.homes[300][a])
+            self.g92_stored[a] = saved.get(5211 + a, 0.0)
+            for n in range(9):
+                self.work_offsets[n][a] = saved.get(5221 + 20 * n + a, 0.0)
+        self.coordinate_system = int(saved.get(5220, 1))
+        self.g92_enabled = bool(saved.get(5210, 0.0))
+        self.g92 = list(self.g92_stored) if self.g92_enabled else [0.0, 0.0, 0.0]
+
+    def saved_parameters(self) -> dict[int, float]:
+        """The persistent parameters at the program's end, machine mm: the offsets, G92, the
+        coordinate system and the G28 / G30 positions; a length parameter the program assigned
+        and no G word took over yet is saved as assigned, as LinuxCNC saves its parameter table.
+        M2 / M30 select G54 and suspend G92 (its offset kept), as RS274NGC's program end does."""
+        values = {5220: float(self.coordinate_system), 5210: 1.0 if self.g92_enabled else 0.0}
+        for a in range(3):
+            values[5161 + a] = self.homes[280][a]
+            values[5181 + a] = self.homes[300][a]
+            values[5211 + a] = self.g92_stored[a]
+            for n in range(9):
+                values[5221 + 20 * n + a] = self.work_offsets[n][a]
+        for key in values:
+            if key not in (5210, 5220) and self.params.get(key) != self.written.get(key):
+                values[key] = self.params.get(key) * self.scale
+        if self.ended:
+            values[5220], values[5210] = 1.0, 0.0
+        return values
 
     # ---- coordinates ----------------------------------------------------------------
     @property

@@ -59,6 +59,9 @@ SCHEMA: dict[str, dict[str, tuple]] = {
         "max_s": ("float>", 24000.0, 0, 1e9, "rpm", "the S value of 100 % PWM duty"),
         "pwm_hz": ("float>", 1000.0, 0, 1e9, "Hz", "PWM frequency (recorded for the spindle output)"),
     },
+    "gcode": {
+        "parameter_file": ("text", "", None, None, "", "file of the settings that outlive a program (work offsets, G92, the coordinate system, G28 / G30 positions); empty: none"),
+    },
     "home": {
         "g28": ("point", (0.0, 0.0, 0.0), -1e7, 1e7, "mm", "the G28 position, machine coordinates"),
         "g30": ("point", (0.0, 0.0, 0.0), -1e7, 1e7, "mm", "the G30 position, machine coordinates"),
@@ -85,6 +88,7 @@ class Machine:
     values: dict[str, dict]                      # every section's keys, defaults filled in
     tools: dict[int, dict] = field(default_factory=dict)
     source: str = "default machine"
+    source_is_file: bool = False
 
     @property
     def clock_hz(self) -> float:
@@ -105,6 +109,15 @@ class Machine:
     @property
     def g30(self):
         return tuple(self.values["home"]["g30"])
+
+    @property
+    def parameter_file(self) -> Path | None:
+        """The parameter file (gcode.parameter_file, relative to the machine file's folder), or None."""
+        name = self.values["gcode"]["parameter_file"]
+        if not name:
+            return None
+        folder = Path(self.source).parent if self.source_is_file else Path(".")
+        return folder / Path(name).expanduser()
 
     @property
     def max_s(self) -> float:
@@ -133,6 +146,10 @@ def _check(where: str, key: str, spec: tuple, value):
     if kind == "choice":
         if value not in low:
             raise MachineError(f"{name} must be one of {', '.join(map(repr, low))} (got {value!r})")
+        return value
+    if kind == "text":
+        if not isinstance(value, str):
+            raise MachineError(f"{name} must be a string (got {value!r})")
         return value
     if kind == "point":
         if not isinstance(value, list) or len(value) != 3:
@@ -237,7 +254,7 @@ def load_machine(path: str | None = None, sets: list[str] = (), clock_hz: float 
     if clock_hz is not None:
         _apply("--clock-hz", values, {"controller": {"clock_hz": clock_hz}})
     tools = {_tool_number(where, s): dict(v) for s, v in values.items() if s.startswith("tool.")}
-    machine = Machine({s: v for s, v in values.items() if not s.startswith("tool.")}, tools, where)
+    machine = Machine({s: v for s, v in values.items() if not s.startswith("tool.")}, tools, where, path is not None)
     _consistent(machine)
     return machine
 

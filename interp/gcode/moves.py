@@ -82,3 +82,6 @@ class Program:
     # path-control mode changes, for the planner: (line, "G61" | "G61.1" | "G64", P, Q), P and Q
     # (G64's blending tolerance and naive-CAM tolerance) in mm or None when not programmed
     path_modes: list[tuple[int, str, float | None, float | None]] = field(default_factory=list)
+    # the persistent parameters at the end (#5161.. G28, #5181.. G30, #5210.. G92, #5220 the
+    # coordinate system, #5221.. G54..G59.3), machine mm: what a parameter file keeps
+    saved: dict[int, float] = field(default_factory=dict)
