@@ -10,7 +10,7 @@
 //   motion_top's events -> machine_io (spindle, PWM, coolant, digital outputs)
 //   controller_regs: the register map (Wishbone B4 classic slave).
 // Positions (POS_X/Y/Z) count the rising edges of the step pins, here, so that an abort
-// (which resets motion_top) keeps them.  Any error latched in ERROR puts the controller in
+// (which resets motion_top) keeps them; a register write at rest sets one (homing).  Any error latched in ERROR puts the controller in
 // ALARM: motion_top held in reset (steps stop at once), queue and partial record flushed,
 // incoming record bytes taken and dropped, spindle and coolant off, until CONTROL.clear.
 // CONTROL.abort does the same for one clock (no error).  CONTROL.fill holds motion_top in
@@ -208,6 +208,8 @@ module controller #(
     assign dir = m_dir;
 
     reg  [2:0] step_q;
+    wire [2:0]       position_write;             // a register write sets a counter (homing)
+    wire [POS_W-1:0] position_value;
     function [POS_W-1:0] moved(input [POS_W-1:0] pos, input rise, input negative);
         moved = rise ? (negative ? pos - 1'b1 : pos + 1'b1) : pos;
     endfunction
@@ -223,9 +225,9 @@ module controller #(
             error_limits <= 3'b000;
         end else begin
             step_q <= step;
-            pos_x  <= moved(pos_x, step[0] & ~step_q[0], dir[0]);
-            pos_y  <= moved(pos_y, step[1] & ~step_q[1], dir[1]);
-            pos_z  <= moved(pos_z, step[2] & ~step_q[2], dir[2]);
+            pos_x  <= position_write[0] ? position_value : moved(pos_x, step[0] & ~step_q[0], dir[0]);
+            pos_y  <= position_write[1] ? position_value : moved(pos_y, step[1] & ~step_q[1], dir[1]);
+            pos_z  <= position_write[2] ? position_value : moved(pos_z, step[2] & ~step_q[2], dir[2]);
             if (clear)
                 error_limits <= 3'b000;
             // the first error wins until CONTROL.clear
@@ -298,6 +300,7 @@ module controller #(
         .override_percent(override_percent), .pulse_width(pulse_width), .dir_setup(dir_setup),
         .dir_hold(dir_hold), .quantum(quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
         .input_invert(input_invert), .spindle_period(spindle_period),
+        .position_write(position_write), .position_value(position_value),
         .data_write(data_write), .data_word(data_word), .data_lanes(data_lanes), .data_ready(data_ready)
     );
 

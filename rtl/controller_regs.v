@@ -13,6 +13,9 @@
 // [2] clear, [3] probe_arm, [4] enable (RW), [5] fill (RW).  QUANTUM_LO/HI and MOTION are
 // taken only while `busy` is low, and fill rises only then (or with abort in the same
 // write): a write while busy keeps them and sets STATUS.refused (until CONTROL.clear).
+// POS_X/Y/Z: a write while not busy sets that position counter (`position_write`, the
+// value sign-truncated to POS_W bits; homing) and its STATUS.position_set bit, which
+// only the reset clears; a write while busy is refused the same way.
 module controller_regs #(
     parameter integer CLK_HZ   = 50000000,  // board clock, Hz (CLOCK_HZ register; >= 1)
     parameter integer W        = 32,        // command field width (VERSION; 6 .. 255)
@@ -81,6 +84,8 @@ module controller_regs #(
     output reg  [3:0]        jerk_shift,
     output reg  [4:0]        input_invert,
     output reg  [15:0]       spindle_period,
+    output wire [2:0]        position_write, // strobes: set POS_X / POS_Y / POS_Z to position_value
+    output wire [POS_W-1:0]  position_value,
     output wire              data_write,    // strobe: data_word's selected bytes for the queue
     output wire [31:0]       data_word,
     output wire [3:0]        data_lanes,    // ... the bytes selected (wb_sel), lowest first
@@ -141,7 +146,14 @@ module controller_regs #(
     // or with abort in the same write (which flushes)
     wire   fill_refused  = control_write & wb_dat_w[5] & ~fill & busy & ~wb_dat_w[1];
     wire   speed_refused = speed_write & busy;
-    wire   refuse        = speed_refused | fill_refused;
+    // the position counters are set only at rest (homing), like the speed settings
+    wire [2:0] position_address = {address == REG_POS_Z[7:0], address == REG_POS_Y[7:0],
+                                   address == REG_POS_X[7:0]};
+    wire   position_refused = write & |position_address & busy;
+    assign position_write = {3{write & ~busy}} & position_address;
+    assign position_value = wb_dat_w[POS_W-1:0];
+    reg  [2:0] position_set;                        // STATUS.position_set, until the reset
+    wire   refuse        = speed_refused | fill_refused | position_refused;
     reg    refused;                                 // STATUS.refused, until CONTROL.clear
 
     // positions sign-extended to 32 bits
@@ -165,7 +177,7 @@ module controller_regs #(
         words[REG_BUILD1[6:2] * 32 +: 32]         = BUILD1;
         words[REG_CLOCK_HZ[6:2] * 32 +: 32]       = CLOCK;
         words[REG_QUEUE_SIZE[6:2] * 32 +: 32]     = QUEUE_SIZE;
-        words[REG_STATUS[6:2] * 32 +: 32]         = {16'd0, records, refused, enable, probe_valid, stopped, busy, state};
+        words[REG_STATUS[6:2] * 32 +: 32]         = {13'd0, position_set, records, refused, enable, probe_valid, stopped, busy, state};
         words[REG_ERROR[6:2] * 32 +: 32]          = {21'd0, error_limits, error_code};
         words[REG_QUEUE_FREE[6:2] * 32 +: 32]     = {free_records, free_bytes};
         words[REG_POS_X[6:2] * 32 +: 32]          = extended(pos_x);
@@ -217,8 +229,10 @@ module controller_regs #(
             input_invert     <= 5'd0;
             spindle_period   <= PERIOD_RESET[15:0];
             refused          <= 1'b0;
+            position_set     <= 3'b000;
         end else begin
             refused <= refuse | (refused & ~clear_strobe);
+            position_set <= position_set | position_write;
             if (hold_set)
                 hold <= 1'b1;
             if (write & ~speed_refused) begin

@@ -21,7 +21,7 @@ import sys
 
 from ..cores import UsageError
 from ..gcode import compile as gc
-from ..gcode.machine import Machine, load_machine
+from ..gcode.machine import AXES, Machine, load_machine
 from ..gcode.parameter_file import describe, write_parameters
 from ..link import protocol as p
 from ..link.driver import (Driver, LinkError, MachineError, MismatchError, check_controller, check_idle, configure,
@@ -202,6 +202,7 @@ def cmd_send(args) -> int:
         driver.connect()
         check_controller(driver, build, machine.clock_hz)
         check_idle(driver)
+        check_homed(driver, machine)
         # the program starts where the machine is: the controller's position counters
         # (machine coordinates, zero at its reset), as Grbl's and LinuxCNC's programs do;
         # compiled from there (travel limits and arcs depend on the start)
@@ -249,6 +250,9 @@ def cmd_send(args) -> int:
     except LinkError as err:
         print(f"interp: error: link: {err}", file=sys.stderr)
         return 1
+    except NotHomed as err:
+        print(f"interp: error: {err}", file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         print("interp: interrupted", file=sys.stderr)
         return 1
@@ -279,6 +283,22 @@ def cmd_send(args) -> int:
     print(f"sent {records} records ({len(stream)} bytes) in {outcome.seconds:.3f} s link time at {baud} baud, "
           f"{stats}{end}")
     return 0
+
+
+class NotHomed(Exception):
+    """homing.required and an axis not homed: one line, exit status 1."""
+
+
+def check_homed(driver: Driver, machine: Machine) -> None:
+    """With homing.required, every axis `interp home` homes must have had its position set
+    since the controller's reset (STATUS.position_set), as Grbl locks a machine until $H."""
+    if not machine.homing["required"]:
+        return
+    homed = driver.read_register("STATUS") >> 16 & 7
+    missing = [AXES[a].upper() for a in machine.homed_axes() if not homed >> a & 1]
+    if missing:
+        raise NotHomed(f"the machine is not homed since the controller's reset ({' '.join(missing)}): "
+                        "run interp home (homing.required)")
 
 
 def save_parameters(args, machine: Machine, before: dict, after: dict) -> None:

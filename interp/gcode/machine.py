@@ -37,6 +37,7 @@ def _axis():
         "accel_mm_s2": ("float>", 500.0, 0, 1e9, "mm/s^2", "acceleration of the axis (the planner's path acceleration of each move)"),
         "min_mm": ("float", -1000.0, -1e7, 1e7, "mm", "soft limit: the lowest machine coordinate"),
         "max_mm": ("float", 1000.0, -1e7, 1e7, "mm", "soft limit: the highest machine coordinate"),
+        "home": ("choice", "none", ("none", "min", "max"), None, "", "the travel end its limit switch homes it to (interp home)"),
     }
 
 
@@ -62,6 +63,13 @@ SCHEMA: dict[str, dict[str, tuple]] = {
     "gcode": {
         "parameter_file": ("text", "", None, None, "", "file of the settings that outlive a program (work offsets, G92, the coordinate system, G28 / G30 positions); empty: none"),
     },
+    "homing": {
+        "order": ("text", "zxy", None, None, "", "the axes `interp home` homes, one after another (those with a home end)"),
+        "seek_mm_min": ("float>", 500.0, 0, 1e7, "mm/min", "speed towards the switch, and of the pull-offs"),
+        "locate_mm_min": ("float>", 50.0, 0, 1e7, "mm/min", "speed of the second, slow approach that sets the position"),
+        "pull_off_mm": ("float>", 1.0, 0, 1e3, "mm", "distance back off the switch"),
+        "required": ("bool", False, None, None, "", "interp send refuses a controller not homed since its reset"),
+    },
     "home": {
         "g28": ("point", (0.0, 0.0, 0.0), -1e7, 1e7, "mm", "the G28 position, machine coordinates"),
         "g30": ("point", (0.0, 0.0, 0.0), -1e7, 1e7, "mm", "the G30 position, machine coordinates"),
@@ -81,6 +89,7 @@ class Axis:
     accel_mm_s2: float
     min_mm: float
     max_mm: float
+    home: str = "none"
 
 
 @dataclass
@@ -120,6 +129,14 @@ class Machine:
         return folder / Path(name).expanduser()
 
     @property
+    def homing(self) -> dict:
+        return self.values["homing"]
+
+    def homed_axes(self) -> list[int]:
+        """The axes `interp home` homes, in its order (0 = x)."""
+        return [AXES.index(a) for a in self.homing["order"] if self.values[f"axis.{a}"]["home"] != "none"]
+
+    @property
     def max_s(self) -> float:
         return self.values["spindle"]["max_s"]
 
@@ -146,6 +163,10 @@ def _check(where: str, key: str, spec: tuple, value):
     if kind == "choice":
         if value not in low:
             raise MachineError(f"{name} must be one of {', '.join(map(repr, low))} (got {value!r})")
+        return value
+    if kind == "bool":
+        if not isinstance(value, bool):
+            raise MachineError(f"{name} must be true or false (got {value!r})")
         return value
     if kind == "text":
         if not isinstance(value, str):
@@ -262,6 +283,9 @@ def load_machine(path: str | None = None, sets: list[str] = (), clock_hz: float 
 def _consistent(machine: Machine) -> None:
     """Checks between keys: travel order, positions and rates the hardware can hold."""
     where = machine.source
+    order = machine.homing["order"]
+    if any(a not in AXES for a in order) or len(set(order)) != len(order):
+        raise MachineError(f"{where}: homing.order must name axes of xyz, each at most once (got {order!r})")
     clock = machine.clock_hz
     for a, axis in zip(AXES, machine.axes):
         if axis.min_mm >= axis.max_mm:

@@ -30,7 +30,8 @@ class DeviceModel:
     def __init__(self, *, build: Build = DEFAULT_BUILD, clock_hz: int = 50_000_000, baud: int = 115200,
                  line_noise: float = 0.0, seed: int = 1, queue_aw: int = 12, curves: bool = True,
                  records_per_second: float = 1000.0, frame_timeout: int = p.FRAME_TIMEOUT_BYTES,
-                 fail_at: int | None = None, fail_code: int = 17, hold_seconds: float = 0.002):
+                 fail_at: int | None = None, fail_code: int = 17, hold_seconds: float = 0.002,
+                 switches: dict[int, tuple[str, int]] | None = None):
         self.build, self.clock_hz, self.baud = build, int(clock_hz), baud
         self.byte_time = 10.0 / baud
         self.noise, self.rng = float(line_noise), random.Random(seed)
@@ -68,6 +69,10 @@ class DeviceModel:
         self.error = 0
         self.limits = 0
         self.position = [0, 0, 0]
+        self.position_set = 0                       # STATUS.position_set
+        # limit switches: axis -> ("min" | "max", steps): active at or beyond that position; a
+        # line that reaches one stops there (ERROR 17), as the input guard gates the steps
+        self.switches = dict(switches or {})
         self.hold = False
         self.hold_since = 0.0
         self.enabled = False
@@ -319,11 +324,37 @@ class DeviceModel:
                 self.queue.clear()
                 self.reader = RecordReader(self.build)
                 return
-            if record["kind"] == 0:
-                for axis, name in enumerate("xyz"):
-                    self.position[axis] += record[name]
+            if record["kind"] == 0 and self._line(record):
+                self.busy = False
+                self.queue.clear()
+                self.reader = RecordReader(self.build)
+                return
             self.busy = True
             self.running_until = self.t + self.record_time
+
+    def switch_active(self, axis: int) -> bool:
+        if axis not in self.switches:
+            return False
+        side, at = self.switches[axis]
+        return self.position[axis] <= at if side == "min" else self.position[axis] >= at
+
+    def _line(self, record: dict) -> bool:
+        """Move along a line record; True if a limit switch stopped it (position at the switch)."""
+        delta = [record[name] for name in "xyz"]
+        first = None                                # (fraction of the line, axis) of the first switch
+        for axis, (side, at) in self.switches.items():
+            toward = delta[axis] < 0 if side == "min" else delta[axis] > 0
+            if toward and not self.switch_active(axis) and abs(at - self.position[axis]) <= abs(delta[axis]):
+                fraction = (at - self.position[axis]) / delta[axis]
+                first = min(first or (2.0, 0), (fraction, axis))
+        if first is None:
+            self.position = [p + d for p, d in zip(self.position, delta)]
+            return False
+        fraction, axis = first
+        self.position = [p + round(d * fraction) for p, d in zip(self.position, delta)]
+        self.position[axis] = self.switches[axis][1]
+        self.error, self.limits = 17, 1 << axis
+        return True
 
     def read_register(self, address: int) -> int:
         b, a = self.build, p.REGISTER_ADDRESSES
@@ -337,11 +368,13 @@ class DeviceModel:
             a["CLOCK_HZ"]: self.clock_hz,
             a["QUEUE_SIZE"]: (self.queue_size & 0xFFFF) | self.queue_aw << 16 | int(self.curves) << 24,
             a["STATUS"]: (self.state() | int(self._busy()) << 3 | int(self.state() == p.HELD) << 4
-                          | int(self.enabled) << 6 | int(self.refused) * p.STATUS_REFUSED | min(records, 255) << 8),
+                          | int(self.enabled) << 6 | int(self.refused) * p.STATUS_REFUSED | min(records, 255) << 8
+                          | self.position_set << 16),
             a["ERROR"]: self.error | self.limits << 8,
             a["QUEUE_FREE"]: (free & 0xFFFF) | (free // self.record_len) << 16,
             a["POS_X"]: self.position[0] & 0xFFFFFFFF, a["POS_Y"]: self.position[1] & 0xFFFFFFFF,
             a["POS_Z"]: self.position[2] & 0xFFFFFFFF,
+            a["INPUTS"]: sum(int(self.switch_active(axis)) << (1 + axis) for axis in range(3)),
             a["CONTROL"]: int(self.hold) | int(self.enabled) << 4 | int(self.fill) << 5,
             a["LINK_FRAMES"]: (self.frames & 0xFFFF) | (self.duplicates & 0xFFFF) << 16,
             a["LINK_ERRORS"]: (self.errors & 0xFFFF) | (self.gaps & 0xFFFF) << 16,
@@ -378,5 +411,16 @@ class DeviceModel:
             self._execute()
         elif name in p.SPEED_SETTINGS and self._busy():
             self.refused = True                     # taken only while not busy
+        elif name in ("POS_X", "POS_Y", "POS_Z") and self._busy():
+            self.refused = True
+        elif name in ("POS_X", "POS_Y", "POS_Z"):
+            axis, bits = "XYZ".index(name[-1]), self.build.POS_W
+            low = value & ((1 << bits) - 1)
+            new = low - (1 << bits) if low >> (bits - 1) else low
+            if axis in self.switches:               # the switch stays where it is on the machine
+                side, at = self.switches[axis]
+                self.switches[axis] = (side, at + new - self.position[axis])
+            self.position[axis] = new
+            self.position_set |= 1 << axis
         elif name in self.regs:
             self.regs[name] = value

@@ -9,7 +9,8 @@ programmed position (POS_*); e-stop and a limit switch mid-arc (the step pins lo
 cycle the synchronized input shows it, error latched until clear); feed hold and resume
 mid-helix (no step lost); abort (mid-record too) and restart; CONTROL.fill (records held,
 then released at the unpacker's pace); rst at random cycles (seeded);
-events -> outputs, PWM duty; the probe latch; bad records (kind 6, 7; a curve when the
+events -> outputs, PWM duty; the probe latch; POS_X/Y/Z set at rest (homing) and refused
+while busy; bad records (kind 6, 7; a curve when the
 curve core is left out).  The benches' small build (W 16, FRAC 16, CURVES 0, a 256-byte
 queue) for most; the G-code build (W 32, FRAC 48, CURVES 1) runs a compiled G-code program.
 Records come from interp.testing.controllerkit's encoder (the record format of the docs).
@@ -107,7 +108,7 @@ async def registers(dut):
         assert tb.last_ack <= 2, f"{name}: ack after {tb.last_ack} cycles"
     rw = {"OVERRIDE": 0xFF, "PULSE_WIDTH": tw_mask, "DIR_SETUP": tw_mask, "DIR_HOLD": tw_mask,
           "QUANTUM_LO": feed_mask & 0xFFFFFFFF, "QUANTUM_HI": feed_mask >> 32, "MOTION": 0xFF,
-          "SPINDLE_PERIOD": 0xFFFF}
+          "SPINDLE_PERIOD": 0xFFFF, "POS_X": 0xFFFFFFFF, "POS_Y": 0xFFFFFFFF, "POS_Z": 0xFFFFFFFF}
     for name, mask in rw.items():
         for value in (0xFFFFFFFF, 0x5A5A5A5A, 0):
             await tb.write(name, value)
@@ -115,10 +116,11 @@ async def registers(dut):
             assert got == value & mask, f"{name}: wrote {value:#x}, read {got:#x}"
             assert tb.last_ack <= 2
     for name in ("ID", "VERSION", "BUILD0", "BUILD1", "CLOCK_HZ", "QUEUE_SIZE", "STATUS", "ERROR", "QUEUE_FREE",
-                 "POS_X", "PROBE_Z", "INPUTS", "OUTPUTS", "LINK_FRAMES", "LINK_ERRORS", "EXECUTED"):
+                 "PROBE_Z", "INPUTS", "OUTPUTS", "LINK_FRAMES", "LINK_ERRORS", "EXECUTED"):
         before = await tb.read(name)
         await tb.write(name, 0xFFFFFFFF ^ before)
         assert await tb.read(name) == before, f"{name} is read-only"
+    assert await tb.read("STATUS") >> 16 == 0b111       # position_set: every POS register written
     # CONTROL: hold, enable and fill are RW, abort / clear / probe_arm read 0
     await tb.write("CONTROL", 0xFFFFFFFF)
     assert await tb.read("CONTROL") == HOLD | ENABLE | FILL
@@ -586,9 +588,35 @@ async def settings_wait_for_idle(dut):
     assert await tb.read("MOTION") == 0x21 and not await tb.read("STATUS") & REFUSED
 
 
+@cocotb.test()
+async def position_set_at_rest(dut):
+    """POS_X/Y/Z written at rest set the counters (homing) and the axis's STATUS.position_set
+    bit; the next move's steps count on from there; a write while busy is refused
+    (STATUS.refused) and the count goes on; the reset clears the bits and the counters."""
+    tb = await Bench(dut).start()
+    assert await tb.read("STATUS") >> 16 == 0
+    await tb.write("POS_Y", -7 & 0xFFFFFFFF)
+    assert await tb.read("STATUS") >> 16 == 0b010
+    await tb.write("POS_X", 1000)
+    await tb.write("POS_Z", 0x7FFFFFF0)
+    start = [1000, -7, 0x7FFFFFF0]
+    assert await tb.position() == start and await tb.read("STATUS") >> 16 == 0b111
+    cmds = tb.profiled([Command(LINE, ONE // 2, 30, -20, 5)])
+    end, _ = tb.end_of(cmds, start=start)
+    await tb.send(tb.records(cmds))
+    await tb.wait_steps(3)
+    await tb.write("POS_X", 0)
+    assert await tb.read("STATUS") & REFUSED
+    await tb.wait_idle()
+    assert await tb.position() == end and await tb.read("ERROR") == 0
+    await tb.reset()
+    assert await tb.position() == [0, 0, 0] and await tb.read("STATUS") >> 16 == 0
+
+
 SMALL_TESTS = ["registers", "records_to_motion_top", "program_ends_at_its_position", "estop_and_limit_mid_arc",
                "hold_resume_mid_helix", "abort_and_restart", "fill_then_run", "reset_at_random_cycles",
-               "events_drive_outputs", "probe_latch", "bad_records", "settings_wait_for_idle"]
+               "events_drive_outputs", "probe_latch", "bad_records", "settings_wait_for_idle",
+               "position_set_at_rest"]
 
 
 def test_controller(sim):
