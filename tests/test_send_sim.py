@@ -7,6 +7,7 @@ through its UART pins in simulated time.
     is refused and not executed, its retransmission is executed once, a duplicate is
     acknowledged and not executed again (LINK_FRAMES / LINK_ERRORS, EXECUTED);
   * the input pins (set_pin): INPUTS, a limit switch's ERROR and ALARM;
+  * homing (set_switch: a switch that follows the position): interp home's cycle on the RTL;
   * a tiny built-in program: `interp send --sim --steps A` equals `interp gcode --steps B`
     byte for byte; the end position registers equal the programmed end;
   * line noise 0.01 (most frames corrupted): the run completes and its steps CSV equals
@@ -156,6 +157,31 @@ def test_input_pins(files):
         assert register(link, parser, 0x3C) & 0x1F == 0b00001         # INPUTS: estop
         with pytest.raises(SimLinkError, match="unknown pin"):
             link.set_pin("spindle", 1)
+
+
+def test_homing_on_the_rtl(files, tmp_path):
+    """interp home's cycle through the controller's RTL: a switch that follows the pulses
+    counted at the step pins (0.37 mm below where the machine powered up) stops the seek and
+    the slow approach on its edge, the pull-offs move off it after CONTROL.clear, and the
+    POS_X write over the link makes the switch machine -1 mm (min_mm): the axis ends 0.2 mm
+    inside, STATUS.position_set has x, and the pins moved exactly to the switch and back."""
+    from interp.commands import home
+    from interp.gcode.machine import load_machine
+    from interp.link.driver import Driver
+
+    path = tmp_path / "home.toml"
+    path.write_text(MACHINE + '[axis.x]\nmin_mm = -1\nmax_mm = 1\nhome = "min"\n'
+                    "[homing]\nseek_mm_min = 600\nlocate_mm_min = 60\npull_off_mm = 0.2\n")
+    machine = load_machine(str(path))
+    with SimLink(machine=machine) as link:
+        link.set_switch(0, "min", -37)
+        driver = Driver(link, baud=link.baud)
+        driver.connect()
+        assert home.home_axis(driver, machine, 0) == (-1.0, -0.8)
+        assert [signed32(driver.read_register(name)) for name in POSITION] == [-80, 0, 0]
+        assert driver.read_register("STATUS") >> 16 == 0b001 and driver.read_register("ERROR") == 0
+        result = link.close()
+    assert result["position"] == [-17, 0, 0]                   # the switch, then a pull-off of 20 steps
 
 
 def test_send_sim_equals_gcode(files, gcode_steps, capsys):

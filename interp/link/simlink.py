@@ -185,6 +185,13 @@ class SimLink:
         words = self._ask(f"p {name} {int(value)}").split(" ")
         self._cycle = int(words[1])
 
+    def set_switch(self, axis: int, side: str, at: int) -> None:
+        """A limit switch on axis 0..2 at harness position `at` (the pulses counted at the step
+        pins since the reset, which a POS write does not move): active at or below it for
+        side "min", at or above for "max"; that limit pin then follows the position."""
+        words = self._ask(f"s {int(axis)} {int(side == 'max')} {int(at)}").split(" ")
+        self._cycle = int(words[1])
+
     def close(self) -> dict:
         """Stop the simulator; the run's figures: cycles, first_push, steps, position [x, y, z]
         (pulses counted at the pins), bits / flipped bits each way, chars dropped, skipped

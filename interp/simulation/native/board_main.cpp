@@ -14,6 +14,10 @@
 //                    or CYCLES cycles have passed (0: just report).  Answer
 //                    "d CYCLE HEX" with every byte received since the last "d".
 //   p NAME VALUE     set an input pin: estop, limit (3 bits), probe.  Answer "ok CYCLE".
+//   s AXIS SIDE AT   a limit switch on axis 0..2 (x, y, z) at harness position AT (steps
+//                    counted at the pins, 0 at reset): SIDE 0 active at or below AT, 1 at
+//                    or above; from then on that limit bit follows the position after
+//                    every step (a machine's switch: homing).  Answer "ok CYCLE".
 //   q                finish: close the steps CSV, answer one JSON line, exit 0.
 // CYCLE: rising edges of clk since reset was released (simulated seconds = CYCLE / CLK_HZ).
 //
@@ -129,6 +133,14 @@ class Board {
         for (uint8_t b : bytes) out_queue_.push_back(b);
     }
 
+    void set_switch(int axis, int side, int64_t at) {
+        switch_on_[axis] = true;
+        switch_side_[axis] = side;
+        switch_at_[axis] = at;
+        update_switches();
+        calm_ = 0;
+    }
+
     void set_pin(const std::string& name, uint64_t value) {
         if (name == "estop") top_->estop = value & 1;
         else if (name == "limit") top_->limit = value & 7;
@@ -230,6 +242,7 @@ class Board {
                 position_[k] += d[k];
             }
             ++rows_;
+            update_switches();
             if (steps_) {
                 const int64_t c = first_push_ ? int64_t(cycle_ - first_push_ + 1) : -int64_t(cycle_);
                 std::fprintf(steps_, "%" PRId64 ",%d,%d,%d\n", c, d[0], d[1], d[2]);
@@ -326,6 +339,20 @@ class Board {
     FILE* steps_ = nullptr;
     uint64_t cycle_ = 0, first_push_ = 0, rows_ = 0;
     int64_t position_[3] = {0, 0, 0};
+    bool switch_on_[3] = {false, false, false};
+    int switch_side_[3] = {0, 0, 0};
+    int64_t switch_at_[3] = {0, 0, 0};
+
+    // the limit pins of the axes with a switch, from the position
+    void update_switches() {
+        unsigned limit = top_->limit;
+        for (int k = 0; k < 3; ++k) {
+            if (!switch_on_[k]) continue;
+            const bool active = switch_side_[k] ? position_[k] >= switch_at_[k] : position_[k] <= switch_at_[k];
+            limit = active ? limit | 1u << k : limit & ~(1u << k);
+        }
+        top_->limit = limit;
+    }
     unsigned prev_step_ = 0;
     bool activity_ = false, pushed_ = false;
     // host -> controller shifter
@@ -425,6 +452,14 @@ int main(int argc, char** argv) {
             unsigned long long value = 0;
             if (std::sscanf(rest.c_str(), "%31s %llu", name, &value) != 2) fail("p: want NAME VALUE");
             board.set_pin(name, value);
+            std::printf("ok %" PRIu64 "\n", board.cycle());
+        } else if (op == 's') {
+            int axis = 0, side = 0;
+            long long at = 0;
+            if (std::sscanf(rest.c_str(), "%d %d %lld", &axis, &side, &at) != 3 || axis < 0 || axis > 2 ||
+                side < 0 || side > 1)
+                fail("s: want AXIS (0..2) SIDE (0 or 1) AT");
+            board.set_switch(axis, side, at);
             std::printf("ok %" PRIu64 "\n", board.cycle());
         } else if (op == 'q') {
             board.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count());
