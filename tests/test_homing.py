@@ -9,7 +9,7 @@ from __future__ import annotations
 import pytest
 
 from interp.cli import main
-from interp.commands import home, send
+from interp.commands import send
 from interp.link.devicemodel import DeviceModel
 
 MACHINE = """
@@ -42,8 +42,7 @@ def machine_file(tmp_path):
 
 
 def attach(monkeypatch, device):
-    for module in (send, home):
-        monkeypatch.setattr(module, "open_transport", lambda args, machine: (device, 115200))
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
 
 
 def test_homing_sets_each_axis_at_its_switch(capsys, machine_file, monkeypatch):

@@ -41,6 +41,17 @@ def test_a_missing_file_is_no_parameter(tmp_path):
     assert read_parameters(tmp_path / "none.var") == {}
 
 
+def test_a_byte_order_mark_and_crlf_are_read(tmp_path):
+    path = tmp_path / "notepad.var"
+    path.write_bytes(b"\xef\xbb\xbf5221 1.5\r\n5220 2\r\n")
+    assert read_parameters(path) == {5221: 1.5, 5220: 2.0}
+
+
+def test_a_path_the_system_refuses_is_one_line(tmp_path):
+    with pytest.raises(UsageError, match="cannot read parameter file"):
+        read_parameters(tmp_path / "a\x00b")
+
+
 def test_a_linuxcnc_var_file_with_its_other_axes_at_zero(tmp_path):
     path = tmp_path / "linuxcnc.var"
     path.write_text("5161\t0.000000\n5164\t0.000000\n5220\t2.000000\n\n5241\t10.000000\n5249\t0.000000\n"
@@ -61,13 +72,14 @@ def test_a_linuxcnc_var_file_with_its_other_axes_at_zero(tmp_path):
     ("5220 1.5\n", "line 1: #5220 (the coordinate system) must be 1 .. 9 (got 1.5)"),
     ("5210 2\n", "line 1: #5210 (G92 applies) must be 0 or 1 (got 2)"),
     ("5222 1e9\n", "line 1: #5222 must be within +-1e+07 mm (got 1e+09)"),
+    (b"\xff5221 1\n", "not UTF-8 text (byte 0)"),
 ])
 def test_a_bad_file_is_one_line_naming_the_line(tmp_path, text, message):
     path = tmp_path / "bad.var"
-    path.write_text(text)
+    path.write_bytes(text if isinstance(text, bytes) else text.encode())
     with pytest.raises(UsageError) as info:
         read_parameters(path)
-    assert str(info.value).startswith(f"{path} ") and message in str(info.value)
+    assert str(info.value).startswith(str(path)) and message in str(info.value)
 
 
 def test_describe_names_the_offsets_in_force():
@@ -75,6 +87,7 @@ def test_describe_names_the_offsets_in_force():
     assert describe({5220: 2.0, 5241: 1.5, 5242: -2.0, 5221: 9.0}) == "G55 X1.5 Y-2 Z0 mm"
     assert describe({5210: 1.0, 5213: -1.0}) == "G92 X0 Y0 Z-1 mm"
     assert describe({5210: 0.0, 5213: -1.0}) == ""                       # G92 suspended
+    assert describe({5221: -0.0, 5222: 1.0}) == "G54 X0 Y1 Z0 mm"
     assert offset_number(9, 2) == 5383
 
 
@@ -96,11 +109,26 @@ def test_the_end_values_in_machine_mm():
     assert program.saved[5161] == 5.0
 
 
-def test_program_end_selects_g54_and_suspends_g92():
+def test_program_end_selects_g54_and_keeps_g92():
+    """As Grbl and LinuxCNC end a program: G54 again, the G92 offset still applied."""
     program = interpret("G55\nG92 X0\nM2\n", start=(4.0, 0.0, 0.0))
-    assert program.saved[5220] == 1.0 and program.saved[5210] == 0.0 and program.saved[5211] == 4.0
-    # the next program: G92.3 restores the suspended offset
-    assert interpret("G92.3\nG0 X1\n", saved=program.saved).moves[0].end == (5.0, 0.0, 0.0)
+    assert program.saved[5220] == 1.0 and program.saved[5210] == 1.0 and program.saved[5211] == 4.0
+    assert interpret("G0 X1\n", saved=program.saved).moves[0].end == (5.0, 0.0, 0.0)
+    suspended = interpret("G92.2\nM30\n", saved=program.saved).saved
+    assert suspended[5210] == 0.0 and interpret("G92.3\nG0 X1\n", saved=suspended).moves[0].end == (5.0, 0.0, 0.0)
+
+
+def test_the_program_reads_the_saved_values():
+    program = interpret("#1 = #5241\nG0 X#1 Y#5211\n", saved={5241: 3.0, 5211: 2.0})
+    assert program.moves[0].end == (3.0, 2.0, 0.0)
+
+
+def test_an_assignment_keeps_its_units_when_the_units_change():
+    """#5221 = 10 under G21 is 10 mm, whatever G20 comes after, and a saved value does not
+    overwrite it."""
+    assert interpret("G21\n#5221 = 10\nG20\n").saved[5221] == pytest.approx(10.0)
+    assert interpret("G21\n#5221 = 10\nG20\n", saved={5221: 5.0}).saved[5221] == pytest.approx(10.0)
+    assert interpret("G21\n#5221 = 10\nG20\nG54\nG0 X0\n").moves[0].end[0] == pytest.approx(10.0)
 
 
 def test_saved_positions_override_the_machine_files():
@@ -130,6 +158,7 @@ def test_send_keeps_a_work_offset_for_the_next_program(capsys, tmp_path, machine
     var = tmp_path / "mill.var"
     assert err.strip() == f"interp send: saved the offsets to {var}: G54 X10 Y5 Z0 mm"
     assert read_parameters(var)[offset_number(1, 0)] == 10.0
+    assert 5161 not in read_parameters(var)             # G28 as the machine file has it: not kept
     code, out, err = run(capsys, "send", str(job), "--sim-model", "--machine", str(machine_file))
     assert code == 0, err
     assert f"interp send: offsets from {var}: G54 X10 Y5 Z0 mm" in err.splitlines()
@@ -160,7 +189,8 @@ def test_a_simulated_run_reads_the_file_and_leaves_it(tmp_path, machine_file):
     send.save_parameters(argparse.Namespace(sim=True), machine, {}, after)
     assert not (tmp_path / "mill.var").exists()
     send.save_parameters(argparse.Namespace(sim=False), machine, {}, after)
-    assert read_parameters(tmp_path / "mill.var") == after
+    homes = {5161, 5162, 5163, 5181, 5182, 5183}             # as the machine file's: not kept
+    assert read_parameters(tmp_path / "mill.var") == {k: v for k, v in after.items() if k not in homes}
 
 
 def test_a_bad_parameter_file_stops_send_before_the_link(capsys, tmp_path, machine_file):
@@ -171,3 +201,42 @@ def test_a_bad_parameter_file_stops_send_before_the_link(capsys, tmp_path, machi
     assert code == 2
     assert err.strip() == (f"interp: error: {tmp_path / 'mill.var'} line 1: want a parameter number and its "
                            "value (got '5221 x')")
+
+
+def test_nothing_set_leaves_no_file(capsys, tmp_path, machine_file, monkeypatch):
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (DeviceModel(), 115200))
+    program = tmp_path / "p.nc"
+    program.write_text("G0 X1\nG55 G0 X2\nM2\n")
+    code, out, err = run(capsys, "send", str(program), "--sim-model", "--machine", str(machine_file))
+    assert code == 0 and err == "" and not (tmp_path / "mill.var").exists()
+
+
+def test_an_offset_the_file_cannot_keep_is_refused_before_the_run(capsys, tmp_path, machine_file, monkeypatch):
+    device = DeviceModel()
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
+    program = tmp_path / "p.nc"
+    program.write_text("G10 L2 P2 X100000000\nG0 X1\n")
+    code, out, err = run(capsys, "send", str(program), "--sim-model", "--machine", str(machine_file))
+    assert code == 2 and not device.executed and not (tmp_path / "mill.var").exists()
+    assert err.strip() == ("interp: error: the program leaves #5241 at 1e+08 mm: a parameter file keeps at most "
+                           "+-1e+07 mm")
+
+
+def test_a_folder_that_is_missing_is_refused_before_the_run(capsys, tmp_path, monkeypatch):
+    device = DeviceModel()
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
+    machine = tmp_path / "m.toml"
+    machine.write_text('[gcode]\nparameter_file = "nodir/mill.var"\n')
+    program = tmp_path / "p.nc"
+    program.write_text("G10 L20 P1 X0\n")
+    code, out, err = run(capsys, "send", str(program), "--sim-model", "--machine", str(machine))
+    assert code == 2 and not device.frames
+    assert err.strip() == (f"interp: error: cannot write parameter file {tmp_path / 'nodir' / 'mill.var'}: "
+                           "its folder is missing or not writable")
+
+
+def test_status_with_a_bad_file_still_prints_the_registers(capsys, tmp_path, machine_file):
+    (tmp_path / "mill.var").write_text("5221\n")
+    code, out, err = run(capsys, "status", "--sim-model", "--machine", str(machine_file))
+    assert code == 0 and out.splitlines()[0].startswith("ID ")
+    assert out.splitlines()[-1].startswith(f"work position unknown: {tmp_path / 'mill.var'} line 1: ")

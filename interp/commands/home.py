@@ -24,7 +24,8 @@ from ..link.driver import (Driver, LinkError, MismatchError, check_controller, c
                            read_position, run_program)
 from ..link.records import encode_program
 from .gcode import compile_text
-from .send import add_link_options, check_link_args, compile_build, mm_text, open_transport
+from . import send
+from .send import add_link_options, check_link_args, compile_build, mm_text
 
 SEEK_TRAVELS = 1.5          # the seek goes at most 1.5 travels (and a pull-off) towards the switch
 
@@ -126,7 +127,7 @@ def cmd_home(args) -> int:
     machine = load_machine(args.machine, [], None)
     axes = axes_to_home(args, machine)
     try:
-        transport, baud = open_transport(args, machine)
+        transport, baud = send.open_transport(args, machine)     # (looked up: tests replace it)
     except LinkError as err:
         print(f"interp: error: link: {err}", file=sys.stderr)
         return 1

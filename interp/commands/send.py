@@ -22,7 +22,7 @@ import sys
 from ..cores import UsageError
 from ..gcode import compile as gc
 from ..gcode.machine import AXES, Machine, load_machine
-from ..gcode.parameter_file import describe, write_parameters
+from ..gcode.parameter_file import check_lengths, check_writable, describe, write_parameters
 from ..link import protocol as p
 from ..link.driver import (Driver, LinkError, MachineError, MismatchError, check_controller, check_idle, configure,
                            read_position, run_program)
@@ -189,6 +189,8 @@ def cmd_send(args) -> int:
     machine = load_machine(args.machine, [], None)
     text = read_program(args.file)
     saved = saved_parameters(machine)
+    if machine.parameter_file is not None and not args.sim:
+        check_writable(machine.parameter_file)      # before the machine moves
     build = compile_build()
     try:
         transport, baud = open_transport(args, machine)
@@ -202,7 +204,8 @@ def cmd_send(args) -> int:
         driver.connect()
         check_controller(driver, build, machine.clock_hz)
         check_idle(driver)
-        check_homed(driver, machine)
+        if not args.sim:                    # the simulator has no switches to home to
+            check_homed(driver, machine)
         # the program starts where the machine is: the controller's position counters
         # (machine coordinates, zero at its reset), as Grbl's and LinuxCNC's programs do;
         # compiled from there (travel limits and arcs depend on the start)
@@ -217,6 +220,8 @@ def cmd_send(args) -> int:
             print(f"interp send: warning: the controller stopped on error {error} ({p.error_text(error)}): its "
                   "steps stopped at once, so the motors may have lost steps the position counts", file=sys.stderr)
         program, compiled = compile_text(text, machine, start_steps=start, saved=saved)
+        if machine.parameter_file is not None:
+            check_lengths(program.saved)
         for message in program.messages:
             print(f"interp: message: {message}", file=sys.stderr)
         for warning in program.warnings + compiled.warnings:
@@ -277,11 +282,15 @@ def cmd_send(args) -> int:
     if outcome.status != "done":
         print(f"interp: error: the run did not end ({where})", file=sys.stderr)
         return 1
-    save_parameters(args, machine, saved, program.saved)
     position = result.get("position") if isinstance(result, dict) else None
     end = f", end {tuple(position)} steps" if position is not None else ""
     print(f"sent {records} records ({len(stream)} bytes) in {outcome.seconds:.3f} s link time at {baud} baud, "
           f"{stats}{end}")
+    try:
+        save_parameters(args, machine, saved, program.saved)
+    except UsageError as err:
+        print(f"interp: error: {err}; the offsets were: {describe(program.saved) or 'none'}", file=sys.stderr)
+        return 1
     return 0
 
 
@@ -313,7 +322,9 @@ def save_parameters(args, machine: Machine, before: dict, after: dict) -> None:
         return
     if after == interpret("", g28=machine.g28, g30=machine.g30, saved=before).saved:
         return
-    write_parameters(path, after)
+    # the G28 / G30 positions only where G28.1 / G30.1 moved them from the machine file's [home]
+    homes = {5161 + a: machine.g28[a] for a in range(3)} | {5181 + a: machine.g30[a] for a in range(3)}
+    write_parameters(path, {key: value for key, value in after.items() if homes.get(key) != value})
     print(f"interp send: saved the offsets to {path}" + (f": {describe(after)}" if describe(after) else ""),
           file=sys.stderr)
 

@@ -7,12 +7,14 @@ from __future__ import annotations
 
 import sys
 
+from ..cores import UsageError
 from ..gcode.machine import load_machine
 from ..link import registers
 from ..gcode.parameter_file import describe
 from ..link.driver import Driver, LinkError, read_position
 from .gcode import interpret_program
-from .send import add_link_options, check_link_args, mm_text, open_transport
+from . import send
+from .send import add_link_options, check_link_args, mm_text
 
 
 def cmd_status(args) -> int:
@@ -20,7 +22,7 @@ def cmd_status(args) -> int:
     check_link_args(args)
     machine = load_machine(args.machine, [], None)
     try:
-        transport, baud = open_transport(args, machine)
+        transport, baud = send.open_transport(args, machine)     # (looked up: tests replace it)
     except LinkError as err:
         print(f"interp: error: link: {err}", file=sys.stderr)
         return 1
@@ -36,10 +38,14 @@ def cmd_status(args) -> int:
         position = read_position(driver)
         lines.append(f"machine position {mm_text(machine, position)} mm")
         if machine.parameter_file is not None:        # and in the work coordinates the file keeps
-            program = interpret_program("", machine, position)
-            work = " ".join(f"{axis}{value:.3f}" for axis, value in zip("XYZ", program.end_work))
-            lines.append(f"work position {work} mm ({describe(program.saved) or 'no offset'}: "
-                         f"{machine.parameter_file})")
+            try:
+                program = interpret_program("", machine, position)
+            except UsageError as err:
+                lines.append(f"work position unknown: {err}")
+            else:
+                work = " ".join(f"{axis}{value:.3f}" for axis, value in zip("XYZ", program.end_work))
+                lines.append(f"work position {work} mm ({describe(program.saved) or 'no offset'}: "
+                             f"{machine.parameter_file})")
     except LinkError as err:
         print(f"interp: error: link: {err}", file=sys.stderr)
         return 1

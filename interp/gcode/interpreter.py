@@ -24,6 +24,7 @@ from . import cycles
 from .errors import GcodeError, without_controls
 from .language import Block, ExpressionError, Parameters, Word, iterate_blocks
 from .moves import PLANES, Arc, Dwell, Event, Line, Point, Program
+from .parameter_file import LENGTHS
 
 MM_PER_INCH = 25.4
 
@@ -114,7 +115,7 @@ def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0
     starts, machine mm (the first move starts there); saved: the persistent parameters
     an earlier program left (parameter_file.py: offsets, G92, coordinate system, G28 /
     G30 positions in machine mm; they override g28 and g30).  The program's own end
-    values are `Program.saved`.  Raises GcodeError for anything it cannot run.
+    values are `Program.saved` (M2 / M30: G54 selected).  Raises GcodeError for anything it cannot run.
     """
     params = Parameters()
     machine = _Machine(params, g28, g30, tools or {}, start, saved or {})
@@ -192,6 +193,7 @@ class _Machine:
         self.ended = False
         self.written: dict[int, float] = {}
         self.settings_changed = True             # the offset parameters need writing
+        self.assigned_mm: dict[int, float] = {}  # see _keep_assignments
         self._restore(saved or {})
         self._write_parameters()
 
@@ -212,7 +214,7 @@ class _Machine:
         """The persistent parameters at the program's end, machine mm: the offsets, G92, the
         coordinate system and the G28 / G30 positions; a length parameter the program assigned
         and no G word took over yet is saved as assigned, as LinuxCNC saves its parameter table.
-        M2 / M30 select G54 and suspend G92 (its offset kept), as RS274NGC's program end does."""
+        M2 / M30 select G54; G92 stays as it is, as Grbl and LinuxCNC keep it."""
         values = {5220: float(self.coordinate_system), 5210: 1.0 if self.g92_enabled else 0.0}
         for a in range(3):
             values[5161 + a] = self.homes[280][a]
@@ -224,7 +226,7 @@ class _Machine:
             if key not in (5210, 5220) and self.params.get(key) != self.written.get(key):
                 values[key] = self.params.get(key) * self.scale
         if self.ended:
-            values[5220], values[5210] = 1.0, 0.0
+            values[5220] = 1.0
         return values
 
     # ---- coordinates ----------------------------------------------------------------
@@ -262,11 +264,23 @@ class _Machine:
             self.settings_changed = False
         for key, value in values.items():
             if self.written.get(key) != value:
-                try:
-                    self.params.set(key, value)
-                except ExpressionError:                     # an offset or position overflowed
-                    self._fail(None, "a position or offset is out of range (not a finite number)")
+                self._set_parameter(key, value)
                 self.written[key] = value
+        for key, mm in self.assigned_mm.items():           # still assigned, in the new units
+            self._set_parameter(key, _clean(mm / self.scale))
+        self.assigned_mm = {}
+
+    def _set_parameter(self, key: int, value: float) -> None:
+        try:
+            self.params.set(key, value)
+        except ExpressionError:                             # an offset or position overflowed
+            self._fail(None, "a position or offset is out of range (not a finite number)")
+
+    def _keep_assignments(self) -> None:
+        """Before G20 / G21 changes the units: the persistent lengths the program assigned and
+        no G word took over yet, in mm, to be written back in the new units."""
+        self.assigned_mm = {key: self.params.get(key) * self.scale for key in LENGTHS
+                            if self.params.get(key) != self.written.get(key)}
 
     def _read_offsets(self, system: int) -> None:
         """Select a coordinate system: its offsets from #5221.. (the program may have set them),
@@ -401,6 +415,8 @@ class _Machine:
         # 15. plane, 16. units
         if "plane" in words.g:
             self.plane = PLANE_OF[words.g["plane"][0]]
+        if block_units != self.units:
+            self._keep_assignments()
         self.units = block_units
         # 18. tool length offset
         axes_taken = False

@@ -126,7 +126,10 @@ class Machine:
         if not name:
             return None
         folder = Path(self.source).parent if self.source_is_file else Path(".")
-        return folder / Path(name).expanduser()
+        try:
+            return folder / Path(name).expanduser()
+        except RuntimeError:                        # ~user that does not exist
+            return folder / name
 
     @property
     def homing(self) -> dict:

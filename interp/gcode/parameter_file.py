@@ -68,13 +68,13 @@ def _value(where: str, number: int, value: float) -> float:
 def read_parameters(path: Path) -> dict[int, float]:
     """The saved parameters {number: value} of the file at `path`; {} if it does not exist."""
     try:
-        text = Path(path).read_bytes().decode("utf-8")
+        text = Path(path).read_bytes().decode("utf-8-sig")
     except FileNotFoundError:
         return {}
-    except OSError as err:
-        raise UsageError(f"cannot read parameter file {path}: {err.strerror or err}") from None
-    except UnicodeDecodeError as err:
-        raise UsageError(f"{path}: not UTF-8 text (byte {err.start})") from None
+    except (OSError, ValueError) as err:
+        if isinstance(err, UnicodeDecodeError):
+            raise UsageError(f"{path}: not UTF-8 text (byte {err.start})") from None
+        raise UsageError(f"cannot read parameter file {path}: {getattr(err, 'strerror', None) or err}") from None
     values: dict[int, float] = {}
     for index, line in enumerate(text.splitlines(), 1):
         where = f"{path} line {index}"
@@ -112,8 +112,27 @@ def write_parameters(path: Path, values: dict[int, float]) -> None:
     try:
         temporary.write_text(lines)
         os.replace(temporary, path)
-    except OSError as err:
-        raise UsageError(f"cannot write parameter file {path}: {err.strerror or err}") from None
+    except (OSError, ValueError) as err:
+        raise UsageError(f"cannot write parameter file {path}: {getattr(err, 'strerror', None) or err}") from None
+
+
+def check_writable(path: Path) -> None:
+    """UsageError unless the file can be written (its folder exists and is writable)."""
+    folder = Path(path).parent
+    try:
+        ok = folder.is_dir() and os.access(folder, os.W_OK) and (not Path(path).exists() or os.access(path, os.W_OK))
+    except (OSError, ValueError):
+        ok = False
+    if not ok:
+        raise UsageError(f"cannot write parameter file {path}: its folder is missing or not writable")
+
+
+def check_lengths(values: dict[int, float]) -> None:
+    """UsageError when a program leaves a length the file cannot keep."""
+    for number in LENGTHS:
+        if abs(values.get(number, 0.0)) > LENGTH_LIMIT:
+            raise UsageError(f"the program leaves #{number} at {values[number]:g} mm: a parameter file keeps "
+                             f"at most +-{LENGTH_LIMIT:g} mm")
 
 
 def describe(values: dict[int, float]) -> str:
@@ -123,9 +142,9 @@ def describe(values: dict[int, float]) -> str:
     system = int(values.get(5220, 1))
     offsets = [values.get(offset_number(system, a), 0.0) for a in range(3)]
     if system != 1 or any(offsets):
-        parts.append(f"{COORDINATE_SYSTEMS[system - 1]} " + " ".join(f"{AXES[a]}{offsets[a]:g}" for a in range(3))
+        parts.append(f"{COORDINATE_SYSTEMS[system - 1]} " + " ".join(f"{AXES[a]}{offsets[a] + 0.0:g}" for a in range(3))
                      + " mm")
     g92 = [values.get(5211 + a, 0.0) for a in range(3)]
     if values.get(5210) and any(g92):
-        parts.append("G92 " + " ".join(f"{AXES[a]}{g92[a]:g}" for a in range(3)) + " mm")
+        parts.append("G92 " + " ".join(f"{AXES[a]}{g92[a] + 0.0:g}" for a in range(3)) + " mm")
     return ", ".join(parts)
