@@ -4,6 +4,8 @@ model of the controller (the hidden --sim-model) and pyserial URLs: results, err
 line, exit status."""
 from __future__ import annotations
 
+import io
+import sys
 from pathlib import Path
 
 import pytest
@@ -51,6 +53,14 @@ def test_send_corpus_program(capsys):
     code, out, err = run(capsys, "send", str(CORPUS / "ugs_square.nc"), "--sim-model")
     _, compiled = gcode.compile_text((CORPUS / "ugs_square.nc").read_text())
     assert code == 0 and out.startswith(f"sent 101 records ({len(encode_program(compiled.commands))} bytes)")
+
+
+def test_program_from_standard_input(capsys, monkeypatch):
+    """FILE -: a jog or an MDI line piped in."""
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(b"G21 G91\nG0 X2 Y-1\n")))
+    code, out, err = run(capsys, "send", "-", "--sim-model")
+    assert code == 0, err
+    assert out.rstrip().endswith("end (200, -100, 0) steps")
 
 
 def test_machine_error_line(capsys, program):

@@ -108,6 +108,9 @@ def run_simulation(commands_path: str, sim: str, *, steps_path, timing: dict, ma
 # ---------------- helpers ----------------
 
 def read_program(path: str) -> str:
+    """The program's text; "-" reads standard input (`echo "G91 G0 X10" | interp send - ...`)."""
+    if path == "-":
+        return sys.stdin.buffer.read().decode("utf-8", errors="surrogateescape")
     try:
         data = Path(path).read_bytes()
     except IsADirectoryError:
@@ -444,7 +447,7 @@ def simulate_program(args, program, compiled: Compiled, machine: Machine, contro
 
 def add_parser(sub) -> None:
     p = sub.add_parser("gcode", help="run a G-code program through the motion subsystem RTL")
-    p.add_argument("file", help="G-code file (RS274NGC, as LinuxCNC reads it)")
+    p.add_argument("file", help="G-code file (RS274NGC, as LinuxCNC reads it); - reads standard input")
     p.add_argument("--machine", metavar="FILE.toml", help="machine file (default: the shipped default machine)")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                    help="override one machine-file key, e.g. axis.x.steps_per_mm=80 (repeatable)")

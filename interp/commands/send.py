@@ -346,7 +346,7 @@ def add_link_options(p_, sim_help: str) -> None:
 
 def add_parser(sub) -> None:
     p_ = sub.add_parser("send", help="send a G-code program to the board controller (UART link)")
-    p_.add_argument("file", help="G-code file (RS274NGC, as `interp gcode` reads it)")
+    p_.add_argument("file", help="G-code file (RS274NGC, as `interp gcode` reads it); - reads standard input")
     add_link_options(p_, "the Verilator model of the controller instead of a port")
     p_.add_argument("--steps", metavar="FILE", help="--sim: CSV of the steps (cycle,dx,dy,dz)")
     p_.add_argument("--line-noise", type=float, metavar="P", help="--sim: bit-flip probability per bit, both ways")
