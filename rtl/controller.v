@@ -194,7 +194,7 @@ module controller #(
 
     // ---------------- inputs, positions, errors ----------------
     wire [4:0]       inputs, input_invert;
-    wire             estop_trip, probe_valid;
+    wire             estop_trip, probe_valid, probe_hit, probe_stop;
     wire [2:0]       limit_trip;
     reg  [POS_W-1:0] pos_x, pos_y, pos_z;
     wire [POS_W-1:0] probe_x, probe_y, probe_z;
@@ -203,7 +203,8 @@ module controller #(
         .alarm(alarm), .probe_arm(probe_arm), .step_in(m_step), .step_out(step),
         .inputs(inputs), .estop_trip(estop_trip), .limit_trip(limit_trip),
         .pos_x(pos_x), .pos_y(pos_y), .pos_z(pos_z),
-        .probe_valid(probe_valid), .probe_x(probe_x), .probe_y(probe_y), .probe_z(probe_z)
+        .probe_valid(probe_valid), .probe_hit(probe_hit), .probe_x(probe_x), .probe_y(probe_y),
+        .probe_z(probe_z)
     );
     assign dir = m_dir;
 
@@ -258,7 +259,7 @@ module controller #(
         .spindle_on(spindle_on), .spindle_ccw(spindle_ccw), .duty(duty), .spindle_pwm(spindle_pwm),
         .mist(mist), .flood(flood), .dout(dout), .pause(pause)
     );
-    assign hold_set = pause;
+    assign hold_set = pause | (probe_hit & probe_stop);     // M0..; the probe's touch (G38.2)
 
     // records pushed into motion_top minus those still in its queue; a flush (alarm, abort)
     // discards that queue in its first clock (motion_top is then at reset, level 0), and
@@ -296,7 +297,7 @@ module controller #(
         .outputs({8'd0, dout, flood, mist, spindle_ccw, spindle_on}), .duty(duty),
         .link_frames(link_frames), .link_duplicates(link_duplicates), .link_errors(link_errors),
         .link_gaps(link_gaps), .executed(executed), .hold_set(hold_set),
-        .hold(hold), .enable(enabled), .fill(fill), .abort_strobe(abort), .clear_strobe(clear), .arm_strobe(probe_arm),
+        .hold(hold), .enable(enabled), .fill(fill), .probe_stop(probe_stop), .abort_strobe(abort), .clear_strobe(clear), .arm_strobe(probe_arm),
         .override_percent(override_percent), .pulse_width(pulse_width), .dir_setup(dir_setup),
         .dir_hold(dir_hold), .quantum(quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
         .input_invert(input_invert), .spindle_period(spindle_period),

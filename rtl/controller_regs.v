@@ -9,8 +9,9 @@
 // REG_<NAME> (generated from regs/controller.rdl); the map is in docs/registers.md.
 // Read-only registers are composed here from the controller's status inputs; the
 // read-write ones (machine settings) are held here and drive the outputs.  CONTROL:
-// [0] hold (RW; also set by `hold_set`, a pause event), write-1 strobes [1] abort,
-// [2] clear, [3] probe_arm, [4] enable (RW), [5] fill (RW).  QUANTUM_LO/HI and MOTION are
+// [0] hold (RW; also set by `hold_set`, a pause event or the probe's touch), write-1
+// strobes [1] abort, [2] clear, [3] probe_arm, [4] enable (RW), [5] fill (RW),
+// [6] probe_stop (RW: the armed probe's touch sets hold).  QUANTUM_LO/HI and MOTION are
 // taken only while `busy` is low, and fill rises only then (or with abort in the same
 // write): a write while busy keeps them and sets STATUS.refused (until CONTROL.clear).
 // POS_X/Y/Z: a write while not busy sets that position counter (`position_write`, the
@@ -67,11 +68,12 @@ module controller_regs #(
     input  wire [15:0]       link_errors,
     input  wire [15:0]       link_gaps,
     input  wire [31:0]       executed,
-    input  wire              hold_set,      // a pause event: set CONTROL.hold
+    input  wire              hold_set,      // a pause event or the probe's touch: set CONTROL.hold
     // settings and strobes
     output reg               hold,
     output reg               enable,
     output reg               fill,          // CONTROL.fill: records wait, motion_top at reset
+    output reg               probe_stop,    // CONTROL.probe_stop: the probe's touch holds
     output wire              abort_strobe,  // CONTROL write-1 strobes: abort, clear, probe_arm
     output wire              clear_strobe,
     output wire              arm_strobe,
@@ -187,7 +189,7 @@ module controller_regs #(
         words[REG_PROBE_Y[6:2] * 32 +: 32]        = extended(probe_y);
         words[REG_PROBE_Z[6:2] * 32 +: 32]        = extended(probe_z);
         words[REG_INPUTS[6:2] * 32 +: 32]         = {27'd0, inputs};
-        words[REG_CONTROL[6:2] * 32 +: 32]        = {26'd0, fill, enable, 3'd0, hold};
+        words[REG_CONTROL[6:2] * 32 +: 32]        = {25'd0, probe_stop, fill, enable, 3'd0, hold};
         words[REG_OVERRIDE[6:2] * 32 +: 32]       = {24'd0, override_percent};
         words[REG_PULSE_WIDTH[6:2] * 32 +: 32]    = {{(32 - TW){1'b0}}, pulse_width};
         words[REG_DIR_SETUP[6:2] * 32 +: 32]      = {{(32 - TW){1'b0}}, dir_setup};
@@ -219,6 +221,7 @@ module controller_regs #(
             hold             <= 1'b0;
             enable           <= 1'b0;
             fill             <= 1'b0;
+            probe_stop       <= 1'b0;
             override_percent <= 8'd100;
             pulse_width      <= TIMING_RESET[TW-1:0];
             dir_setup        <= TIMING_RESET[TW-1:0];
@@ -241,6 +244,7 @@ module controller_regs #(
                         hold   <= wb_dat_w[0];
                         enable <= wb_dat_w[4];
                         fill   <= wb_dat_w[5] & ~fill_refused;
+                        probe_stop <= wb_dat_w[6];
                     end
                     REG_OVERRIDE[7:0]:       override_percent <= wb_dat_w[7:0];
                     REG_PULSE_WIDTH[7:0]:    pulse_width <= wb_dat_w[TW-1:0];

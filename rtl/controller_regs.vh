@@ -143,6 +143,8 @@ localparam integer CONTROL_ENABLE_LSB = 4;
 localparam integer CONTROL_ENABLE_WIDTH = 1;
 localparam integer CONTROL_FILL_LSB = 5;
 localparam integer CONTROL_FILL_WIDTH = 1;
+localparam integer CONTROL_PROBE_STOP_LSB = 6;
+localparam integer CONTROL_PROBE_STOP_WIDTH = 1;
 // OVERRIDE
 localparam integer OVERRIDE_PERCENT_LSB = 0;
 localparam integer OVERRIDE_PERCENT_WIDTH = 8;

@@ -8,7 +8,8 @@
 // e-stop trips as long as it is active; a limit switch trips on its active edge, so the
 // machine can move off a switch after the error is cleared.
 // Probe: `probe_arm` clears `probe_valid` and arms; the next active edge of the probe
-// latches pos_x/y/z into probe_x/y/z and sets `probe_valid` (and disarms).
+// latches pos_x/y/z into probe_x/y/z and sets `probe_valid` (and disarms); `probe_hit`
+// strobes in that clock (the controller may hold the motion there: G38.2).
 module input_guard #(
     parameter integer POS_W = 32    // width of the position counters (>= 2)
 ) (
@@ -29,6 +30,7 @@ module input_guard #(
     input  wire [POS_W-1:0] pos_y,
     input  wire [POS_W-1:0] pos_z,
     output reg              probe_valid,
+    output wire             probe_hit,      // strobe: the armed probe latched the position
     output reg  [POS_W-1:0] probe_x,
     output reg  [POS_W-1:0] probe_y,
     output reg  [POS_W-1:0] probe_z
@@ -58,6 +60,8 @@ module input_guard #(
             previous <= inputs;
         end
     end
+
+    assign probe_hit = armed & rising[4] & ~probe_arm;
 
     always @(posedge clk) begin
         if (rst) begin

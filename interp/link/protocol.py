@@ -196,8 +196,10 @@ ID_VALUE = 0x494E5450          # "INTP"
 STATE_NAMES = dict(_registers.ENUMS["STATUS.state"])
 IDLE, RUN, HOLDING, HELD, ALARM = (next(k for k, v in STATE_NAMES.items() if v == name)
                                    for name in ("IDLE", "RUN", "HOLDING", "HELD", "ALARM"))
-CONTROL_HOLD, CONTROL_ABORT, CONTROL_CLEAR, CONTROL_PROBE_ARM, CONTROL_ENABLE, CONTROL_FILL = (
-    1 << _registers.FIELDS[f"CONTROL.{name}"][0] for name in ("hold", "abort", "clear", "probe_arm", "enable", "fill"))
+CONTROL_HOLD, CONTROL_ABORT, CONTROL_CLEAR, CONTROL_PROBE_ARM, CONTROL_ENABLE, CONTROL_FILL, CONTROL_PROBE_STOP = (
+    1 << _registers.FIELDS[f"CONTROL.{name}"][0]
+    for name in ("hold", "abort", "clear", "probe_arm", "enable", "fill", "probe_stop"))
+STATUS_PROBE_VALID = 1 << _registers.FIELDS["STATUS.probe_valid"][0]
 STATUS_REFUSED = 1 << _registers.FIELDS["STATUS.refused"][0]
 # taken only while the controller is not busy (a write while busy: STATUS.refused)
 SPEED_SETTINGS = ("QUANTUM_LO", "QUANTUM_HI", "MOTION")

@@ -158,6 +158,7 @@ FIELDS = {
     "CONTROL.probe_arm": (3, 1, "w1p"),
     "CONTROL.enable": (4, 1, "rw"),
     "CONTROL.fill": (5, 1, "rw"),
+    "CONTROL.probe_stop": (6, 1, "rw"),
     "OVERRIDE.percent": (0, 8, "rw"),
     "PULSE_WIDTH.clocks": (0, 16, "rw"),
     "DIR_SETUP.clocks": (0, 16, "rw"),

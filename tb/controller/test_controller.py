@@ -26,7 +26,8 @@ from interp.models.speed_ramp import BLOCK_SHIFT_MIN
 from interp.simulation import motion_build
 from interp.simulation.native.build import CLI_PARAMETERS
 from interp.simulation.runner import run_cocotb
-from interp.testing.controllerkit import (ABORT, ALARM, CLEAR, ENABLE, FILL, HELD, HOLD, IDLE, PROBE_ARM, REG, RUN,
+from interp.testing.controllerkit import (ABORT, ALARM, CLEAR, ENABLE, FILL, HELD, HOLD, IDLE, PROBE_ARM, PROBE_STOP,
+                                          REG, RUN,
                                           ControllerBench, icarus_in_make_test, pushed_fields)
 from interp.testing.tbkit import seeded_rng
 
@@ -121,9 +122,9 @@ async def registers(dut):
         await tb.write(name, 0xFFFFFFFF ^ before)
         assert await tb.read(name) == before, f"{name} is read-only"
     assert await tb.read("STATUS") >> 16 == 0b111       # position_set: every POS register written
-    # CONTROL: hold, enable and fill are RW, abort / clear / probe_arm read 0
+    # CONTROL: hold, enable, fill and probe_stop are RW, abort / clear / probe_arm read 0
     await tb.write("CONTROL", 0xFFFFFFFF)
-    assert await tb.read("CONTROL") == HOLD | ENABLE | FILL
+    assert await tb.read("CONTROL") == HOLD | ENABLE | FILL | PROBE_STOP
     assert int(dut.enable.value) == 1
     assert await tb.state() == HELD                  # hold at rest (filling): held
     await tb.write("CONTROL", HOLD)
@@ -480,6 +481,39 @@ async def probe_latch(dut):
 
 
 @cocotb.test()
+async def probe_stops_the_motion(dut):
+    """CONTROL.probe_stop: the armed probe's touch latches the position and holds, so the move
+    decelerates to rest on its path (steps slowing, none lost: the position counters equal the
+    pulses), stopping short of its end; abort then flushes it (G38.2).  Without probe_stop the
+    touch only latches (probe_latch)."""
+    tb = await Bench(dut).start()
+    await tb.write("CONTROL", PROBE_ARM | PROBE_STOP)
+    assert await tb.read("CONTROL") == PROBE_STOP
+    cmds = tb.profiled([Command(LINE, ONE // 4, 60, 0, 0)])
+    end, _ = tb.end_of(cmds)
+    await tb.send(tb.records(cmds))
+    await tb.wait_steps(25)
+    dut.probe.value = 1
+    await tb.clocks(4)
+    probed = [await tb.signed(f"PROBE_{a}") for a in "XYZ"]
+    for _ in range(200):
+        if await tb.state() == HELD:
+            break
+        await tb.clocks(50)
+    assert await tb.state() == HELD and await tb.read("CONTROL") & HOLD
+    stopped = await tb.position()
+    assert stopped == tb.steps.position() and probed[0] <= stopped[0] < end[0], (probed, stopped, end)
+    times = [t for t, _, _ in tb.steps.edges]
+    gaps = [b - a for a, b in zip(times, times[1:])]
+    assert gaps[-1] > gaps[24], "no deceleration after the touch"          # (the touch: after step 25)
+    await tb.quiet(500)
+    await tb.write("CONTROL", ABORT | PROBE_STOP)
+    await tb.wait_idle()
+    assert await tb.position() == stopped and await tb.read("ERROR") == 0
+    dut.probe.value = 0
+
+
+@cocotb.test()
 async def bad_records(dut):
     """A record of kind 6 or 7: ERROR 18, ALARM; a curve in a build without the curve core:
     ERROR 1 (motion_top's); after clear the next program runs."""
@@ -615,7 +649,7 @@ async def position_set_at_rest(dut):
 
 SMALL_TESTS = ["registers", "records_to_motion_top", "program_ends_at_its_position", "estop_and_limit_mid_arc",
                "hold_resume_mid_helix", "abort_and_restart", "fill_then_run", "reset_at_random_cycles",
-               "events_drive_outputs", "probe_latch", "bad_records", "settings_wait_for_idle",
+               "events_drive_outputs", "probe_latch", "probe_stops_the_motion", "bad_records", "settings_wait_for_idle",
                "position_set_at_rest"]
 
 
