@@ -65,15 +65,16 @@ def saved_parameters(machine: Machine) -> dict[int, float]:
     return read_parameters(path) if path is not None else {}
 
 
-def interpret_program(text: str, machine: Machine, start_steps=(0, 0, 0), saved=None):
+def interpret_program(text: str, machine: Machine, start_steps=(0, 0, 0), saved=None, probes=None):
     """The program's moves in machine mm (interface 1), from start_steps (the machine's
-    position), with the saved parameters (default: the machine's parameter file)."""
+    position), with the saved parameters (default: the machine's parameter file) and what its
+    probe moves did (interpret's probes; None: each touches at its end)."""
     from ..gcode.compile import start_mm
     from ..gcode.interpreter import interpret
 
     return interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools,
                      start=start_mm(machine, start_steps),
-                     saved=saved_parameters(machine) if saved is None else saved)
+                     saved=saved_parameters(machine) if saved is None else saved, probes=probes)
 
 
 def compile_text(text: str, machine: Machine | None = None, pause_seconds: float = 0.0,

@@ -16,6 +16,7 @@ the machine to rest; twice: at once).  Exit status: 0 done,
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import sys
 
@@ -24,10 +25,12 @@ from ..gcode import compile as gc
 from ..gcode.machine import AXES, Machine, load_machine
 from ..gcode.parameter_file import check_lengths, check_writable, describe, write_parameters
 from ..link import protocol as p
+from ..gcode.compile import compile_program
+from ..gcode.moves import ProbeResult
 from ..link.driver import (Driver, LinkError, MachineError, MismatchError, check_controller, check_idle, configure,
-                           read_position, run_program)
+                           read_position, run_program, signed32)
 from ..link.records import DEFAULT_BUILD, Build, encode_program
-from .gcode import compile_text, read_program, saved_parameters
+from .gcode import interpret_program, read_program, saved_parameters
 
 DEFAULT_BAUD = 115200
 CURVE = 3
@@ -219,37 +222,17 @@ def cmd_send(args) -> int:
         if error:
             print(f"interp send: warning: the controller stopped on error {error} ({p.error_text(error)}): its "
                   "steps stopped at once, so the motors may have lost steps the position counts", file=sys.stderr)
-        program, compiled = compile_text(text, machine, start_steps=start, saved=saved)
-        if machine.parameter_file is not None:
-            check_lengths(program.saved)
-        for message in program.messages:
-            print(f"interp: message: {message}", file=sys.stderr)
-        for warning in program.warnings + compiled.warnings:
-            print(f"interp: warning: {warning}", file=sys.stderr)
-        stream = encode_program(compiled.commands, build)
-        records = len(compiled.commands)
-        if not records:
-            print("interp: warning: the program has no command to send", file=sys.stderr)
-        if any(c.kind == CURVE for c in compiled.commands):
-            check_controller(driver, build, machine.clock_hz, curves=True)
-        configure(driver, machine.timing(), compiled.settings)
         interactive = sys.stdin.isatty() and sys.stderr.isatty()
         keyboard = Keyboard(interactive)
-        if interactive:
-            print(f"interp send: {records} records, {len(stream)} bytes; {KEYS_HELP}", file=sys.stderr)
-        progress = Progress(compiled, machine, sys.stderr.isatty())
+        run = ProgramRun(args, driver, machine, text, start, saved, keyboard, interactive)
         try:
-            def on_pause(snap) -> None:
-                how = "press ~ to resume" if interactive else f"resuming after {args.pause_seconds:g} s"
-                print(f"\ninterp send: program paused at line {pause_line(compiled, snap.executed)}: {how}",
-                      file=sys.stderr)
-
-            outcome = run_program(driver, stream, records, progress=progress, keys=keyboard, on_pause=on_pause,
-                                  pause_resume=None if interactive else args.pause_seconds)
+            run.all()
         except KeyboardInterrupt:
             driver.drop_stream()
             driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_ENABLE)
             raise LinkError("interrupted: the controller was told to abort") from None
+        finally:
+            run.close()
     except MismatchError as err:
         raise UsageError(str(err)) from None
     except LinkError as err:
@@ -268,7 +251,11 @@ def cmd_send(args) -> int:
             keyboard.close()
         result = transport.close()
     stats = (f"{driver.frames_sent} frames, {driver.recoveries} retransmissions")
-    where = f"record {outcome.executed} of {records}, line {line_of(compiled, outcome.executed)}"
+    outcome, compiled, records = run.outcome, run.compiled, run.records
+    where = f"record {run.records_before + outcome.executed} of {records}, line {line_of(compiled, outcome.executed)}"
+    if run.failure:
+        print(f"interp: error: {run.failure}", file=sys.stderr)
+        return 1
     if outcome.status == "error":
         error = MachineError(outcome.error, outcome.limits, outcome.executed, "")
         extra = f", {limit_names(error.limits)}" if error.limits else ""
@@ -284,14 +271,125 @@ def cmd_send(args) -> int:
         return 1
     position = result.get("position") if isinstance(result, dict) else None
     end = f", end {tuple(position)} steps" if position is not None else ""
-    print(f"sent {records} records ({len(stream)} bytes) in {outcome.seconds:.3f} s link time at {baud} baud, "
+    print(f"sent {records} records ({run.bytes} bytes) in {run.seconds:.3f} s link time at {baud} baud, "
           f"{stats}{end}")
     try:
-        save_parameters(args, machine, saved, program.saved)
+        save_parameters(args, machine, saved, run.program.saved)
     except UsageError as err:
-        print(f"interp: error: {err}; the offsets were: {describe(program.saved) or 'none'}", file=sys.stderr)
+        print(f"interp: error: {err}; the offsets were: {describe(run.program.saved) or 'none'}", file=sys.stderr)
         return 1
     return 0
+
+
+class ProgramRun:
+    """A program on the controller: compiled and run in pieces where it probes.
+
+    Without a probe move (G38.2, G38.3) the whole program is one piece, compiled as
+    `interp gcode` compiles it.  A probe move is a piece of its own, run with the probe armed
+    to stop the machine at the touch; the program is then interpreted again with what the
+    probe did (interpret's probes: the touch and where the machine stopped), and the moves
+    after it are compiled from where the machine stopped."""
+
+    def __init__(self, args, driver: Driver, machine: Machine, text: str, start, saved: dict, keyboard,
+                 interactive: bool):
+        self.args, self.driver, self.machine, self.text = args, driver, machine, text
+        self.start, self.saved, self.keyboard, self.interactive = start, saved, keyboard, interactive
+        self.results: list = []                 # ProbeResult of each probe move run
+        self.shown: set[str] = set()            # messages and warnings printed
+        self.records = self.records_before = self.bytes = 0
+        self.seconds = 0.0
+        self.program = self.compiled = self.outcome = self.progress = None
+        self.failure = ""                       # a probe's error: one line
+        self.probe_stop = tuple(start)          # steps: where the last probe move stopped
+
+    def close(self) -> None:
+        if self.progress is not None:
+            self.progress.close()
+            self.progress = None
+
+    def show(self, lines, kind: str) -> None:
+        for line in lines:
+            if (kind, line) not in self.shown:
+                self.shown.add((kind, line))
+                print(f"interp: {kind}: {line}", file=sys.stderr)
+
+    def all(self) -> None:
+        done, here = 0, tuple(self.start)                 # moves run so far; the machine's position
+        while True:
+            self.program = program = interpret_program(self.text, self.machine, self.start, self.saved,
+                                                       probes=self.results)
+            if self.machine.parameter_file is not None and not program.probe_pending:
+                check_lengths(program.saved)
+            self.show(program.messages, "message")
+            self.show(program.warnings, "warning")
+            moves = program.moves[done:]
+            probe = moves.pop() if program.probe_pending else None
+            if probe is not None and self.args.sim:
+                raise UsageError(f"line {probe.line}: G38.{probe.probe - 380}: the simulated controller has no "
+                                 "probe (interp gcode takes the touch at the end of the move)")
+            if moves or probe is None:
+                if not self.piece(program, moves, here, last=probe is None):
+                    return
+                here = self.compiled.end_steps
+            if probe is None:
+                return
+            if not self.probe_piece(program, probe, here):
+                return
+            here = self.probe_stop
+            done = len(program.moves)
+
+    def piece(self, program, moves, here, last: bool, probe: bool = False) -> bool:
+        """Compile and run some moves from `here` (steps); False when the run did not end well."""
+        compiled = compile_program(dataclasses.replace(program, moves=moves), self.machine, start_steps=here)
+        self.show(compiled.warnings, "warning")
+        build = compile_build()
+        stream = encode_program(compiled.commands, build)
+        if not compiled.commands and last and not self.records:
+            print("interp: warning: the program has no command to send", file=sys.stderr)
+        if any(c.kind == CURVE for c in compiled.commands):
+            check_controller(self.driver, build, self.machine.clock_hz, curves=True)
+        configure(self.driver, self.machine.timing(), compiled.settings)
+        if self.interactive and not self.records:
+            print(f"interp send: {len(compiled.commands)} records, {len(stream)} bytes; {KEYS_HELP}",
+                  file=sys.stderr)
+        self.close()
+        self.progress = Progress(compiled, self.machine, sys.stderr.isatty())
+
+        def on_pause(snap) -> None:
+            how = "press ~ to resume" if self.interactive else f"resuming after {self.args.pause_seconds:g} s"
+            print(f"\ninterp send: program paused at line {pause_line(compiled, snap.executed)}: {how}",
+                  file=sys.stderr)
+
+        self.records_before = self.records
+        self.compiled = compiled
+        self.outcome = run_program(self.driver, stream, len(compiled.commands), progress=self.progress,
+                                   keys=self.keyboard, on_pause=on_pause, probe=probe,
+                                   pause_resume=None if self.interactive else self.args.pause_seconds)
+        self.records += len(compiled.commands)
+        self.bytes += len(stream)
+        self.seconds += self.outcome.seconds
+        return self.outcome.status in (("done", "probed") if probe else ("done",))
+
+    def probe_piece(self, program, move, here) -> bool:
+        """Run a probe move; its ProbeResult joins self.results.  False: stop the program."""
+        name = f"line {move.line}: G38.{move.probe - 380}"
+        if self.driver.read_register("INPUTS") >> 4 & 1:
+            self.failure = f"{name}: the probe touches already before the move"
+            return False
+        if not self.piece(program, [move], here, last=False, probe=True):
+            return False
+        touched = self.outcome.status == "probed"
+        stop = read_position(self.driver)
+        trip = tuple(signed32(self.driver.read_register(f"PROBE_{a}")) for a in "XYZ") if touched else stop
+        if not touched and move.probe == 382:
+            self.failure = f"{name}: the probe did not touch before the end of the move"
+            return False
+        spm = self.machine.steps_per_mm
+        result = ProbeResult(touched, tuple(v / s for v, s in zip(trip, spm)), tuple(v / s for v, s in zip(stop, spm)))
+        self.results.append(result)
+        self.probe_stop = stop                              # the next piece starts there
+        self.outcome = dataclasses.replace(self.outcome, status="done")
+        return True
 
 
 class NotHomed(Exception):

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from . import cycles
 from .errors import GcodeError, without_controls
 from .language import Block, ExpressionError, Parameters, Word, iterate_blocks
-from .moves import PLANES, Arc, Dwell, Event, Line, Point, Program
+from .moves import PLANES, Arc, Dwell, Event, Line, Point, ProbeResult, Program
 from .parameter_file import LENGTHS
 
 MM_PER_INCH = 25.4
@@ -50,7 +50,7 @@ PLANE_CODE = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
 # G codes in tenths (G59.1 -> 591) -> modal group
 G_GROUPS: dict[int, str] = {}
 for _codes, _group in (
-        ((0, 10, 20, 30, 800, 730, 810, 820, 830, 850, 890), "motion"),
+        ((0, 10, 20, 30, 382, 383, 800, 730, 810, 820, 830, 850, 890), "motion"),
         ((40, 100, 280, 281, 300, 301, 530, 920, 921, 922, 923), "non-modal"),
         ((170, 180, 190), "plane"), ((900, 910), "distance"), ((901, 911), "arc distance"),
         ((930, 940), "feed mode"), ((200, 210), "units"), ((400,), "cutter compensation"),
@@ -73,8 +73,8 @@ G_REFUSED = {
     70: "lathe diameter mode is not supported",
     330: "spindle-synchronized motion is not supported",
     331: "rigid tapping is not supported",
-    382: "probing is not supported", 383: "probing is not supported",
-    384: "probing is not supported", 385: "probing is not supported",
+    384: "probing away from the work (G38.4, G38.5) is not supported",
+    385: "probing away from the work (G38.4, G38.5) is not supported",
     740: "tapping cycles need a spindle encoder: not supported",
     840: "tapping cycles need a spindle encoder: not supported",
     760: "threading cycles are not supported",
@@ -106,7 +106,7 @@ VALID_LETTERS = set("ABCDFGHIJKLMNPQRSTUVWXYZ@^")
 
 def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0, 0.0),
               tools: dict[int, dict] | None = None, start: Point = (0.0, 0.0, 0.0),
-              saved: dict[int, float] | None = None) -> Program:
+              saved: dict[int, float] | None = None, probes: list[ProbeResult] | None = None) -> Program:
     """Run a G-code program: text -> Program of moves in machine mm (see moves.py).
 
     g28, g30: the G28 / G30 home positions in machine mm (#5161.., #5181..);
@@ -115,15 +115,19 @@ def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0
     starts, machine mm (the first move starts there); saved: the persistent parameters
     an earlier program left (parameter_file.py: offsets, G92, coordinate system, G28 /
     G30 positions in machine mm; they override g28 and g30).  The program's own end
-    values are `Program.saved` (M2 / M30: G54 selected).  Raises GcodeError for anything it cannot run.
+    values are `Program.saved` (M2 / M30: G54 selected).  probes: what the program's probe
+    moves (G38.2, G38.3) did on the machine, in order; the interpretation stops after the first
+    probe move beyond them (`Program.probe_pending`).  None: no machine (`interp gcode`), each
+    probe move touches at its end.  Raises GcodeError for anything it cannot run.
     """
     params = Parameters()
     machine = _Machine(params, g28, g30, tools or {}, start, saved or {})
+    machine.probe_results = probes
     for block in iterate_blocks(text, params):
         if block.delete:
             continue                                  # block delete switch on
         machine.run_block(block)
-        if machine.ended:
+        if machine.ended or machine.program.probe_pending:
             break
     program = machine.program
     # the language layer's warnings and ours, in line order
@@ -194,6 +198,8 @@ class _Machine:
         self.written: dict[int, float] = {}
         self.settings_changed = True             # the offset parameters need writing
         self.assigned_mm: dict[int, float] = {}  # see _keep_assignments
+        self.probe_results: list[ProbeResult] | None = None
+        self.probes_made = 0
         self._restore(saved or {})
         self._write_parameters()
 
@@ -488,6 +494,8 @@ class _Machine:
                 self._straight(words, new_mode, g53, inverse_f)
             elif new_mode in (20, 30):
                 self._arc(words, new_mode, motion, inverse_f)
+            elif new_mode in (382, 383):
+                self._probe(words, new_mode, inverse_f)
             else:
                 self._cycle(words, new_mode, motion)
         if new_mode not in CYCLE_CODES:
@@ -665,6 +673,36 @@ class _Machine:
         length = math.dist(self.position, target)
         feed = self._feed_for(length, inverse_f, self._motion_word(words))
         self._line_to(target, feed, self._line)
+
+    def _probe(self, words: _Words, mode: int, inverse_f: float | None) -> None:
+        """G38.2 / G38.3: a feed move towards the target that stops where the probe touches;
+        #5070 = 1 if it touched, #5061..#5063 = the touch (work coordinates, program units)."""
+        name, word = ("G38.2" if mode == 382 else "G38.3"), self._motion_word(words)
+        if words.has("@") or words.has("^"):
+            self._fail(words.word("@" if words.has("@") else "^"), f"polar coordinates cannot be used with {name}")
+        target = self._target(words)
+        length = math.dist(self.position, target)
+        if length < SAME_POINT_MM:
+            self._fail(word, "the probe move has no length: its end is where the machine is")
+        feed = self._feed_for(length, inverse_f, word)
+        self._add(Line(tuple(self.position), tuple(target), feed, self._line, probe=mode))
+        index, self.probes_made = self.probes_made, self.probes_made + 1
+        if self.probe_results is None:
+            result = ProbeResult(True, tuple(target), tuple(target))
+            self._warn(self._line, f"{name}: the probe's touch is taken at the end of the move (only the machine "
+                                   "knows where it is)")
+        elif index < len(self.probe_results):
+            result = self.probe_results[index]
+            if not result.touched and mode == 382:
+                self._fail(word, "the probe did not touch before the end of the move")
+        else:
+            self.program.probe_pending = True
+            return
+        self.position = [float(v) for v in result.stop]
+        at = result.trip if result.touched else result.stop
+        for a in range(3):
+            self._set_parameter(5061 + a, _clean((at[a] - self.offset(a)) / self.scale))
+        self._set_parameter(5070, 1.0 if result.touched else 0.0)
 
     def _motion_word(self, words: _Words) -> Word:
         if "motion" in words.g:

@@ -24,6 +24,16 @@ class Line:
     end: Point
     feed: float | None          # mm/min; None = rapid
     line: int
+    probe: int = 0              # 382 / 383: a G38.2 / G38.3 probe move (stops at the probe's touch)
+
+
+@dataclass(frozen=True)
+class ProbeResult:
+    """What a probe move did on the machine: touched, where (the probe's latch) and where the
+    machine came to rest (machine mm)."""
+    touched: bool
+    trip: Point
+    stop: Point
 
 
 @dataclass(frozen=True)
@@ -85,3 +95,5 @@ class Program:
     # the persistent parameters at the end (#5161.. G28, #5181.. G30, #5210.. G92, #5220 the
     # coordinate system, #5221.. G54..G59.3), machine mm: what a parameter file keeps
     saved: dict[int, float] = field(default_factory=dict)
+    # interpretation stopped after a probe move whose result is not known yet (interpret's probes)
+    probe_pending: bool = False

@@ -481,7 +481,7 @@ class Outcome:
 
 def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, keys=None,
                 max_seconds: float | None = None, pause_resume: float | None = 0.0,
-                on_pause=None) -> Outcome:
+                on_pause=None, probe: bool = False) -> Outcome:
     """Stream the records and follow the run to its end: all records executed and the
     controller not busy.  progress(Snapshot) after every poll round; keys() -> the keys
     typed since the last call ('!' hold, '~' resume, Ctrl-X stop).  Ctrl-X stops as a
@@ -495,11 +495,15 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     The run starts from a filled queue: CONTROL.fill is set while the first bytes go out
     (the whole program, or all but LMAX bytes of the queue's room) and cleared by a
     WRITE sequenced after them, so motion_top starts as from a reset with its records
-    there: the steps come at the cycles `interp gcode` gives while the link keeps up."""
+    there: the steps come at the cycles `interp gcode` gives while the link keeps up.
+    probe (a G38.2 / G38.3 move): the probe is armed with CONTROL.probe_stop, so its touch
+    holds the machine; at rest the rest of the move is aborted and the Outcome is "probed"
+    (PROBE_X/Y/Z: the touch; POS_X/Y/Z: where the machine stopped)."""
     start = driver.clock()
     # a stale partial record or a latched error of an earlier run: flush and clear
     check_idle(driver)
-    driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_CLEAR | p.CONTROL_ENABLE | p.CONTROL_FILL)
+    arm = p.CONTROL_PROBE_ARM | p.CONTROL_PROBE_STOP if probe else 0
+    driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_CLEAR | p.CONTROL_ENABLE | p.CONTROL_FILL | arm)
     base = driver.read_register("EXECUTED")
     fill_bytes = max(1, min(len(stream), driver.free - driver.lmax))
     driver.start_stream(stream)
@@ -510,9 +514,11 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     hold_write = -1                         # ... the id of its hold write
     after_hold = False                      # this poll round started after that write was acknowledged
     filling = True
+    touched = False                         # probe: the touch held the machine
 
     def control(bits: int) -> int:          # hold / resume / abort keep the fill bit while filling
-        return driver.queue_write("CONTROL", bits | p.CONTROL_ENABLE | (p.CONTROL_FILL if filling else 0))
+        stop = p.CONTROL_PROBE_STOP if probe and not touched else 0
+        return driver.queue_write("CONTROL", bits | p.CONTROL_ENABLE | (p.CONTROL_FILL if filling else 0) | stop)
     paused_since = None
     next_round, polling = driver.clock(), False
     while True:
@@ -563,7 +569,16 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
             # motion has stopped: EXECUTED no longer moves (the round's value may be older)
             snap.executed = (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
             return Outcome("error", snap.executed, seconds, snap.error, field(v["ERROR"], 8, 3))
-        if snap.state in (p.HOLDING, p.HELD) and not held and not aborted and not paused and stopping is None:
+        busy = field(v["STATUS"], 3, 1)
+        if probe and v["STATUS"] & p.STATUS_PROBE_VALID and not touched:
+            touched = True                      # the probe's hold: not a pause of the program
+        if touched and not aborted and (snap.state == p.HELD or not busy):
+            control(p.CONTROL_ABORT)           # at rest at the touch: the rest of the move goes
+            aborted = True
+        if touched and aborted and not busy:
+            return Outcome("probed", snap.executed, seconds)
+        if snap.state in (p.HOLDING, p.HELD) and not held and not aborted and not paused and stopping is None \
+                and not touched:
             paused = True                       # the program's own pause: the controller held
             if on_pause is not None:
                 on_pause(snap)
@@ -572,7 +587,6 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
             if driver.clock() - paused_since >= pause_resume:
                 control(0)
                 paused, paused_since = False, None
-        busy = field(v["STATUS"], 3, 1)
         late = stopping is not None and driver.clock() - stopping >= STOP_SECONDS
         if stopping is not None and not aborted and (late or after_hold and (snap.state == p.HELD or not busy)):
             control(p.CONTROL_ABORT)               # at rest on the path (a round read after the hold)
