@@ -163,8 +163,9 @@ def test_homing_on_the_rtl(files, tmp_path):
     """interp home's cycle through the controller's RTL: a switch that follows the pulses
     counted at the step pins (0.37 mm below where the machine powered up) stops the seek and
     the slow approach on its edge, the pull-offs move off it after CONTROL.clear, and the
-    POS_X write over the link makes the switch machine -1 mm (min_mm): the axis ends 0.2 mm
-    inside, STATUS.position_set has x, and the pins moved exactly to the switch and back."""
+    POS_X write over the link puts the axis at machine -1 mm (min_mm), the switch a pull-off
+    (0.2 mm) beyond; STATUS.position_set has x, and the pins moved exactly to the switch and
+    back."""
     from interp.commands import home
     from interp.gcode.machine import load_machine
     from interp.link.driver import Driver
@@ -177,8 +178,8 @@ def test_homing_on_the_rtl(files, tmp_path):
         link.set_switch(0, "min", -37)
         driver = Driver(link, baud=link.baud)
         driver.connect()
-        assert home.home_axis(driver, machine, 0) == (-1.0, -0.8)
-        assert [signed32(driver.read_register(name)) for name in POSITION] == [-80, 0, 0]
+        assert home.home_axis(driver, machine, 0) == (-1.2, -1.0)
+        assert [signed32(driver.read_register(name)) for name in POSITION] == [-100, 0, 0]
         assert driver.read_register("STATUS") >> 16 == 0b001 and driver.read_register("ERROR") == 0
         result = link.close()
     assert result["position"] == [-17, 0, 0]                   # the switch, then a pull-off of 20 steps

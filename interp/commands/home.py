@@ -6,9 +6,10 @@
 Each axis with a home end in the machine file (`axis.X.home = "min"` or "max"), in
 `homing.order`: a seek towards its limit switch at `homing.seek_mm_min` (the switch
 stops the steps in the clock it shows, ERROR 17), a pull-off of `homing.pull_off_mm`,
-a slow approach at `homing.locate_mm_min`, then POS_<axis> is set to that travel end
-(`axis.X.min_mm` or `max_mm`: the switch is machine coordinate min_mm or max_mm) and
-the axis pulls off again.  The moves are compiled as `interp gcode` compiles a G91 G1
+a slow approach at `homing.locate_mm_min`, a pull-off again, then POS_<axis> is set so
+that the axis stands at that travel end (`axis.X.min_mm` or `max_mm`): the switch is a
+pull-off beyond it.  An axis resting on its switch pulls off first; a switch that
+bounces while it lets go is ridden over.  The moves are compiled as `interp gcode` compiles a G91 G1
 move, without the travel limits (the position is not known yet).  Exit status: 0 homed,
 1 a switch not found, still active after a pull-off, another error or a link error, 2
 usage (no axis to home).
@@ -28,6 +29,7 @@ from . import send
 from .send import add_link_options, check_link_args, compile_build, mm_text
 
 SEEK_TRAVELS = 1.5          # the seek goes at most 1.5 travels (and a pull-off) towards the switch
+BOUNCES = 5                 # a pull-off tripped again by a bouncing switch is run again this often
 
 
 class HomingError(Exception):
@@ -64,43 +66,66 @@ def expect_switch(outcome, axis: int, what: str) -> None:
         others = " ".join(AXES[a].upper() for a in range(3) if outcome.limits >> a & 1)
         raise HomingError(f"{name}: the {others} limit switch tripped during the {what}")
     if outcome.status == "error":
-        raise HomingError(f"{name}: controller error {outcome.error} ({p.error_text(outcome.error)}) during the {what}")
+        raise HomingError(f"{name}: {what_stopped(outcome)} during the {what}")
     raise HomingError(f"{name}: no limit switch was found during the {what}")
 
 
-def expect_released(driver: Driver, outcome, axis: int, machine: Machine) -> None:
-    name = AXES[axis].upper()
-    if outcome.status != "done":
-        raise HomingError(f"{name}: the pull-off did not end (controller error {outcome.error})")
+def pull_off(driver: Driver, machine: Machine, free: Machine, axis: int, away: float) -> None:
+    """Move `away` (+1 / -1) by homing.pull_off_mm at the seek speed until the switch lets go.
+    A switch that bounces as it lets go trips the limit again (ERROR 17 on this axis): the
+    rest of the distance is run again, up to BOUNCES times."""
+    name, spm = AXES[axis].upper(), machine.steps_per_mm[axis]
+    distance = machine.homing["pull_off_mm"]
+    target = read_position(driver)[axis] + round(away * distance * spm)
+    for _ in range(BOUNCES + 1):
+        rest = (target - read_position(driver)[axis]) / spm
+        if abs(rest) * spm < 0.5:
+            break
+        outcome = move(driver, machine, free, axis, rest, machine.homing["seek_mm_min"])
+        if outcome.status == "done":
+            break
+        if not (outcome.status == "error" and outcome.error == 17 and outcome.limits == 1 << axis):
+            raise HomingError(f"{name}: {what_stopped(outcome)} during the pull-off")
+    else:
+        raise HomingError(f"{name}: the limit switch tripped again {BOUNCES} times during the pull-off")
     if switch_active(driver, axis):
-        raise HomingError(f"{name}: the limit switch is still active after the pull-off of "
-                          f"{machine.homing['pull_off_mm']:g} mm: raise homing.pull_off_mm")
+        raise HomingError(f"{name}: the limit switch is still active after the pull-off of {distance:g} mm: "
+                          "raise homing.pull_off_mm")
+
+
+def what_stopped(outcome) -> str:
+    if outcome.status != "error":
+        return f"the move did not end ({outcome.status})"
+    names = " ".join(AXES[a].upper() for a in range(3) if outcome.limits >> a & 1)
+    return f"controller error {outcome.error} ({p.error_text(outcome.error)}{', ' + names if names else ''})"
 
 
 def home_axis(driver: Driver, machine: Machine, axis: int) -> tuple[float, float]:
-    """Home one axis: (the switch's machine coordinate, where the axis ends), mm."""
+    """Home one axis: (the switch's machine coordinate, where the axis ends), mm.  The switch is
+    a pull-off outside the travel, so the axis ends at its travel end (min_mm or max_mm), as
+    Grbl places its home: a move to the soft limit stops short of the switch."""
     name, settings = AXES[axis].upper(), machine.values[f"axis.{AXES[axis]}"]
-    homing, free = machine.homing, unlimited(machine)
+    homing, free, spm = machine.homing, unlimited(machine), machine.steps_per_mm[axis]
     toward = -1.0 if settings["home"] == "min" else 1.0
-    pull_off = homing["pull_off_mm"]
-    if switch_active(driver, axis):
-        raise HomingError(f"{name}: the limit switch is active before the seek: move the axis off it, then home")
-    seek = SEEK_TRAVELS * (settings["max_mm"] - settings["min_mm"]) + pull_off
+    pull = homing["pull_off_mm"]
+    if switch_active(driver, axis):                    # resting on it: off it first
+        pull_off(driver, machine, free, axis, -toward)
+    seek = SEEK_TRAVELS * (settings["max_mm"] - settings["min_mm"]) + pull
     expect_switch(move(driver, machine, free, axis, toward * seek, homing["seek_mm_min"]), axis,
                   f"seek ({seek:g} mm towards {settings['home']})")
-    expect_released(driver, move(driver, machine, free, axis, -toward * pull_off, homing["seek_mm_min"]), axis,
-                    machine)
-    expect_switch(move(driver, machine, free, axis, toward * 2 * pull_off, homing["locate_mm_min"]), axis,
-                  f"slow approach ({2 * pull_off:g} mm)")
-    switch_mm = settings["min_mm"] if toward < 0 else settings["max_mm"]
+    pull_off(driver, machine, free, axis, -toward)
+    expect_switch(move(driver, machine, free, axis, toward * 2 * pull, homing["locate_mm_min"]), axis,
+                  f"slow approach ({2 * pull:g} mm)")
+    trip = read_position(driver)[axis]
+    pull_off(driver, machine, free, axis, -toward)
+    switch_mm = settings["min_mm"] - pull if toward < 0 else settings["max_mm"] + pull
+    steps = round(switch_mm * spm) + read_position(driver)[axis] - trip
     driver.write_register("CONTROL", p.CONTROL_CLEAR | p.CONTROL_ENABLE)
-    steps = round(switch_mm * machine.steps_per_mm[axis])
     driver.write_register(f"POS_{name}", steps & 0xFFFFFFFF)
     if read_position(driver)[axis] != steps:
-        raise HomingError(f"{name}: the controller did not take the position (it was busy)")
-    expect_released(driver, move(driver, machine, free, axis, -toward * pull_off, homing["seek_mm_min"]), axis,
-                    machine)
-    return switch_mm, read_position(driver)[axis] / machine.steps_per_mm[axis]
+        raise HomingError(f"{name}: the controller did not take the position {steps} steps (busy, or beyond its "
+                          "position counter)")
+    return switch_mm, steps / spm
 
 
 def axes_to_home(args, machine: Machine) -> list[int]:
@@ -152,10 +177,15 @@ def cmd_home(args) -> int:
         print(f"interp: error: link: {err}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
+        told = ""
         if driver is not None:
-            driver.drop_stream()
-            driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_ENABLE)
-        print("interp: interrupted: the controller was told to abort", file=sys.stderr)
+            try:
+                driver.drop_stream()
+                driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_ENABLE)
+                told = ": the controller was told to abort"
+            except LinkError as err:
+                told = f": telling the controller to abort failed ({err})"
+        print(f"interp: interrupted{told}", file=sys.stderr)
         return 1
     finally:
         transport.close()

@@ -289,6 +289,9 @@ def _consistent(machine: Machine) -> None:
     order = machine.homing["order"]
     if any(a not in AXES for a in order) or len(set(order)) != len(order):
         raise MachineError(f"{where}: homing.order must name axes of xyz, each at most once (got {order!r})")
+    if machine.homing["required"] and not machine.homed_axes():
+        raise MachineError(f"{where}: homing.required needs an axis to home: set axis.X.home = \"min\" or \"max\" "
+                           "for an axis of homing.order")
     clock = machine.clock_hz
     for a, axis in zip(AXES, machine.axes):
         if axis.min_mm >= axis.max_mm:

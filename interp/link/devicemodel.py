@@ -353,7 +353,7 @@ class DeviceModel:
         fraction, axis = first
         self.position = [p + round(d * fraction) for p, d in zip(self.position, delta)]
         self.position[axis] = self.switches[axis][1]
-        self.error, self.limits = 17, 1 << axis
+        self.error, self.limits = 17, self.limits | 1 << axis
         return True
 
     def read_register(self, address: int) -> int:

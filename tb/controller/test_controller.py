@@ -626,23 +626,30 @@ async def settings_wait_for_idle(dut):
 async def position_set_at_rest(dut):
     """POS_X/Y/Z written at rest set the counters (homing) and the axis's STATUS.position_set
     bit; the next move's steps count on from there; a write while busy is refused
-    (STATUS.refused) and the count goes on; the reset clears the bits and the counters."""
+    (STATUS.refused: neither the count nor the bit changes); in ALARM (a limit switch) a write
+    is taken; the reset clears the bits and the counters."""
     tb = await Bench(dut).start()
     assert await tb.read("STATUS") >> 16 == 0
     await tb.write("POS_Y", -7 & 0xFFFFFFFF)
-    assert await tb.read("STATUS") >> 16 == 0b010
-    await tb.write("POS_X", 1000)
-    await tb.write("POS_Z", 0x7FFFFFF0)
-    start = [1000, -7, 0x7FFFFFF0]
-    assert await tb.position() == start and await tb.read("STATUS") >> 16 == 0b111
+    assert await tb.read("STATUS") >> 16 == 0b010 and await tb.position() == [0, -7, 0]
     cmds = tb.profiled([Command(LINE, ONE // 2, 30, -20, 5)])
-    end, _ = tb.end_of(cmds, start=start)
+    end, _ = tb.end_of(cmds, start=(0, -7, 0))
     await tb.send(tb.records(cmds))
     await tb.wait_steps(3)
-    await tb.write("POS_X", 0)
-    assert await tb.read("STATUS") & REFUSED
+    await tb.write("POS_X", 1000)
+    assert await tb.read("STATUS") & REFUSED and await tb.read("STATUS") >> 16 == 0b010
     await tb.wait_idle()
     assert await tb.position() == end and await tb.read("ERROR") == 0
+    await tb.write("CONTROL", CLEAR)
+    await tb.write("POS_X", 1000)
+    await tb.write("POS_Z", 0x7FFFFFF0)
+    assert await tb.position() == [1000, end[1], 0x7FFFFFF0] and await tb.read("STATUS") >> 16 == 0b111
+    dut.limit.value = 0b100                         # ALARM: a limit switch
+    await tb.clocks(4)
+    assert await tb.state() == ALARM
+    await tb.write("POS_Z", 5)
+    assert (await tb.position())[2] == 5 and not await tb.read("STATUS") & REFUSED
+    dut.limit.value = 0
     await tb.reset()
     assert await tb.position() == [0, 0, 0] and await tb.read("STATUS") >> 16 == 0
 
