@@ -31,7 +31,8 @@ class DeviceModel:
                  line_noise: float = 0.0, seed: int = 1, queue_aw: int = 12, curves: bool = True,
                  records_per_second: float = 1000.0, frame_timeout: int = p.FRAME_TIMEOUT_BYTES,
                  fail_at: int | None = None, fail_code: int = 17, hold_seconds: float = 0.002,
-                 switches: dict[int, tuple[str, int]] | None = None):
+                 switches: dict[int, tuple[str, int]] | None = None,
+                 probe: tuple[int, str, int] | None = None):
         self.build, self.clock_hz, self.baud = build, int(clock_hz), baud
         self.byte_time = 10.0 / baud
         self.noise, self.rng = float(line_noise), random.Random(seed)
@@ -73,6 +74,12 @@ class DeviceModel:
         # limit switches: axis -> ("min" | "max", steps): active at or beyond that position; a
         # line that reaches one stops there (ERROR 17), as the input guard gates the steps
         self.switches = dict(switches or {})
+        # the probe: (axis, "min" | "max", steps), touching at or beyond that position (a touch
+        # plate); armed (CONTROL.probe_arm), its touch latches PROBE_X/Y/Z and, with
+        # CONTROL.probe_stop, holds the machine there
+        self.probe = probe
+        self.probe_armed = self.probe_stop = self.probe_valid = False
+        self.probe_position = [0, 0, 0]
         self.hold = False
         self.hold_since = 0.0
         self.enabled = False
@@ -338,15 +345,37 @@ class DeviceModel:
         side, at = self.switches[axis]
         return self.position[axis] <= at if side == "min" else self.position[axis] >= at
 
+    def probe_touching(self) -> bool:
+        if self.probe is None:
+            return False
+        axis, side, at = self.probe
+        return self.position[axis] <= at if side == "min" else self.position[axis] >= at
+
+    def _reach(self, delta, axis: int, side: str, at: int, active: bool):
+        """The fraction of the line at which it reaches `at` on `axis` from outside, or None."""
+        toward = delta[axis] < 0 if side == "min" else delta[axis] > 0
+        if toward and not active and abs(at - self.position[axis]) <= abs(delta[axis]):
+            return (at - self.position[axis]) / delta[axis]
+        return None
+
     def _line(self, record: dict) -> bool:
-        """Move along a line record; True if a limit switch stopped it (position at the switch)."""
+        """Move along a line record; True if a limit switch stopped it (position at the switch).
+        The armed probe's touch latches the position there, and with probe_stop holds there."""
         delta = [record[name] for name in "xyz"]
         first = None                                # (fraction of the line, axis) of the first switch
         for axis, (side, at) in self.switches.items():
-            toward = delta[axis] < 0 if side == "min" else delta[axis] > 0
-            if toward and not self.switch_active(axis) and abs(at - self.position[axis]) <= abs(delta[axis]):
-                fraction = (at - self.position[axis]) / delta[axis]
+            fraction = self._reach(delta, axis, side, at, self.switch_active(axis))
+            if fraction is not None:
                 first = min(first or (2.0, 0), (fraction, axis))
+        touch = None if not self.probe_armed else self._reach(delta, *self.probe, self.probe_touching())
+        if touch is not None and (first is None or touch < first[0]):
+            axis = self.probe[0]
+            at = [p + round(d * touch) for p, d in zip(self.position, delta)]
+            at[axis] = self.probe[2]
+            self.probe_position, self.probe_valid, self.probe_armed = at, True, False
+            if self.probe_stop:                     # held at the touch: the rest waits for an abort
+                self.position, self.hold, self.hold_since = list(at), True, self.t
+                return False
         if first is None:
             self.position = [p + d for p, d in zip(self.position, delta)]
             return False
@@ -369,13 +398,17 @@ class DeviceModel:
             a["QUEUE_SIZE"]: (self.queue_size & 0xFFFF) | self.queue_aw << 16 | int(self.curves) << 24,
             a["STATUS"]: (self.state() | int(self._busy()) << 3 | int(self.state() == p.HELD) << 4
                           | int(self.enabled) << 6 | int(self.refused) * p.STATUS_REFUSED | min(records, 255) << 8
-                          | self.position_set << 16),
+                          | int(self.probe_valid) * p.STATUS_PROBE_VALID | self.position_set << 16),
             a["ERROR"]: self.error | self.limits << 8,
             a["QUEUE_FREE"]: (free & 0xFFFF) | (free // self.record_len) << 16,
             a["POS_X"]: self.position[0] & 0xFFFFFFFF, a["POS_Y"]: self.position[1] & 0xFFFFFFFF,
             a["POS_Z"]: self.position[2] & 0xFFFFFFFF,
-            a["INPUTS"]: sum(int(self.switch_active(axis)) << (1 + axis) for axis in range(3)),
-            a["CONTROL"]: int(self.hold) | int(self.enabled) << 4 | int(self.fill) << 5,
+            a["INPUTS"]: (sum(int(self.switch_active(axis)) << (1 + axis) for axis in range(3))
+                          | int(self.probe_touching()) << 4),
+            a["PROBE_X"]: self.probe_position[0] & 0xFFFFFFFF, a["PROBE_Y"]: self.probe_position[1] & 0xFFFFFFFF,
+            a["PROBE_Z"]: self.probe_position[2] & 0xFFFFFFFF,
+            a["CONTROL"]: (int(self.hold) | int(self.enabled) << 4 | int(self.fill) << 5
+                           | int(self.probe_stop) * p.CONTROL_PROBE_STOP),
             a["LINK_FRAMES"]: (self.frames & 0xFFFF) | (self.duplicates & 0xFFFF) << 16,
             a["LINK_ERRORS"]: (self.errors & 0xFFFF) | (self.gaps & 0xFFFF) << 16,
             a["EXECUTED"]: len(self.executed) & 0xFFFFFFFF,
@@ -397,6 +430,9 @@ class DeviceModel:
                 self.hold_since = self.t
             self.hold = bool(value & p.CONTROL_HOLD)
             self.enabled = bool(value & p.CONTROL_ENABLE)
+            self.probe_stop = bool(value & p.CONTROL_PROBE_STOP)
+            if value & p.CONTROL_PROBE_ARM:
+                self.probe_armed, self.probe_valid = True, False
             rise = value & p.CONTROL_FILL and not self.fill and not value & p.CONTROL_ABORT
             if rise and self._busy():
                 self.refused = True                 # fill would reset a running program

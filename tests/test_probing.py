@@ -1,0 +1,144 @@
+# SPDX-License-Identifier: Apache-2.0
+"""G38.2 / G38.3 probing: the interpreter's probe moves and their results (interpret's probes),
+`interp gcode` (the touch taken at the end of the move) and `interp send` against the Python
+model of the controller with a touch plate: the program runs in pieces, the probe move holds
+at the touch, and what follows is interpreted from where the machine stopped (a Z touch-off:
+G38.2, then G10 L20 sets the work zero)."""
+from __future__ import annotations
+
+import pytest
+
+from interp.cli import main
+from interp.commands import send
+from interp.gcode.errors import GcodeError
+from interp.gcode.interpreter import interpret
+from interp.gcode.moves import Line, ProbeResult
+from interp.gcode.parameter_file import read_parameters
+from interp.link.devicemodel import DeviceModel
+
+TOUCH_OFF = "G21 G90\nG0 X5\nG38.2 Z-10 F50\nG10 L20 P1 Z1.5\nG0 Z5\nM2\n"
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def attach(monkeypatch, device):
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
+
+
+def linear_moves(device):
+    return [(r["x"], r["y"], r["z"]) for r in device.executed if r["kind"] == 0]
+
+
+# ---------------- the interpreter ----------------
+
+def test_the_interpretation_stops_at_a_probe_move_until_its_result_is_known():
+    program = interpret(TOUCH_OFF, probes=[])
+    assert program.probe_pending and program.moves[-1] == Line((5.0, 0.0, 0.0), (5.0, 0.0, -10.0), 50.0, 3, probe=382)
+    touched = ProbeResult(True, (5.0, 0.0, -3.2), (5.0, 0.0, -3.25))
+    program = interpret(TOUCH_OFF + "", probes=[touched])
+    assert not program.probe_pending
+    assert program.moves[2] == Line((5.0, 0.0, -3.25), (5.0, 0.0, 0.25), None, 5)      # from where it stopped
+    assert program.saved[5223] == pytest.approx(-4.75)
+
+
+def test_the_probe_parameters():
+    text = "G21 G90\nG10 L2 P1 Z-1\nG38.3 Z-10 F50\nG0 X#5063 Y#5070\n"
+    program = interpret(text, probes=[ProbeResult(True, (0.0, 0.0, -3.0), (0.0, 0.0, -3.1))])
+    assert program.moves[-1].end == (-2.0, 1.0, -3.1)                 # #5063 in G54: -3 - (-1); #5070 = 1
+    program = interpret(text, probes=[ProbeResult(False, (0.0, 0.0, -11.0), (0.0, 0.0, -11.0))])
+    assert program.moves[-1].end == (-10.0, 0.0, -11.0)               # G38.3 without a touch: #5070 = 0
+
+
+def test_without_a_machine_the_touch_is_at_the_end_of_the_move():
+    program = interpret(TOUCH_OFF)
+    assert not program.probe_pending and program.saved[5223] == pytest.approx(-11.5)
+    assert program.warnings == ["line 3: G38.2: the probe's touch is taken at the end of the move (only the "
+                                "machine knows where it is)"]
+
+
+@pytest.mark.parametrize("text, message", [
+    ("G38.4 Z-1 F50\n", "G38.4: probing away from the work (G38.4, G38.5) is not supported"),
+    ("G38.2 Z-1\n", "feed move without a feed rate"),
+    ("G38.2 Z0 F50\n", "the probe move has no length"),
+    ("G38.2 @1 F50\n", "polar coordinates cannot be used with G38.2"),
+])
+def test_probe_moves_refused(text, message):
+    with pytest.raises(GcodeError) as info:
+        interpret(text)
+    assert message in str(info.value)
+
+
+def test_a_g382_result_without_a_touch_is_an_error():
+    with pytest.raises(GcodeError, match="the probe did not touch"):
+        interpret(TOUCH_OFF, probes=[ProbeResult(False, (5.0, 0.0, -10.0), (5.0, 0.0, -10.0))])
+
+
+# ---------------- interp send ----------------
+
+def test_a_z_touch_off(capsys, tmp_path, monkeypatch):
+    """The plate's top is 3.2 mm below where Z starts: the probe move stops there, G10 L20
+    makes it Z1.5 (the plate's thickness) in G54, and G0 Z5 goes to machine 0.3 mm."""
+    device = DeviceModel(probe=(2, "min", -320))
+    attach(monkeypatch, device)
+    machine = tmp_path / "m.toml"
+    machine.write_text('[gcode]\nparameter_file = "m.var"\n')
+    program = tmp_path / "touch.nc"
+    program.write_text(TOUCH_OFF)
+    code, out, err = run(capsys, "send", str(program), "--sim-model", "--machine", str(machine))
+    assert code == 0, err
+    assert linear_moves(device) == [(500, 0, 0), (0, 0, -1000), (0, 0, 350)]
+    assert device.position == [500, 0, 30] and device.probe_position == [500, 0, -320]
+    assert read_parameters(tmp_path / "m.var")[5223] == pytest.approx(-4.7)
+    assert out.startswith("sent 4 records") and "saved the offsets" in err     # (and the M2 event)
+
+
+def test_no_touch_is_an_error_for_g382(capsys, tmp_path, monkeypatch):
+    device = DeviceModel(probe=(2, "min", -2000))
+    attach(monkeypatch, device)
+    program = tmp_path / "touch.nc"
+    program.write_text(TOUCH_OFF)
+    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    assert code == 1
+    assert err.strip() == "interp: error: line 3: G38.2: the probe did not touch before the end of the move"
+    assert device.position == [500, 0, -1000] and len(linear_moves(device)) == 2
+
+
+def test_no_touch_goes_on_for_g383(capsys, tmp_path, monkeypatch):
+    device = DeviceModel(probe=(2, "min", -2000))
+    attach(monkeypatch, device)
+    program = tmp_path / "p.nc"
+    program.write_text("G21 G90\nG38.3 Z-10 F50\no1 if [#5070 EQ 0]\nG0 X1\no1 else\nG0 X2\no1 endif\nM2\n")
+    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    assert code == 0, err
+    assert device.position == [100, 0, -1000]
+
+
+def test_a_probe_touching_before_the_move(capsys, tmp_path, monkeypatch):
+    device = DeviceModel(probe=(2, "min", 0))
+    attach(monkeypatch, device)
+    program = tmp_path / "touch.nc"
+    program.write_text(TOUCH_OFF)
+    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    assert code == 1 and err.strip() == "interp: error: line 3: G38.2: the probe touches already before the move"
+    assert linear_moves(device) == [(500, 0, 0)]
+
+
+def test_the_simulator_has_no_probe(capsys, tmp_path, monkeypatch):
+    device = DeviceModel()
+    attach(monkeypatch, device)
+    program = tmp_path / "touch.nc"
+    program.write_text(TOUCH_OFF)
+    code, out, err = run(capsys, "send", str(program), "--sim")
+    assert code == 2 and "line 3: G38.2: the simulated controller has no probe" in err
+    assert not device.executed
+
+
+def test_gcode_runs_a_probe_program_to_the_end(capsys, tmp_path):
+    program = tmp_path / "touch.nc"
+    program.write_text(TOUCH_OFF)
+    code, out, err = run(capsys, "gcode", str(program), "--check")
+    assert code == 0 and "G38.2: the probe's touch is taken at the end of the move" in err
