@@ -142,3 +142,16 @@ def test_gcode_runs_a_probe_program_to_the_end(capsys, tmp_path):
     program.write_text(TOUCH_OFF)
     code, out, err = run(capsys, "gcode", str(program), "--check")
     assert code == 0 and "G38.2: the probe's touch is taken at the end of the move" in err
+
+
+def test_probes_in_a_loop(capsys, tmp_path, monkeypatch):
+    """Two probe moves from a loop, each followed by a retract: every move runs once, in order,
+    and the loop's message is printed once per pass."""
+    device = DeviceModel(probe=(2, "min", -320))
+    attach(monkeypatch, device)
+    program = tmp_path / "p.nc"
+    program.write_text("G21 G90\no1 repeat [2]\n(MSG, probing)\nG38.2 Z-10 F50\nG0 Z0\no1 endrepeat\nM2\n")
+    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    assert code == 0, err
+    assert linear_moves(device) == [(0, 0, -1000), (0, 0, 320)] * 2
+    assert err.splitlines() == ["interp: message: line 3: probing"] * 2

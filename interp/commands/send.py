@@ -295,7 +295,8 @@ class ProgramRun:
         self.args, self.driver, self.machine, self.text = args, driver, machine, text
         self.start, self.saved, self.keyboard, self.interactive = start, saved, keyboard, interactive
         self.results: list = []                 # ProbeResult of each probe move run
-        self.shown: set[str] = set()            # messages and warnings printed
+        self.shown: set[str] = set()            # warnings printed
+        self.messages = 0                       # (MSG, ...) messages printed: the first n of the run
         self.records = self.records_before = self.bytes = 0
         self.seconds = 0.0
         self.program = self.compiled = self.outcome = self.progress = None
@@ -308,8 +309,13 @@ class ProgramRun:
             self.progress = None
 
     def show(self, lines, kind: str) -> None:
+        """Print what an interpretation adds: each interpretation repeats the one before up to
+        its probe move, so the messages are those beyond the count printed (a loop may repeat
+        one), the warnings those not printed yet."""
+        if kind == "message":
+            lines, self.messages = lines[self.messages:], max(self.messages, len(lines))
         for line in lines:
-            if (kind, line) not in self.shown:
+            if kind == "message" or (kind, line) not in self.shown:
                 self.shown.add((kind, line))
                 print(f"interp: {kind}: {line}", file=sys.stderr)
 
