@@ -29,7 +29,7 @@ CONTRACT = {"ID": 0x00, "VERSION": 0x04, "BUILD0": 0x08, "BUILD1": 0x0C, "CLOCK_
             "MOTION": 0x5C, "INPUT_INVERT": 0x60, "SPINDLE_PERIOD": 0x64, "OUTPUTS": 0x68, "LINK_FRAMES": 0x6C,
             "LINK_ERRORS": 0x70, "CMD_DATA": 0x74, "EXECUTED": 0x78}
 WRITABLE = {"CONTROL", "OVERRIDE", "PULSE_WIDTH", "DIR_SETUP", "DIR_HOLD", "QUANTUM_LO", "QUANTUM_HI", "MOTION",
-            "INPUT_INVERT", "SPINDLE_PERIOD"}
+            "INPUT_INVERT", "SPINDLE_PERIOD", "POS_X", "POS_Y", "POS_Z"}        # (POS_*: set at rest, homing)
 
 
 @pytest.fixture(scope="module")
@@ -112,6 +112,8 @@ def test_access_as_agreed():
     assert pulses == {"CONTROL.abort", "CONTROL.clear", "CONTROL.probe_arm"}
     assert registers.FIELDS["CONTROL.hold"] == (0, 1, "rw")
     assert registers.FIELDS["CONTROL.enable"] == (4, 1, "rw")
+    assert registers.FIELDS["CONTROL.probe_stop"] == (6, 1, "rw")
+    assert registers.FIELDS["STATUS.position_set"] == (16, 3, "ro")
 
 
 def test_fixed_values_at_the_default_build():
@@ -170,10 +172,14 @@ def test_verilog_include_lints_clean(tmp_path):
 
 
 @pytest.mark.parametrize("name, value, expected", [
-    ("STATUS", 0x0000_0301, "STATUS 0x00000301: state=RUN busy=0 stopped=0 probe_valid=0 enabled=0 refused=0 records=3"),
-    ("STATUS", 0x0000_FF7C, "STATUS 0x0000FF7C: state=ALARM busy=1 stopped=1 probe_valid=1 enabled=1 refused=0 records=255"),
-    ("STATUS", 0x0000_0007, "STATUS 0x00000007: state=7 busy=0 stopped=0 probe_valid=0 enabled=0 refused=0 records=0"),
-    ("STATUS", 0x0000_0080, "STATUS 0x00000080: state=IDLE busy=0 stopped=0 probe_valid=0 enabled=0 refused=1 records=0"),
+    ("STATUS", 0x0000_0301, "STATUS 0x00000301: state=RUN busy=0 stopped=0 probe_valid=0 enabled=0 refused=0 records=3 "
+                            "position_set=0"),
+    ("STATUS", 0x0005_FF7C, "STATUS 0x0005FF7C: state=ALARM busy=1 stopped=1 probe_valid=1 enabled=1 refused=0 "
+                            "records=255 position_set=5"),
+    ("STATUS", 0x0000_0007, "STATUS 0x00000007: state=7 busy=0 stopped=0 probe_valid=0 enabled=0 refused=0 records=0 "
+                            "position_set=0"),
+    ("STATUS", 0x0000_0080, "STATUS 0x00000080: state=IDLE busy=0 stopped=0 probe_valid=0 enabled=0 refused=1 records=0 "
+                            "position_set=0"),
     ("ERROR", 0x0000_0511, "ERROR 0x00000511: code=LIMIT_SWITCH limits=5"),
     ("ERROR", 0x0000_0010, "ERROR 0x00000010: code=ESTOP limits=0"),
     ("ERROR", 0x0000_0063, "ERROR 0x00000063: code=99 limits=0"),
