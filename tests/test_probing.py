@@ -80,8 +80,9 @@ def test_a_g382_result_without_a_touch_is_an_error():
 # ---------------- interp send ----------------
 
 def test_a_z_touch_off(capsys, tmp_path, monkeypatch):
-    """The plate's top is 3.2 mm below where Z starts: the probe move stops there, G10 L20
-    makes it Z1.5 (the plate's thickness) in G54, and G0 Z5 goes to machine 0.3 mm."""
+    """The plate's top is 3.2 mm below where Z starts: the probe touches there and stops 3
+    steps further (the model's overshoot), G10 L20 makes that Z1.5 (the plate's thickness) in
+    G54, and G0 Z5 goes to machine 0.27 mm."""
     device = DeviceModel(probe=(2, "min", -320))
     attach(monkeypatch, device)
     machine = tmp_path / "m.toml"
@@ -91,8 +92,8 @@ def test_a_z_touch_off(capsys, tmp_path, monkeypatch):
     code, out, err = run(capsys, "send", str(program), "--sim-model", "--machine", str(machine))
     assert code == 0, err
     assert linear_moves(device) == [(500, 0, 0), (0, 0, -1000), (0, 0, 350)]
-    assert device.position == [500, 0, 30] and device.probe_position == [500, 0, -320]
-    assert read_parameters(tmp_path / "m.var")[5223] == pytest.approx(-4.7)
+    assert device.position == [500, 0, 27] and device.probe_position == [500, 0, -320]
+    assert read_parameters(tmp_path / "m.var")[5223] == pytest.approx(-4.73)
     assert out.startswith("sent 4 records") and "saved the offsets" in err     # (and the M2 event)
 
 
@@ -153,5 +154,36 @@ def test_probes_in_a_loop(capsys, tmp_path, monkeypatch):
     program.write_text("G21 G90\no1 repeat [2]\n(MSG, probing)\nG38.2 Z-10 F50\nG0 Z0\no1 endrepeat\nM2\n")
     code, out, err = run(capsys, "send", str(program), "--sim-model")
     assert code == 0, err
-    assert linear_moves(device) == [(0, 0, -1000), (0, 0, 320)] * 2
+    assert linear_moves(device) == [(0, 0, -1000), (0, 0, 323)] * 2
     assert err.splitlines() == ["interp: message: line 3: probing"] * 2
+
+
+def test_a_stop_code_in_the_probe_block_waits_for_the_result(capsys, tmp_path, monkeypatch):
+    """G38.2 ... M0: the pause comes after the probe move, which runs armed."""
+    device = DeviceModel(probe=(2, "min", -320))
+    attach(monkeypatch, device)
+    program = tmp_path / "p.nc"
+    program.write_text("G21 G90\nG38.2 Z-10 F50 M0\nG0 Z0\nM2\n")
+    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    assert code == 0, err
+    assert linear_moves(device) == [(0, 0, -1000), (0, 0, 323)] and device.probe_position[2] == -320
+
+
+def test_probing_with_the_spindle_on_is_refused_before_anything_moves(capsys, tmp_path, monkeypatch):
+    device = DeviceModel(probe=(2, "min", -320))
+    attach(monkeypatch, device)
+    program = tmp_path / "p.nc"
+    program.write_text("G21 G90\nG0 X1\nM3 S1000\nG38.2 Z-10 F50\n")
+    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    assert code == 2 and not device.executed
+    assert err.strip() == ("interp: error: line 4, column 1: G38.2: G38.2 with the spindle or coolant on: stop "
+                           "them (M5, M9) before probing")
+
+
+def test_a_probe_touching_before_the_first_move(capsys, tmp_path, monkeypatch):
+    device = DeviceModel(probe=(2, "min", 0))
+    attach(monkeypatch, device)
+    program = tmp_path / "p.nc"
+    program.write_text("G21 G90\nG38.2 Z-10 F50\n")
+    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    assert code == 1 and err.strip() == "interp: error: line 2: G38.2: the probe touches already before the move"

@@ -251,11 +251,11 @@ def cmd_send(args) -> int:
             keyboard.close()
         result = transport.close()
     stats = (f"{driver.frames_sent} frames, {driver.recoveries} retransmissions")
-    outcome, compiled, records = run.outcome, run.compiled, run.records
-    where = f"record {run.records_before + outcome.executed} of {records}, line {line_of(compiled, outcome.executed)}"
     if run.failure:
         print(f"interp: error: {run.failure}", file=sys.stderr)
         return 1
+    outcome, compiled, records = run.outcome, run.compiled, run.records
+    where = f"record {run.records_before + outcome.executed} of {records}, line {line_of(compiled, outcome.executed)}"
     if outcome.status == "error":
         error = MachineError(outcome.error, outcome.limits, outcome.executed, "")
         extra = f", {limit_names(error.limits)}" if error.limits else ""
@@ -321,6 +321,9 @@ class ProgramRun:
 
     def all(self) -> None:
         done, here = 0, tuple(self.start)                 # moves run so far; the machine's position
+        whole = interpret_program(self.text, self.machine, self.start, self.saved)
+        if self.machine.parameter_file is not None:       # G-code errors before anything moves
+            check_lengths(whole.saved)
         while True:
             self.program = program = interpret_program(self.text, self.machine, self.start, self.saved,
                                                        probes=self.results)
@@ -329,11 +332,11 @@ class ProgramRun:
             self.show(program.messages, "message")
             self.show(program.warnings, "warning")
             moves = program.moves[done:]
-            probe = moves.pop() if program.probe_pending else None
+            probe = moves.pop() if program.probe_pending else None      # (the interpretation's last move)
             if probe is not None and self.args.sim:
                 raise UsageError(f"line {probe.line}: G38.{probe.probe - 380}: the simulated controller has no "
                                  "probe (interp gcode takes the touch at the end of the move)")
-            if moves or probe is None:
+            if moves or (probe is None and self.compiled is None):
                 if not self.piece(program, moves, here, last=probe is None):
                     return
                 here = self.compiled.end_steps
@@ -382,7 +385,9 @@ class ProgramRun:
         if self.driver.read_register("INPUTS") >> 4 & 1:
             self.failure = f"{name}: the probe touches already before the move"
             return False
-        if not self.piece(program, [move], here, last=False, probe=True):
+        ended = self.piece(program, [move], here, last=False, probe=True)
+        self.driver.write_register("CONTROL", p.CONTROL_ENABLE)       # probe_stop off
+        if not ended:
             return False
         touched = self.outcome.status == "probed"
         stop = read_position(self.driver)

@@ -199,6 +199,7 @@ class _Machine:
         self.settings_changed = True             # the offset parameters need writing
         self.assigned_mm: dict[int, float] = {}  # see _keep_assignments
         self.probe_results: list[ProbeResult] | None = None
+        self.coolant_on = False                  # M7 / M8 in force (M9 ends it)
         self.probes_made = 0
         self._restore(saved or {})
         self._write_parameters()
@@ -403,6 +404,7 @@ class _Machine:
         # 11. coolant
         for code, _word in words.coolant:
             self._event({7: "mist_on", 8: "flood_on", 9: "coolant_off"}[code], 0, line)
+            self.coolant_on = code != 9
         # 12. overrides
         if "override" in words.m:
             code, word = words.m["override"]
@@ -506,6 +508,8 @@ class _Machine:
             self.motion_before_cycle = None
         self.motion = new_mode
         self._check_unused(words)
+        if self.program.probe_pending:      # the rest of the block runs when the result is known
+            return
         # 25. stop
         if "stopping" in words.m:
             code = words.m["stopping"][0]
@@ -685,6 +689,9 @@ class _Machine:
         if length < SAME_POINT_MM:
             self._fail(word, "the probe move has no length: its end is where the machine is")
         feed = self._feed_for(length, inverse_f, word)
+        if self.spindle is not None or self.coolant_on:
+            # (a controller ends a probe move with an abort, which stops the spindle and coolant)
+            self._fail(word, f"{name} with the spindle or coolant on: stop them (M5, M9) before probing")
         self._add(Line(tuple(self.position), tuple(target), feed, self._line, probe=mode))
         index, self.probes_made = self.probes_made, self.probes_made + 1
         if self.probe_results is None:

@@ -26,6 +26,9 @@ from . import protocol as p
 from .records import DEFAULT_BUILD, Build, RecordReader, decode, record_bytes
 
 
+PROBE_OVERSHOOT = 3         # steps the machine runs past the probe's touch while it stops
+
+
 class DeviceModel:
     def __init__(self, *, build: Build = DEFAULT_BUILD, clock_hz: int = 50_000_000, baud: int = 115200,
                  line_noise: float = 0.0, seed: int = 1, queue_aw: int = 12, curves: bool = True,
@@ -373,8 +376,11 @@ class DeviceModel:
             at = [p + round(d * touch) for p, d in zip(self.position, delta)]
             at[axis] = self.probe[2]
             self.probe_position, self.probe_valid, self.probe_armed = at, True, False
-            if self.probe_stop:                     # held at the touch: the rest waits for an abort
-                self.position, self.hold, self.hold_since = list(at), True, self.t
+            if self.probe_stop:                     # held just past the touch: the rest waits for an abort
+                past = list(at)
+                room = abs(self.position[axis] + delta[axis] - at[axis])
+                past[axis] += (1 if delta[axis] > 0 else -1) * min(PROBE_OVERSHOOT, room)
+                self.position, self.hold, self.hold_since = past, True, self.t
                 return False
         if first is None:
             self.position = [p + d for p, d in zip(self.position, delta)]

@@ -537,7 +537,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                 if key == "!" and not held:
                     control(p.CONTROL_HOLD)
                     held = True
-                elif key == "~" and (held or paused) and stopping is None:
+                elif key == "~" and (held or paused) and stopping is None and not touched:
                     control(0)
                     held = paused = False
                     paused_since = None
@@ -570,7 +570,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
             snap.executed = (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
             return Outcome("error", snap.executed, seconds, snap.error, field(v["ERROR"], 8, 3))
         busy = field(v["STATUS"], 3, 1)
-        if probe and v["STATUS"] & p.STATUS_PROBE_VALID and not touched:
+        if probe and v["STATUS"] & p.STATUS_PROBE_VALID and not touched and stopping is None and not aborted:
             touched = True                      # the probe's hold: not a pause of the program
         if touched and not aborted and (snap.state == p.HELD or not busy):
             control(p.CONTROL_ABORT)           # at rest at the touch: the rest of the move goes
@@ -594,7 +594,8 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
             stop_note = "" if snap.state in (p.HELD, p.IDLE) else f"not at rest after {STOP_SECONDS:g} s: {AT_SPEED}"
         if aborted and driver.stream_done() and not busy:
             return Outcome("aborted", snap.executed, seconds, message=stop_note)
-        if driver.stream_done() and snap.executed >= records and not busy and snap.queue_records == 0:
+        if driver.stream_done() and snap.executed >= records and not busy and snap.queue_records == 0 \
+                and not paused:                 # (a pause at the end holds until it is released)
             return Outcome("done", snap.executed, seconds)
         if max_seconds is not None and seconds > max_seconds:
             return Outcome("timeout", snap.executed, seconds)
