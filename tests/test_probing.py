@@ -187,3 +187,12 @@ def test_a_probe_touching_before_the_first_move(capsys, tmp_path, monkeypatch):
     program.write_text("G21 G90\nG38.2 Z-10 F50\n")
     code, out, err = run(capsys, "send", str(program), "--sim-model")
     assert code == 1 and err.strip() == "interp: error: line 2: G38.2: the probe touches already before the move"
+
+
+def test_a_gcode_error_after_a_probe_stops_the_program_before_anything_moves(capsys, tmp_path, monkeypatch):
+    device = DeviceModel(probe=(2, "min", -320))
+    attach(monkeypatch, device)
+    program = tmp_path / "p.nc"
+    program.write_text("G21 G90\nG0 X5\nG38.2 Z-10 F50\nG0 X1 I5\n")
+    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    assert code == 2 and not device.executed and "line 4" in err

@@ -321,14 +321,15 @@ class ProgramRun:
 
     def all(self) -> None:
         done, here = 0, tuple(self.start)                 # moves run so far; the machine's position
-        whole = interpret_program(self.text, self.machine, self.start, self.saved)
-        if self.machine.parameter_file is not None:       # G-code errors before anything moves
-            check_lengths(whole.saved)
         while True:
             self.program = program = interpret_program(self.text, self.machine, self.start, self.saved,
                                                        probes=self.results)
-            if self.machine.parameter_file is not None and not program.probe_pending:
-                check_lengths(program.saved)
+            whole = program
+            if program.probe_pending and not self.results:
+                # the whole program once (each touch at its move's end): G-code errors before anything moves
+                whole = interpret_program(self.text, self.machine, self.start, self.saved)
+            if self.machine.parameter_file is not None and (whole is not program or not program.probe_pending):
+                check_lengths(whole.saved)
             self.show(program.messages, "message")
             self.show(program.warnings, "warning")
             moves = program.moves[done:]
