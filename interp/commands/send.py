@@ -396,8 +396,8 @@ class ProgramRun:
         if not touched and move.probe == 382:
             self.failure = f"{name}: the probe did not touch before the end of the move"
             return False
-        spm = self.machine.steps_per_mm
-        result = ProbeResult(touched, tuple(v / s for v, s in zip(trip, spm)), tuple(v / s for v, s in zip(stop, spm)))
+        # in mm as the interpreter's start is (the next piece is compiled from `stop` in steps)
+        result = ProbeResult(touched, gc.start_mm(self.machine, trip), gc.start_mm(self.machine, stop))
         self.results.append(result)
         self.probe_stop = stop                              # the next piece starts there
         self.outcome = dataclasses.replace(self.outcome, status="done")
