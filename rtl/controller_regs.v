@@ -9,7 +9,8 @@
 // REG_<NAME> (generated from regs/controller.rdl); the map is in docs/registers.md.
 // Read-only registers are composed here from the controller's status inputs; the
 // read-write ones (machine settings) are held here and drive the outputs.  CONTROL:
-// [0] hold (RW; also set by `hold_set`, a pause event or the probe's touch), write-1
+// [0] hold (RW; also set by `hold_set`, a pause event or the probe's touch, which wins
+// over a CONTROL write in the same clock), write-1
 // strobes [1] abort, [2] clear, [3] probe_arm, [4] enable (RW), [5] fill (RW),
 // [6] probe_stop (RW: the armed probe's touch sets hold).  QUANTUM_LO/HI and MOTION are
 // taken only while `busy` is low, and fill rises only then (or with abort in the same
@@ -241,7 +242,7 @@ module controller_regs #(
             if (write & ~speed_refused) begin
                 case (address)
                     REG_CONTROL[7:0]: begin
-                        hold   <= wb_dat_w[0];
+                        hold   <= wb_dat_w[0] | hold_set;   // a touch or pause in this clock wins
                         enable <= wb_dat_w[4];
                         fill   <= wb_dat_w[5] & ~fill_refused;
                         probe_stop <= wb_dat_w[6];

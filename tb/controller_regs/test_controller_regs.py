@@ -2,7 +2,8 @@
 """controller_regs on its own, cycle by cycle: wb_ack exactly one cycle after a strobe is seen
 (one cycle high, back-to-back accesses), read data with the ack; a CMD_DATA write held
 until data_ready, then data_write for one cycle with the word; CONTROL's abort / clear /
-probe_arm one-cycle strobes, hold and enable RW, hold_set; the status inputs composed into
+probe_arm one-cycle strobes, hold and enable RW, hold_set (winning over a CONTROL write in
+its clock); the status inputs composed into
 STATUS, ERROR, QUEUE_FREE, OUTPUTS and the sign-extended positions at POS_W 20; the speed
 settings refused while busy (STATUS.refused until CONTROL.clear), taken at rest; CONTROL.fill
 rising while busy only with abort."""
@@ -61,6 +62,17 @@ async def bus_and_fields(dut):
     await FallingEdge(dut.clk)
     tb.drive({"hold_set": 0})
     assert (await access(tb, REG["CONTROL"]))[1] == 0b00001, "hold_set sets CONTROL.hold"
+    # a CONTROL write that clears hold in the very clock of a hold_set (a probe's touch, an
+    # M0) keeps the hold: the touch is never lost to a host write
+    await access(tb, REG["CONTROL"], 0)
+    tb.drive({**BUS, "wb_adr": REG["CONTROL"], "wb_dat_w": 0b10000, "wb_we": 1, "wb_stb": 1, "wb_cyc": 1,
+              "hold_set": 1})
+    await FallingEdge(dut.clk)
+    assert int(dut.wb_ack.value), "the write was taken in the clock of the hold_set"
+    tb.drive({**BUS, "hold_set": 0})
+    await FallingEdge(dut.clk)
+    assert (await access(tb, REG["CONTROL"]))[1] == 0b10001, "the write's hold 0 lost the touch"
+    await access(tb, REG["CONTROL"], 0)
     # composed status: POS_W 20, sign-extended
     tb.drive({"state": 3, "busy": 1, "stopped": 1, "probe_valid": 1, "records": 200, "error_code": 17,
               "error_limits": 5, "free_bytes": 1234, "free_records": 14, "pos_x": (1 << 20) - 3, "pos_z": 77,
