@@ -3,57 +3,27 @@
 // Motion subsystem: command queues -> interpolator cores ->
 // synchronization buffer -> speed-setting block -> step/dir output stage.
 //   geometry queue .......... sync_fifo u_queue (commands, QDEPTH entries)
-//   line, 2 or 3 axes ....... line_pair u_lines: two lin_exact sharing the leading
-//                             axis: core A makes (lead, minor 1), core B (lead,
-//                             minor 2); both get every tick, so each lead step is one tick
-//   circular arc, helix ..... arc_plane u_arc: circ_arc in the plane's (u, v), the
-//                             helix axis w by line core A (lead N, minor cmd_z)
-//   curve ................... curve_tangent (the paper's tangent method)
+//   interpolator cores ...... motion_cores u_cores: lines on two SU 1571551 exact cores
+//                             (line_pair), arcs and helices in any plane on SU 1665343's
+//                             arc core (arc_plane), curves by the paper's tangent method
 //   synchronization buffer .. step_sync u_sync (lecture: 2 D flip-flops per axis, STOP);
 //                             each step carries its command's cost
 //   speed-setting block ..... path_profile u_profile (lecture: "БЗС"): the profile
 //                             queue, speed_ramp (acceleration, braking, hold, override),
 //                             jerk_filter (S-curve), step_pacer (releases the steps)
 //   output stage ............ step_dir u_out (pulse width, dir setup and hold)
-//
-// Commands (pushed with cmd_valid; fields signed W bits, relative to the
-// position where the command starts):
-//   kind 0 LINE    cmd_x, cmd_y, cmd_z: the move (cmd_plane ignored)
-//   kind 1 ARC_CW, 2 ARC_CCW in plane cmd_plane: 0 XY (u = x, v = y, w = z),
-//                  1 ZX (u = z, v = x, w = y), 2 YZ (u = y, v = z, w = x); CCW turns
-//                  from +u to +v.  cmd_x, cmd_y end (u, v), cmd_i, cmd_j centre (u, v)
-//                  (end = start: full circle); cmd_z helix travel along w, cmd_k N,
-//                  the host's count of the arc's steps (see arc_plane.v)
-//   kind 3 CURVE   curve_tangent with ΔX = cmd_x + cmd_i·x + cmd_j·y,
-//                  ΔY = cmd_y + cmd_k·x + cmd_l·y (x, y from the start), cmd_z steps
-//   kind 4 DWELL   wait until the speed is 0 and the drive has stopped, then cmd_x
-//                  clock cycles (unsigned)
-//   kind 5 EVENT   wait until the speed is 0 and the drive has stopped, then
-//                  event_valid for one cycle with event_code = cmd_x[7:0], event_value = cmd_y
-//   kind 6, 7      illegal (and kind 3 in a build with CURVES = 0: curve_tangent left out)
-// The profile of a move (speeds in path units per clock, 2^FRAC = one axial step):
-//   cmd_feed cruise speed, cmd_limit ceiling for override > 100 % (>= cmd_feed),
-//   cmd_exit exit speed in quanta of speed_quantum, cmd_rate acceleration p * 2^PF
-//   (1 .. 2^PF), cmd_cost path units per step (0: the lecture's 1, sqrt 2, sqrt 3 x
-//   2^FRAC), cmd_length the exact sum of the step costs (> 0), cmd_budget the braking
-//   budget floor(2 rate length / (2^block_shift A)).  DWELL and EVENT ignore them and
-//   enter the profile queue as barriers.
-// Every check that can be made is made when the command is pushed: a refused command
-// never enters a queue; `error` (one-cycle strobe, the cycle after the push) and
-// `error_code` (held until the next error or rst):
-//   1 unknown kind, 2 feed 0, 3 a line coordinate = -2^(W-1), 5 queue full
-//   (cmd_valid while cmd_full), 7 an arc in plane 3, 8 bad profile (rate 0 or
-//   > 2^PF, length 0, limit < feed, or a move pushed while block_shift < 2).
-// At run time: 4 the arc or curve core refused its command (e.g. an inconsistent
-// centre): a FAULT, both queues are flushed, the speed block stops, and every later
-// push is refused with 4 until rst; 6 step buffer overflow (never happens; a monitor);
-// 9 a segment ended above its target speed (`late`): its successor's set-up was not
-// ready in time (a segment shorter than about NW + 3 clocks) or the queue ran dry
-// after a segment too short to stop in; the speed dropped at once (the host's
-// plan must avoid it: the G-code compiler keeps every segment that long).
-// `hold` (feed hold) decelerates the path to speed 0 (`stopped`) and resumes on
-// release; no step is lost.  pos_x/y/z count the pulses at the drive (rising edges
-// of step_*).
+// The dispatcher (state) pops the geometry queue's head when idle and starts its core,
+// or runs a DWELL (kind 4) or EVENT (kind 5) once the speed is 0 and the drive has
+// stopped.  Commands (kinds 0 LINE, 1 ARC_CW, 2 ARC_CCW, 3 CURVE, 4, 5; fields signed
+// W bits relative to where the command starts) and their profiles (cmd_feed .. cmd_budget)
+// are documented in docs/cores/motion_top.md with the error codes: every check is made
+// at the push, so a refused command never enters a queue (`error` strobes the cycle
+// after, `error_code` held: 1 kind, 2 feed, 3 range, 5 queue full, 7 plane, 8 profile);
+// at run time 4 a core refused its command (FAULT until rst: queues flushed, speed block
+// stopped), 6 step buffer overflow (a monitor), 9 `late` (a segment ended above its
+// target speed).  `hold` decelerates the path to speed 0 (`stopped`) and resumes on
+// release; no step is lost.  pos_x/y/z count the pulses at the drive (rising edges of
+// step_*).
 module motion_top #(
     parameter integer W      = 16,  // command field width, signed (>= 6)
     parameter integer FEED_W = 16,  // speed word width, path units per clock (>= 2)
@@ -147,7 +117,6 @@ module motion_top #(
                      S_DRAIN = 3'd4, S_DWELL = 3'd5, S_EVENT = 3'd6, S_FAULT = 3'd7;
     localparam integer CMD_W = 5 + FEED_W + 7 * W;
     localparam integer SLW = 4;             // step buffer level width
-    localparam integer CPW = W + 8;         // curve projection width
 
     reg  [2:0] state;
     wire       fault = state == S_FAULT;
@@ -200,64 +169,23 @@ module motion_top #(
     wire core_tick;             // ~STOP of the synchronization buffer
 
     // ---------------- cores ----------------
-    // Line core A also spreads an arc's helix axis (arc_plane borrows it).
     // line_pair takes its command a cycle ahead: the head, or while the queue is empty the
     // command being pushed (the head of the next cycle if it is taken).  The head changes
     // only at a pop (which leaves S_IDLE: no start in the next cycle) or at a push into the
     // empty queue, so at every start these registers hold the head's command.
-    wire [2:0]   line_step, line_dir;
-    wire         line_done, helix_start, helix_tick, helix_abort, helix_step, helix_dir;
-    wire [2:0]   next_kind = q_valid ? h_kind : cmd_kind;
-    line_pair #(.W(W)) u_lines (
-        .clk(clk), .rst(rst), .start(start_line), .tick(core_tick),
+    wire [2:0] core_step, core_dir;
+    wire       core_done, core_error;
+    wire [2:0] next_kind = q_valid ? h_kind : cmd_kind;
+    motion_cores #(.W(W), .CURVES(CURVES)) u_cores (
+        .clk(clk), .rst(rst), .tick(core_tick),
         .next_x(q_valid ? h_x : cmd_x), .next_y(q_valid ? h_y : cmd_y), .next_z(q_valid ? h_z : cmd_z),
         .next_arc(next_kind == K_ARC_CW || next_kind == K_ARC_CCW), .next_count(q_valid ? h_k : cmd_k),
-        .step(line_step), .dir(line_dir), .done(line_done),
-        .helix_start(helix_start), .lent(state == S_ARC), .helix_tick(helix_tick),
-        .helix_abort(helix_abort), .helix_step(helix_step), .helix_dir(helix_dir)
+        .plane(h_plane), .ccw(h_kind == K_ARC_CCW), .cmd_x(h_x), .cmd_y(h_y), .cmd_z(h_z),
+        .cmd_i(h_i), .cmd_j(h_j), .cmd_k(h_k), .cmd_l(h_l),
+        .start_line(start_line), .start_arc(start_arc), .start_curve(start_curve),
+        .run_line(state == S_LINE), .run_arc(state == S_ARC), .run_curve(state == S_CURVE),
+        .step(core_step), .dir(core_dir), .done(core_done), .error(core_error)
     );
-
-    wire [2:0] arc_step, arc_dir;
-    wire       arc_busy, arc_done, arc_error;
-    arc_plane #(.W(W)) u_arc (
-        .clk(clk), .rst(rst), .start(start_arc), .tick(core_tick), .plane(h_plane),
-        .ccw(h_kind == K_ARC_CCW), .end_u(h_x), .end_v(h_y), .centre_u(h_i), .centre_v(h_j),
-        .travel(h_z),
-        .helix_start(helix_start), .helix_tick(helix_tick),
-        .helix_abort(helix_abort), .helix_step(helix_step), .helix_dir(helix_dir),
-        .step(arc_step), .dir(arc_dir), .busy(arc_busy), .done(arc_done), .error(arc_error)
-    );
-
-    wire cv_sx, cv_sy, cv_dx, cv_dy, cv_busy, cv_done, cv_error;
-    generate
-        if (CURVES != 0) begin : g_curve
-            curve_tangent #(.WIDTH(W), .PW(CPW), .CW(W)) u_curve (
-                .clk(clk), .rst(rst), .start(start_curve), .tick(core_tick),
-                .x0({W{1'b0}}), .y0({W{1'b0}}),
-                .p0({{8{h_x[W-1]}}, h_x}), .q0({{8{h_y[W-1]}}, h_y}),
-                .dp_dx({{8{h_i[W-1]}}, h_i}), .dp_dy({{8{h_j[W-1]}}, h_j}),
-                .dq_dx({{8{h_k[W-1]}}, h_k}), .dq_dy({{8{h_l[W-1]}}, h_l}),
-                .reverse(1'b0), .count(h_z), .end_sel(2'd0), .end_coord({W{1'b0}}), .improved(1'b0),
-                .e_load(1'b0), .e_init({(CPW+4){1'b0}}),
-                .step_x(cv_sx), .step_y(cv_sy), .dir_x(cv_dx), .dir_y(cv_dy),
-                .busy(cv_busy), .done(cv_done), .error(cv_error)
-            );
-        end else begin : g_no_curve     // kind 3 is refused at the push: never started
-            assign {cv_sx, cv_sy, cv_dx, cv_dy, cv_busy, cv_done, cv_error} = 7'd0;
-            wire unused_curve = &{1'b0, start_curve, h_l};
-        end
-    endgenerate
-
-    // The running core's steps (the others are idle and show no step).
-    reg [2:0] core_step, core_dir;
-    always @* begin
-        case (state)
-            S_ARC:   begin core_step = arc_step;               core_dir = arc_dir;                end
-            S_CURVE: begin core_step = {1'b0, cv_sy, cv_sx};   core_dir = {1'b0, cv_dy, cv_dx};   end
-            S_LINE:  begin core_step = line_step;               core_dir = line_dir;               end
-            default: begin core_step = 3'b000;                  core_dir = 3'b000;                 end
-        endcase
-    end
 
     // ---------------- synchronization buffer, speed, output ----------------
     wire [2:0]        out_step, out_dir;
@@ -301,10 +229,6 @@ module motion_top #(
     assign {dir_z, dir_y, dir_x}    = drv_dir;
 
     // ---------------- state, position, errors ----------------
-    wire core_done  = (state == S_LINE  && line_done) ||
-                      (state == S_ARC   && (arc_done | arc_error)) ||
-                      (state == S_CURVE && (cv_done | cv_error));
-    wire core_error = (state == S_ARC && arc_error) || (state == S_CURVE && cv_error);
     reg  sync_overflow_q, busy_q;
     reg  [2:0] step_q;
 
@@ -389,6 +313,6 @@ module motion_top #(
         end
     end
 
-    wire unused = &{1'b0, arc_busy, cv_busy, sync_level, unused_overflow};
+    wire unused = &{1'b0, sync_level, unused_overflow};
 endmodule
 `default_nettype wire

@@ -12,7 +12,7 @@ Step level, written like the lecture's rules:
     axis w spread by a line (N, travel) over its steps, mapped to (x, y, z).
 Cycle level: `SyncFifo`, `StepSync`, `FeedRate`, `StepDir`, `ArcPlane`,
 `MotionTop` mirror the registers of rtl/sync_fifo.v, step_sync.v, feed_rate.v,
-step_dir.v, arc_plane.v, motion_top.v (line_pair.v inline in MotionTop; the
+step_dir.v, arc_plane.v, motion_top.v (motion_cores.v and line_pair.v inline in MotionTop; the
 speed-setting block rtl/path_profile.v is interp.models.profile.PathProfile); their
 combinational outputs are properties of the current state and inputs.
 """
