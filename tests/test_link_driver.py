@@ -15,7 +15,8 @@ from hypothesis import strategies as st
 from interp.link import driver as driver_module
 from interp.link import protocol as p
 from interp.link.devicemodel import DeviceModel
-from interp.link.driver import (Driver, LinkError, MismatchError, check_controller, configure, run_program)
+from interp.link.driver import (Driver, FeedOverride, LinkError, MismatchError, check_controller, configure,
+                               run_program)
 from interp.link.records import Build, RecordReader, encode, encode_program
 
 SEED = int(os.environ.get("SEED", random.randrange(1 << 30)))
@@ -192,6 +193,31 @@ def test_hold_resume_abort_keys():
     assert controls[:3] == [p.CONTROL_ABORT | p.CONTROL_CLEAR | enable | fill, p.CONTROL_HOLD | enable | fill,
                             p.CONTROL_HOLD | enable]
     assert outcome.status == "timeout" and len(model.executed) == 0     # held from the start
+
+
+def test_feed_override_keys():
+    """'+' '-' (10 %), '>' '<' (1 %) and '=' (100 %) write OVERRIDE while the program runs,
+    within Grbl's 10 .. 200 %; a key that changes nothing writes nothing; the percent is kept
+    for the next run of the same program (its pieces around a probe move) and written at its
+    start over the settings' 100; without an override holder the keys do nothing."""
+    cmds = commands(40)
+    model = DeviceModel(records_per_second=100)
+    held = FeedOverride()
+    script = iter([""] * 100 + ["+", "+", ">"] + [""] * 20 + ["-" * 30, "<", "", "=", "=", "<<"])
+    _, outcome = run(model, cmds, keys=lambda: next(script, ""), override=held)
+    overrides = [v for name, v in model.writes if name == "OVERRIDE"]
+    assert outcome.status == "done" and executed_fields(model, cmds) == cmds
+    assert overrides == [120, 100, 110, 120, 121] + list(range(111, 9, -10)) + [10, 100, 99, 98], overrides
+    assert held.percent == 98 and model.regs["OVERRIDE"] == 98
+    model = DeviceModel(records_per_second=100)
+    _, outcome = run(model, cmds, override=held)
+    assert [v for name, v in model.writes if name == "OVERRIDE"] == [120, 98]     # settings, then the keys'
+    model = DeviceModel(records_per_second=100)
+    script = iter(["+", ">", "="])
+    run(model, cmds, keys=lambda: next(script, ""))
+    assert [v for name, v in model.writes if name == "OVERRIDE"] == [120]
+    assert [FeedOverride(p_).after(k) for p_, k in ((195, "+"), (200, ">"), (15, "-"), (10, "<"), (37, "="))] == \
+        [200, 200, 10, 10, 100]
 
 
 def test_stop_key_aborts_at_rest():

@@ -19,6 +19,7 @@ through its UART pins in simulated time.
   * a program pause (M0, M6) is released after --pause-seconds without a terminal;
   * Ctrl-X in a move: the RTL's hold slows the steps to rest before the abort, and the
     position registers count the steps that went out;
+  * feed override keys in a move: slower steps, the same path step by step;
   * a short corpus program that starts with an event (slow; skipped without
     ../shared/gcode), without noise and at line noise 0.01: the steps CSV equals
     `interp gcode`'s byte for byte.
@@ -207,7 +208,8 @@ def test_program_pause_is_released(files, capsys):
     assert "line 3: resuming after 0.01 s" in captured.err, captured.err
 
 
-def run_driver(files, steps, noise: float, seed: int = 1, before=None, keys=None):
+def run_driver(files, steps, noise: float, seed: int = 1, before=None, keys=None, override=None,
+               program: str = "tiny.nc"):
     """The host driver's run through SimLink; (outcome, registers after the run, link result, records).
     before(link, stream): what an earlier session did on the link; keys(link): the keys typed
     since the last call (run_program's keys)."""
@@ -217,7 +219,7 @@ def run_driver(files, steps, noise: float, seed: int = 1, before=None, keys=None
     from interp.link.driver import Driver, check_controller, configure, run_program
 
     machine = load_machine(str(files / "machine.toml"))
-    _, compiled = compile_text(read_program(str(files / "tiny.nc")), machine)
+    _, compiled = compile_text(read_program(str(files / program)), machine)
     stream = encode_program(compiled.commands, compile_build())
     link = SimLink(steps=steps, line_noise=noise, seed=seed, machine=machine)
     if before is not None:
@@ -226,7 +228,7 @@ def run_driver(files, steps, noise: float, seed: int = 1, before=None, keys=None
     driver.connect()
     check_controller(driver, compile_build(), machine.clock_hz)
     configure(driver, machine.timing(), compiled.settings)
-    outcome = run_program(driver, stream, len(compiled.commands),
+    outcome = run_program(driver, stream, len(compiled.commands), override=override,
                           keys=None if keys is None else lambda: keys(link))
     registers = {name: driver.read_register(name) for name in ("POS_X", "POS_Y", "POS_Z", "EXECUTED",
                                                                 "LINK_FRAMES", "LINK_ERRORS")}
@@ -301,6 +303,46 @@ def test_stop_key_decelerates_then_aborts(files):
     after = gaps[gaps.index(cruise):]                                 # from the fastest step on
     assert len(after) >= 4 and after == sorted(after), after          # slowing down to the last
     assert gaps[-1] > 2 * cruise, (cruise, gaps[-5:])
+
+
+def test_feed_override_keys_change_the_pace_not_the_path(files):
+    """A 4 mm move at 10 mm/s (12,000 clocks a step): '-' five times at 0.1 s (50 %), '=' at
+    0.3 s (100 %): the RTL slows the steps to twice their interval and speeds them up again at
+    its acceleration, and not one step changes: the same steps in the same order as
+    `interp gcode`'s, the programmed end, every record executed once."""
+    from interp.link.driver import FeedOverride
+
+    (files / "slow.nc").write_text("G21 G90\nG1 X4 F600\nM2\n")
+    reference = files / "slow_gcode.csv"
+    assert main(["gcode", str(files / "slow.nc"), "--machine", str(files / "machine.toml"),
+                 "--steps", str(reference)]) == 0
+    steps = files / "override.csv"
+    start, typed = [], []
+
+    def keys(link):
+        start.append(start[0] if start else link.now())
+        for at, key in ((0.1, "-----"), (0.3, "=")):
+            if len(typed) == [0.1, 0.3].index(at) and link.now() > start[0] + at:
+                typed.append(key)
+                return key
+        return ""
+
+    held = FeedOverride()
+    outcome, regs, _, compiled = run_driver(files, steps, 0.0, keys=keys, override=held, program="slow.nc")
+    assert outcome.status == "done" and outcome.executed == len(compiled.commands), outcome
+    assert typed == ["-----", "="] and held.percent == 100
+    rows = [tuple(int(v) for v in line.split(",")) for line in steps.read_text().splitlines()[1:]]
+    alone = [tuple(int(v) for v in line.split(",")) for line in reference.read_text().splitlines()[1:]]
+    assert len(rows) == 400 and [r[1:] for r in rows] == [r[1:] for r in alone]     # the path, step by step
+    assert tuple(signed32(regs[n]) for n in POSITION) == (400, 0, 0)
+    gaps = [b[0] - a[0] for a, b in zip(rows, rows[1:])]
+    plain = [b[0] - a[0] for a, b in zip(alone, alone[1:])]
+    cruise = min(plain)                                 # 12,000 clocks: 10 mm/s at 12 MHz
+    assert 11_500 < cruise <= 12_000 and min(gaps) == cruise, (cruise, min(gaps))
+    assert 1.95 * cruise < max(gaps[50:-50]) <= 2 * cruise + 1, max(gaps[50:-50])      # 50 %
+    slow = [g for g in gaps if g > 1.95 * cruise]
+    assert 60 < len(slow) < 120, len(slow)              # 0.2 s at 5 mm/s: about 100 steps
+    assert rows[-1][0] - alone[-1][0] > 0.08 * 12e6, "about 0.1 s longer than at 100 %"
 
 
 def test_same_seed_same_run(files):

@@ -11,7 +11,8 @@ encoded into records (interp.link.records) and streamed by the driver (interp.li
 --port takes a device or a pyserial URL (loop://, socket://HOST:PORT); --sim runs the
 Verilator model of rtl/uart_controller.v (interp.link.simlink).  Keys while it runs
 (stdin a terminal): '!' feed hold, '~' resume, Ctrl-X abort (after a feed hold has brought
-the machine to rest; twice: at once).  Exit status: 0 done,
+the machine to rest; twice: at once), '+' '-' '>' '<' '=' feed override (10 %, 1 %, back to
+100 %).  Exit status: 0 done,
 1 machine or link error (or an abort), 2 usage or G-code error.
 """
 from __future__ import annotations
@@ -27,14 +28,14 @@ from ..gcode.parameter_file import check_lengths, check_writable, describe, writ
 from ..link import protocol as p
 from ..gcode.compile import compile_program
 from ..gcode.moves import ProbeResult
-from ..link.driver import (Driver, LinkError, MachineError, MismatchError, check_controller, check_idle, configure,
-                           read_position, run_program, signed32)
+from ..link.driver import (Driver, FeedOverride, LinkError, MachineError, MismatchError, check_controller,
+                           check_idle, configure, read_position, run_program, signed32)
 from ..link.records import DEFAULT_BUILD, Build, encode_program
 from .gcode import interpret_program, read_program, saved_parameters
 
 DEFAULT_BAUD = 115200
 CURVE = 3
-KEYS_HELP = "keys: ! hold, ~ resume, Ctrl-X abort (twice: at once)"
+KEYS_HELP = "keys: ! hold, ~ resume, Ctrl-X abort (twice: at once), + - > < = feed override"
 
 
 def compile_build() -> Build:
@@ -157,8 +158,9 @@ class Progress:
         if self.bar is None:
             return
         mm = mm_text(self.machine, snap.position)
+        feed = f", feed {snap.override} %" if snap.override != 100 else ""
         self.bar.set_postfix_str(f"line {line_of(self.compiled, snap.executed)} {mm} mm, queue {snap.queue_records}, "
-                                 f"{p.STATE_NAMES.get(snap.state, '?')}", refresh=False)
+                                 f"{p.STATE_NAMES.get(snap.state, '?')}{feed}", refresh=False)
         self.bar.update(min(snap.executed, self.bar.total) - self.bar.n)
 
     def close(self) -> None:
@@ -302,6 +304,7 @@ class ProgramRun:
         self.program = self.compiled = self.outcome = self.progress = None
         self.failure = ""                       # a probe's error: one line
         self.probe_stop = tuple(start)          # steps: where the last probe move stopped
+        self.override = FeedOverride()          # the keys' feed override, for every piece
 
     def close(self) -> None:
         if self.progress is not None:
@@ -373,7 +376,7 @@ class ProgramRun:
         self.records_before = self.records
         self.compiled = compiled
         self.outcome = run_program(self.driver, stream, len(compiled.commands), progress=self.progress,
-                                   keys=self.keyboard, on_pause=on_pause, probe=probe,
+                                   keys=self.keyboard, on_pause=on_pause, probe=probe, override=self.override,
                                    pause_resume=None if self.interactive else self.args.pause_seconds)
         self.records += len(compiled.commands)
         self.bytes += len(stream)

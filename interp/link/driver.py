@@ -67,6 +67,27 @@ class Snapshot:
     queue_records: int = 0
     position: list = field(default_factory=lambda: [0, 0, 0])
     error: int = 0
+    override: int = 100         # the feed override in force, percent
+
+
+# Grbl's feed override keys: coarse and fine steps, back to 100 %; its range 10 .. 200 %
+OVERRIDE_KEYS = {"+": 10, "-": -10, ">": 1, "<": -1}
+OVERRIDE_RESET = "="
+OVERRIDE_MIN, OVERRIDE_MAX = 10, 200
+
+
+@dataclass
+class FeedOverride:
+    """The feed override the keys set, in percent of the programmed feed; kept across the
+    runs of one program (its pieces around probe moves)."""
+
+    percent: int = 100
+
+    def after(self, key: str) -> int:
+        """The percent after `key` ('+' '-' ten, '>' '<' one, '=' back to 100), within 10 .. 200."""
+        if key == OVERRIDE_RESET:
+            return 100
+        return min(OVERRIDE_MAX, max(OVERRIDE_MIN, self.percent + OVERRIDE_KEYS.get(key, 0)))
 
 
 class Driver:
@@ -481,10 +502,11 @@ class Outcome:
 
 def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, keys=None,
                 max_seconds: float | None = None, pause_resume: float | None = 0.0,
-                on_pause=None, probe: bool = False) -> Outcome:
+                on_pause=None, probe: bool = False, override: FeedOverride | None = None) -> Outcome:
     """Stream the records and follow the run to its end: all records executed and the
     controller not busy.  progress(Snapshot) after every poll round; keys() -> the keys
-    typed since the last call ('!' hold, '~' resume, Ctrl-X stop).  Ctrl-X stops as a
+    typed since the last call ('!' hold, '~' resume, Ctrl-X stop; with `override`, '+' '-'
+    '>' '<' '=' set the feed override: OVERRIDE at once, whatever runs).  Ctrl-X stops as a
     sender keeps the position: nothing more is sent, a feed hold brings the machine to
     rest on its path, then CONTROL.abort flushes the queue (within STOP_SECONDS in any
     case); a second Ctrl-X aborts at once (at speed the motors may lose steps that the
@@ -505,9 +527,12 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     arm = p.CONTROL_PROBE_ARM | p.CONTROL_PROBE_STOP if probe else 0
     driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_CLEAR | p.CONTROL_ENABLE | p.CONTROL_FILL | arm)
     base = driver.read_register("EXECUTED")
+    if override is not None:                # (the settings of the run wrote 100)
+        driver.write_register("OVERRIDE", override.percent)
     fill_bytes = max(1, min(len(stream), driver.free - driver.lmax))
     driver.start_stream(stream)
-    snap = Snapshot(records=records, total_bytes=len(stream))
+    snap = Snapshot(records=records, total_bytes=len(stream),
+                    override=100 if override is None else override.percent)
     held = aborted = paused = False
     stop_note = ""                          # Outcome.message of an abort
     stopping = None                         # link time of a Ctrl-X: holding, then the abort
@@ -549,6 +574,10 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                     driver.drop_stream()
                     hold_write = control(p.CONTROL_HOLD)
                     stopping = driver.clock()
+                elif key in OVERRIDE_KEYS or key == OVERRIDE_RESET:
+                    if override is not None and override.after(key) != override.percent:
+                        override.percent = snap.override = override.after(key)
+                        driver.queue_write("OVERRIDE", override.percent)
                 elif key == "\x18" and not aborted:
                     control(p.CONTROL_ABORT)       # a second Ctrl-X: at once
                     aborted = True
