@@ -22,7 +22,7 @@
 // `helix_start`; while `lent` it takes `helix_tick` instead of `tick`;
 // `helix_abort` returns it to idle; its minor step and direction are
 // `helix_step`, `helix_dir`.  `step` shows only a line's steps (lead_q is the
-// line's), so motion_top reads it only while a line runs.
+// line's), so motion_cores reads it only while a line runs.
 module line_pair #(
     parameter integer W = 16    // width of the signed moves (>= 2)
 ) (

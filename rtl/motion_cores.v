@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 `default_nettype none
-// The interpolator cores of motion_top and the choice of the running core's steps:
+// The interpolator cores of motion_top and the choice of the running core's steps.
 //   lines, 2 or 3 axes ...... line_pair u_lines: two SU 1571551 exact cores sharing the
 //                             leading axis, the lecture's linear interpolator per pair
-//   circular arc, helix ..... arc_plane u_arc: circ_arc (SU 1665343's evaluation
-//                             function, at half a step) in the plane's (u, v); the helix
+//   circular arc, helix ..... arc_plane u_arc: circ_arc (the lecture's circle with SU
+//                             1665343's midpoint choice) in the plane's (u, v); the helix
 //                             axis w on line core A, lent to it during the arc
 //   curve ................... curve_tangent u_curve (the paper's tangent method), only
 //                             with CURVES = 1

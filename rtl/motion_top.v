@@ -4,8 +4,9 @@
 // synchronization buffer -> speed-setting block -> step/dir output stage.
 //   geometry queue .......... sync_fifo u_queue (commands, QDEPTH entries)
 //   interpolator cores ...... motion_cores u_cores: lines on two SU 1571551 exact cores
-//                             (line_pair), arcs and helices in any plane on SU 1665343's
-//                             arc core (arc_plane), curves by the paper's tangent method
+//                             (line_pair), arcs and helices in any plane on circ_arc (the
+//                             lecture's circle with SU 1665343's midpoint choice, in
+//                             arc_plane), curves by the paper's tangent method
 //   synchronization buffer .. step_sync u_sync (lecture: 2 D flip-flops per axis, STOP);
 //                             each step carries its command's cost
 //   speed-setting block ..... path_profile u_profile (lecture: "БЗС"): the profile

@@ -196,28 +196,37 @@ def test_hold_resume_abort_keys():
 
 
 def test_feed_override_keys():
-    """'+' '-' (10 %), '>' '<' (1 %) and '=' (100 %) write OVERRIDE while the program runs,
-    within Grbl's 10 .. 200 %; a key that changes nothing writes nothing; the percent is kept
-    for the next run of the same program (its pieces around a probe move) and written at its
-    start over the settings' 100; without an override holder the keys do nothing."""
+    """'+' (or '=') '-' by 10 %, '>' '<' by 1 %, '1' .. '9' 10 .. 90 % and '0' 100 % write
+    OVERRIDE while the program runs, within Grbl's 10 .. 200 %, from the settings' percent; a
+    key that changes nothing writes nothing.  The percent is kept for the next run of the same
+    program (its pieces around a probe move) and written at its start over the settings'; a
+    probe move runs at 100 % (as Grbl's probing does) and its keys count for the run after
+    it; without an override holder the keys do nothing."""
     cmds = commands(40)
     model = DeviceModel(records_per_second=100)
-    held = FeedOverride()
-    script = iter([""] * 100 + ["+", "+", ">"] + [""] * 20 + ["-" * 30, "<", "", "=", "=", "<<"])
+    held = FeedOverride(120)                                # the settings' percent (run's configure)
+    script = iter([""] * 100 + ["+", "=", ">"] + [""] * 20 + ["-" * 30, "<", "", "0", "0", "<<", "5"])
     _, outcome = run(model, cmds, keys=lambda: next(script, ""), override=held)
     overrides = [v for name, v in model.writes if name == "OVERRIDE"]
     assert outcome.status == "done" and executed_fields(model, cmds) == cmds
-    assert overrides == [120, 100, 110, 120, 121] + list(range(111, 9, -10)) + [10, 100, 99, 98], overrides
-    assert held.percent == 98 and model.regs["OVERRIDE"] == 98
+    assert overrides == [120, 130, 140, 141] + list(range(131, 9, -10)) + [10, 100, 99, 98, 50], overrides
+    assert held.percent == 50 and model.regs["OVERRIDE"] == 50
     model = DeviceModel(records_per_second=100)
     _, outcome = run(model, cmds, override=held)
-    assert [v for name, v in model.writes if name == "OVERRIDE"] == [120, 98]     # settings, then the keys'
+    assert [v for name, v in model.writes if name == "OVERRIDE"] == [120, 50]      # settings, then the keys'
     model = DeviceModel(records_per_second=100)
-    script = iter(["+", ">", "="])
+    script = iter(["+"])
+    _, outcome = run(model, cmds, keys=lambda: next(script, ""), override=held, probe=True)
+    assert [v for name, v in model.writes if name == "OVERRIDE"] == [120, 100] and held.percent == 60
+    model = DeviceModel(records_per_second=100)
+    script = iter(["+", ">", "0"])
     run(model, cmds, keys=lambda: next(script, ""))
     assert [v for name, v in model.writes if name == "OVERRIDE"] == [120]
-    assert [FeedOverride(p_).after(k) for p_, k in ((195, "+"), (200, ">"), (15, "-"), (10, "<"), (37, "="))] == \
-        [200, 200, 10, 10, 100]
+    model = DeviceModel(records_per_second=100)
+    run(model, cmds, override=FeedOverride(120))                # no key: the settings stand
+    assert [v for name, v in model.writes if name == "OVERRIDE"] == [120]
+    assert [FeedOverride(p_).after(k) for p_, k in ((195, "+"), (200, ">"), (15, "-"), (10, "<"), (37, "0"),
+                                                    (150, "3"), (20, "x"))] == [200, 200, 10, 10, 100, 30, 20]
 
 
 def test_stop_key_aborts_at_rest():

@@ -306,7 +306,7 @@ def test_stop_key_decelerates_then_aborts(files):
 
 
 def test_feed_override_keys_change_the_pace_not_the_path(files):
-    """A 4 mm move at 10 mm/s (12,000 clocks a step): '-' five times at 0.1 s (50 %), '=' at
+    """A 4 mm move at 10 mm/s (12,000 clocks a step): '-' five times at 0.1 s (50 %), '0' at
     0.3 s (100 %): the RTL slows the steps to twice their interval and speeds them up again at
     its acceleration, and not one step changes: the same steps in the same order as
     `interp gcode`'s, the programmed end, every record executed once."""
@@ -321,7 +321,7 @@ def test_feed_override_keys_change_the_pace_not_the_path(files):
 
     def keys(link):
         start.append(start[0] if start else link.now())
-        for at, key in ((0.1, "-----"), (0.3, "=")):
+        for at, key in ((0.1, "-----"), (0.3, "0")):
             if len(typed) == [0.1, 0.3].index(at) and link.now() > start[0] + at:
                 typed.append(key)
                 return key
@@ -330,7 +330,7 @@ def test_feed_override_keys_change_the_pace_not_the_path(files):
     held = FeedOverride()
     outcome, regs, _, compiled = run_driver(files, steps, 0.0, keys=keys, override=held, program="slow.nc")
     assert outcome.status == "done" and outcome.executed == len(compiled.commands), outcome
-    assert typed == ["-----", "="] and held.percent == 100
+    assert typed == ["-----", "0"] and held.percent == 100
     rows = [tuple(int(v) for v in line.split(",")) for line in steps.read_text().splitlines()[1:]]
     alone = [tuple(int(v) for v in line.split(",")) for line in reference.read_text().splitlines()[1:]]
     assert len(rows) == 400 and [r[1:] for r in rows] == [r[1:] for r in alone]     # the path, step by step

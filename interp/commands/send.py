@@ -11,8 +11,8 @@ encoded into records (interp.link.records) and streamed by the driver (interp.li
 --port takes a device or a pyserial URL (loop://, socket://HOST:PORT); --sim runs the
 Verilator model of rtl/uart_controller.v (interp.link.simlink).  Keys while it runs
 (stdin a terminal): '!' feed hold, '~' resume, Ctrl-X abort (after a feed hold has brought
-the machine to rest; twice: at once), '+' '-' '>' '<' '=' feed override (10 %, 1 %, back to
-100 %).  Exit status: 0 done,
+the machine to rest; twice: at once), feed override '+' '-' (10 %), '>' '<' (1 %), '1' .. '9'
+(10 .. 90 %), '0' (100 %).  Exit status: 0 done,
 1 machine or link error (or an abort), 2 usage or G-code error.
 """
 from __future__ import annotations
@@ -35,7 +35,7 @@ from .gcode import interpret_program, read_program, saved_parameters
 
 DEFAULT_BAUD = 115200
 CURVE = 3
-KEYS_HELP = "keys: ! hold, ~ resume, Ctrl-X abort (twice: at once), + - > < = feed override"
+KEYS_HELP = "keys: ! hold, ~ resume, Ctrl-X abort (twice: at once), feed override + - > < 1..9 0"
 
 
 def compile_build() -> Build:
@@ -304,7 +304,7 @@ class ProgramRun:
         self.program = self.compiled = self.outcome = self.progress = None
         self.failure = ""                       # a probe's error: one line
         self.probe_stop = tuple(start)          # steps: where the last probe move stopped
-        self.override = FeedOverride()          # the keys' feed override, for every piece
+        self.override = None                    # the keys' feed override (FeedOverride), for every piece
 
     def close(self) -> None:
         if self.progress is not None:
@@ -375,6 +375,8 @@ class ProgramRun:
 
         self.records_before = self.records
         self.compiled = compiled
+        if self.override is None:               # from the settings' percent
+            self.override = FeedOverride(compiled.settings.get("override", 100))
         self.outcome = run_program(self.driver, stream, len(compiled.commands), progress=self.progress,
                                    keys=self.keyboard, on_pause=on_pause, probe=probe, override=self.override,
                                    pause_resume=None if self.interactive else self.args.pause_seconds)

@@ -370,7 +370,8 @@ class DeviceModel:
             fraction = self._reach(delta, axis, side, at, self.switch_active(axis))
             if fraction is not None:
                 first = min(first or (2.0, 0), (fraction, axis))
-        touch = None if not self.probe_armed else self._reach(delta, *self.probe, self.probe_touching())
+        touch = None if not self.probe_armed or self.probe is None else \
+            self._reach(delta, *self.probe, self.probe_touching())
         if touch is not None and (first is None or touch < first[0]):
             axis = self.probe[0]
             at = [p + round(d * touch) for p, d in zip(self.position, delta)]

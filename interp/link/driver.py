@@ -70,9 +70,10 @@ class Snapshot:
     override: int = 100         # the feed override in force, percent
 
 
-# Grbl's feed override keys: coarse and fine steps, back to 100 %; its range 10 .. 200 %
-OVERRIDE_KEYS = {"+": 10, "-": -10, ">": 1, "<": -1}
-OVERRIDE_RESET = "="
+# Feed override keys: '+' (or '=', the same key unshifted) and '-' by 10 %, '>' '<' by 1 %
+# within Grbl's 10 .. 200 %; as in LinuxCNC's Axis, '1' .. '9' set 10 .. 90 % and '0' 100 %
+OVERRIDE_STEPS = {"+": 10, "=": 10, "-": -10, ">": 1, "<": -1}
+OVERRIDE_SETS = {str(n): 10 * n for n in range(1, 10)} | {"0": 100}
 OVERRIDE_MIN, OVERRIDE_MAX = 10, 200
 
 
@@ -82,12 +83,13 @@ class FeedOverride:
     runs of one program (its pieces around probe moves)."""
 
     percent: int = 100
+    set: bool = False           # a key has set it (until then the run's settings hold)
 
     def after(self, key: str) -> int:
-        """The percent after `key` ('+' '-' ten, '>' '<' one, '=' back to 100), within 10 .. 200."""
-        if key == OVERRIDE_RESET:
-            return 100
-        return min(OVERRIDE_MAX, max(OVERRIDE_MIN, self.percent + OVERRIDE_KEYS.get(key, 0)))
+        """The percent after `key` (OVERRIDE_STEPS, OVERRIDE_SETS), within 10 .. 200."""
+        if key in OVERRIDE_SETS:
+            return OVERRIDE_SETS[key]
+        return min(OVERRIDE_MAX, max(OVERRIDE_MIN, self.percent + OVERRIDE_STEPS.get(key, 0)))
 
 
 class Driver:
@@ -505,8 +507,10 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                 on_pause=None, probe: bool = False, override: FeedOverride | None = None) -> Outcome:
     """Stream the records and follow the run to its end: all records executed and the
     controller not busy.  progress(Snapshot) after every poll round; keys() -> the keys
-    typed since the last call ('!' hold, '~' resume, Ctrl-X stop; with `override`, '+' '-'
-    '>' '<' '=' set the feed override: OVERRIDE at once, whatever runs).  Ctrl-X stops as a
+    typed since the last call ('!' hold, '~' resume, Ctrl-X stop; with `override`, the
+    feed override keys of OVERRIDE_STEPS and OVERRIDE_SETS: OVERRIDE at once, except in a
+    probe move, which runs at 100 % as in Grbl and takes the keys' percent when it ends).
+    Ctrl-X stops as a
     sender keeps the position: nothing more is sent, a feed hold brings the machine to
     rest on its path, then CONTROL.abort flushes the queue (within STOP_SECONDS in any
     case); a second Ctrl-X aborts at once (at speed the motors may lose steps that the
@@ -527,12 +531,12 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     arm = p.CONTROL_PROBE_ARM | p.CONTROL_PROBE_STOP if probe else 0
     driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_CLEAR | p.CONTROL_ENABLE | p.CONTROL_FILL | arm)
     base = driver.read_register("EXECUTED")
-    if override is not None:                # (the settings of the run wrote 100)
-        driver.write_register("OVERRIDE", override.percent)
+    if override is not None and (override.set or probe):     # over the run's settings
+        driver.write_register("OVERRIDE", 100 if probe else override.percent)
     fill_bytes = max(1, min(len(stream), driver.free - driver.lmax))
     driver.start_stream(stream)
     snap = Snapshot(records=records, total_bytes=len(stream),
-                    override=100 if override is None else override.percent)
+                    override=100 if override is None or probe else override.percent)
     held = aborted = paused = False
     stop_note = ""                          # Outcome.message of an abort
     stopping = None                         # link time of a Ctrl-X: holding, then the abort
@@ -574,10 +578,12 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                     driver.drop_stream()
                     hold_write = control(p.CONTROL_HOLD)
                     stopping = driver.clock()
-                elif key in OVERRIDE_KEYS or key == OVERRIDE_RESET:
+                elif key in OVERRIDE_STEPS or key in OVERRIDE_SETS:
                     if override is not None and override.after(key) != override.percent:
-                        override.percent = snap.override = override.after(key)
-                        driver.queue_write("OVERRIDE", override.percent)
+                        override.percent, override.set = override.after(key), True
+                        if not probe:           # (a probe move: the next run writes it)
+                            snap.override = override.percent
+                            driver.queue_write("OVERRIDE", override.percent)
                 elif key == "\x18" and not aborted:
                     control(p.CONTROL_ABORT)       # a second Ctrl-X: at once
                     aborted = True
