@@ -13,7 +13,8 @@
 // (which resets motion_top) keeps them; a register write at rest sets one (homing).  Any error latched in ERROR puts the controller in
 // ALARM: motion_top held in reset (steps stop at once), queue and partial record flushed,
 // incoming record bytes taken and dropped, spindle and coolant off, until CONTROL.clear.
-// CONTROL.abort does the same for one clock (no error).  CONTROL.fill holds motion_top in
+// CONTROL.abort does the same for one clock: no error at rest (motion_top `still`), ERROR 19
+// if it cut the steps at speed (the motors may have lost steps the counters count).  CONTROL.fill holds motion_top in
 // reset and the records in the queue (the unpacker sees motion_top full), so a run starts
 // from a filled queue as from a reset.  rst (synchronous, active high)
 // returns everything to IDLE with positions 0.
@@ -168,7 +169,7 @@ module controller #(
     wire [2:0]        m_step, m_dir;
     wire [POS_W-1:0]  unused_pos_x, unused_pos_y, unused_pos_z;
     wire [FEED_W-1:0] unused_speed;
-    wire              stopped, m_busy, unused_done, m_error, event_valid;
+    wire              stopped, still, m_busy, unused_done, m_error, event_valid;
     wire [3:0]        m_error_code;
     wire [QLW-1:0]    m_level;
     wire [7:0]        event_code;
@@ -187,7 +188,7 @@ module controller #(
         .step_x(m_step[0]), .step_y(m_step[1]), .step_z(m_step[2]),
         .dir_x(m_dir[0]), .dir_y(m_dir[1]), .dir_z(m_dir[2]),
         .pos_x(unused_pos_x), .pos_y(unused_pos_y), .pos_z(unused_pos_z),
-        .speed(unused_speed), .stopped(stopped), .busy(m_busy), .done(unused_done),
+        .speed(unused_speed), .stopped(stopped), .still(still), .busy(m_busy), .done(unused_done),
         .error(m_error), .error_code(m_error_code),
         .event_valid(event_valid), .event_code(event_code), .event_value(event_value)
     );
@@ -242,6 +243,8 @@ module controller #(
                     error_code <= {4'd0, m_error_code};
                 else if (record_error & ~abort)
                     error_code <= 8'd18;
+                else if (abort & ~still)            // steps cut at speed (Grbl's alarm 3)
+                    error_code <= 8'd19;
                 else
                     error_code <= 8'd0;
             end else if (error_code == 8'd17) begin

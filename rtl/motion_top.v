@@ -22,8 +22,9 @@
 // after, `error_code` held: 1 kind, 2 feed, 3 range, 5 queue full, 7 plane, 8 profile);
 // at run time 4 a core refused its command (FAULT until rst: queues flushed, speed block
 // stopped), 6 step buffer overflow (a monitor), 9 `late` (a segment ended above its
-// target speed).  `hold` decelerates the path to speed 0 (`stopped`) and resumes on
-// release; no step is lost.  pos_x/y/z count the pulses at the drive (rising edges of
+// target speed).  `hold` decelerates the path to speed 0 (`stopped`, once the S-curve
+// filter is empty too) and resumes on release; no step is lost.  `still`: no speed in the
+// ramp or the filter, so no step comes (a stop now loses nothing).  pos_x/y/z count the pulses at the drive (rising edges of
 // step_*).
 module motion_top #(
     parameter integer W      = 16,  // command field width, signed (>= 6)
@@ -85,6 +86,7 @@ module motion_top #(
     output reg  [POS_W-1:0]  pos_z,
     output wire [FEED_W-1:0] speed,         // virtual path speed v, path units per clock
     output wire              stopped,       // hold has brought the speed to 0 (or nothing moves)
+    output wire              still,         // no speed anywhere in the profile: no step comes
     output wire              busy,          // a command queued or running, or a step not yet out
     output reg               done,          // one-cycle strobe when busy falls
     output reg               error,         // one-cycle strobe: a command was refused
@@ -191,7 +193,7 @@ module motion_top #(
     // ---------------- synchronization buffer, speed, output ----------------
     wire [2:0]        out_step, out_dir;
     wire [FEED_W-1:0] out_cost;
-    wire              out_valid, stop, sync_overflow, drive_ready, fire, moving, late, ramp_stopped;
+    wire              out_valid, stop, sync_overflow, drive_ready, fire, moving, late, ramp_stopped, profile_still;
     wire [SLW-1:0]    sync_level;
     step_sync #(.AXES(3), .DEPTH(SDEPTH), .LATENCY(2), .DATA_W(FEED_W), .LW(SLW)) u_sync (
         .clk(clk), .rst(flush), .in_step(core_step), .in_dir(core_dir), .in_data(cost_q),
@@ -216,9 +218,10 @@ module motion_top #(
         .speed_quantum(speed_quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
         .override(override), .hold(hold), .step_valid(out_valid), .step_axes(out_axes),
         .step_cost(out_cost), .drive_ready(drive_ready), .fire(fire), .speed(speed), .moving(moving),
-        .stopped(ramp_stopped), .late(late)
+        .stopped(ramp_stopped), .still(profile_still), .late(late)
     );
     assign stopped = ramp_stopped | (hold & ~busy);
+    assign still   = profile_still;
 
     wire [2:0] drv_step, drv_dir;
     step_dir #(.AXES(3), .TW(TW)) u_out (

@@ -68,7 +68,8 @@ module path_profile #(
     // status
     output wire [FEED_W-1:0] speed,         // virtual speed v, path units per clock
     output wire              moving,        // the ramp runs or the filter still sums speed
-    output wire              stopped,       // hold has brought the speed to 0
+    output wire              stopped,       // hold has brought the speed to 0, and the filter's to 0
+    output wire              still,         // no speed in the ramp or the filter: no step comes
     output wire              late           // strobe: the ramp reached a stop or exit above its speed
 );
     initial begin
@@ -103,14 +104,14 @@ module path_profile #(
     );
     assign {h_barrier, h_feed, h_limit, h_exit, h_rate, h_length, h_budget} = head;
 
-    wire up, down, block, ramp_moving, segment;
+    wire up, down, block, ramp_moving, ramp_stopped, segment;
     speed_ramp #(.FEED_W(FEED_W), .NW(NW), .PF(PF), .LEN_W(LEN_W), .ZW(ZW)) u_ramp (
         .clk(clk), .rst(rst),
         .next_valid(head_valid), .next_barrier(h_barrier), .next_feed(h_feed), .next_limit(h_limit),
         .next_exit(h_exit), .next_rate(h_rate), .next_length(h_length), .next_budget(h_budget),
         .next_pop(next_pop), .barrier_done(barrier_done),
         .speed_quantum(speed_quantum), .block_shift(block_shift), .override(override), .hold(hold),
-        .speed(speed), .up(up), .down(down), .block(block), .moving(ramp_moving), .stopped(stopped),
+        .speed(speed), .up(up), .down(down), .block(block), .moving(ramp_moving), .stopped(ramp_stopped),
         .late(late), .segment(segment)
     );
 
@@ -148,6 +149,10 @@ module path_profile #(
     );
 
     assign moving = ramp_moving | ~empty;
+    // The S-curve filter lags the ramp by up to 2^jerk_shift blocks: a hold is at rest, and
+    // the machine still, only once the filter has no speed either
+    assign still   = speed == {FEED_W{1'b0}} && empty;
+    assign stopped = ramp_stopped & empty;
     wire unused = &{1'b0, unused_overflow, due, overrun, phase, up, down, segment};   // motion_top refuses a push when either queue is full
 endmodule
 `default_nettype wire

@@ -195,6 +195,11 @@ def test_send_refuses_an_unhomed_machine_when_homing_is_required(capsys, tmp_pat
                                          "motors may have lost steps: run interp home (homing.required)")
     assert run(capsys, "home", "--sim-model", "--machine", str(path))[0] == 0
     assert run(capsys, "send", str(program), "--sim-model", "--machine", str(path))[0] == 0
+    # an abort at speed (Ctrl-X twice, Ctrl-C: Grbl's alarm 3) too
+    device.error = 19
+    code, out, err = run(capsys, "send", str(program), "--sim-model", "--machine", str(path))
+    assert code == 1 and "stopped on error 19 (aborted at speed): the motors may have lost steps" in err, err
+    assert run(capsys, "home", "--sim-model", "--machine", str(path))[0] == 0
     # without homing.required the same controller runs at once
     assert run(capsys, "send", str(program), "--sim-model", "--machine", machine_file)[0] == 0
 

@@ -20,6 +20,7 @@ through its UART pins in simulated time.
   * Ctrl-X in a move: the RTL's hold slows the steps to rest before the abort, and the
     position registers count the steps that went out;
   * feed override keys in a move: slower steps, the same path step by step;
+  * Ctrl-X twice at speed: ERROR 19, the position registers count the steps that went out;
   * a short corpus program that starts with an event (slow; skipped without
     ../shared/gcode), without noise and at line noise 0.01: the steps CSV equals
     `interp gcode`'s byte for byte.
@@ -231,7 +232,7 @@ def run_driver(files, steps, noise: float, seed: int = 1, before=None, keys=None
     outcome = run_program(driver, stream, len(compiled.commands), override=override,
                           keys=None if keys is None else lambda: keys(link))
     registers = {name: driver.read_register(name) for name in ("POS_X", "POS_Y", "POS_Z", "EXECUTED",
-                                                                "LINK_FRAMES", "LINK_ERRORS")}
+                                                                "LINK_FRAMES", "LINK_ERRORS", "ERROR", "STATUS")}
     return outcome, registers, link.close(), compiled
 
 
@@ -343,6 +344,28 @@ def test_feed_override_keys_change_the_pace_not_the_path(files):
     slow = [g for g in gaps if g > 1.95 * cruise]
     assert 60 < len(slow) < 120, len(slow)              # 0.2 s at 5 mm/s: about 100 steps
     assert rows[-1][0] - alone[-1][0] > 0.08 * 12e6, "about 0.1 s longer than at 100 %"
+
+
+def test_stop_key_twice_aborts_at_speed_with_error_19(files):
+    """Ctrl-X twice in the first move: the abort cuts the steps at speed, so the RTL latches
+    ERROR 19 (ALARM, as Grbl's alarm 3) and the outcome says the motors may have lost steps;
+    the position registers still count exactly the steps that went out."""
+    steps = files / "cut.csv"
+    start, typed = [], []
+
+    def keys(link):
+        start.append(start[0] if start else link.now())
+        if not typed and link.now() > start[0] + 0.015:
+            typed.append(link.now())
+            return "\x18\x18"
+        return ""
+
+    outcome, regs, _, _ = run_driver(files, steps, 0.0, keys=keys)
+    assert typed and outcome.status == "aborted" and "may have lost steps" in outcome.message, outcome
+    assert regs["ERROR"] & 0xFF == 19 and regs["STATUS"] & 7 == p.ALARM, regs
+    rows = [tuple(int(v) for v in line.split(",")) for line in steps.read_text().splitlines()[1:]]
+    position = tuple(signed32(regs[n]) for n in POSITION)
+    assert position == tuple(sum(r[k] for r in rows) for k in (1, 2, 3)) and 0 < position[0] < 100
 
 
 def test_same_seed_same_run(files):

@@ -421,7 +421,7 @@ def check_homed(driver: Driver, machine: Machine) -> None:
     homed = driver.read_register("STATUS") >> 16 & 7
     missing = [AXES[a].upper() for a in machine.homed_axes() if not homed >> a & 1]
     error = driver.read_register("ERROR") & 0xFF
-    if error in (16, 17):                   # stopped at once: steps may be lost, as Grbl's alarm
+    if error in (16, 17, p.ERROR_ABORT_AT_SPEED):     # stopped at once: steps may be lost, as Grbl's alarm
         raise NotHomed(f"the controller stopped on error {error} ({p.error_text(error)}): the motors may have "
                        "lost steps: run interp home (homing.required)")
     if missing:

@@ -83,7 +83,7 @@ class DeviceModel:
         self.probe = probe
         self.probe_armed = self.probe_stop = self.probe_valid = False
         self.probe_position = [0, 0, 0]
-        self.hold = False
+        self.hold = self.hold_moving = False
         self.hold_since = 0.0
         self.enabled = False
         self.fill = False
@@ -292,7 +292,8 @@ class DeviceModel:
         if self.error:
             return p.ALARM
         if self.hold:
-            return p.HELD if self.t >= self.hold_since + self.hold_seconds or not self.busy else p.HOLDING
+            # a hold set while a record ran decelerates for hold_seconds; one at rest holds at once
+            return p.HELD if self.t >= self.hold_since + self.hold_seconds or not self.hold_moving else p.HOLDING
         return p.RUN if self._busy() else p.IDLE
 
     def _busy(self) -> bool:
@@ -381,7 +382,7 @@ class DeviceModel:
                 past = list(at)
                 room = abs(self.position[axis] + delta[axis] - at[axis])
                 past[axis] += (1 if delta[axis] > 0 else -1) * min(PROBE_OVERSHOOT, room)
-                self.position, self.hold, self.hold_since = past, True, self.t
+                self.position, self.hold, self.hold_since, self.hold_moving = past, True, self.t, True
                 return False
         if first is None:
             self.position = [p + d for p, d in zip(self.position, delta)]
@@ -433,8 +434,10 @@ class DeviceModel:
         self.writes.append((name, value))
         self.write_states.append(self.state())
         if name == "CONTROL":
+            # an abort that cuts a record while the machine moves (not held at rest): ERROR 19
+            at_speed = self.state() == p.HOLDING or (self.state() == p.RUN and self.busy)
             if value & p.CONTROL_HOLD and not self.hold:
-                self.hold_since = self.t
+                self.hold_since, self.hold_moving = self.t, self.busy
             self.hold = bool(value & p.CONTROL_HOLD)
             self.enabled = bool(value & p.CONTROL_ENABLE)
             self.probe_stop = bool(value & p.CONTROL_PROBE_STOP)
@@ -451,6 +454,8 @@ class DeviceModel:
                 self.busy = False
             if value & p.CONTROL_CLEAR:
                 self.error, self.limits, self.refused = 0, 0, False
+            if value & p.CONTROL_ABORT and at_speed and not self.error:
+                self.error = p.ERROR_ABORT_AT_SPEED
             self._execute()
         elif name in p.SPEED_SETTINGS and self._busy():
             self.refused = True                     # taken only while not busy

@@ -587,7 +587,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                 elif key == "\x18" and not aborted:
                     control(p.CONTROL_ABORT)       # a second Ctrl-X: at once
                     aborted = True
-                    stop_note = "" if snap.state in (p.HELD, p.IDLE) else f"while moving: {AT_SPEED}"
+                    # (at speed the controller latches ERROR 19, which names it below)
         if not fresh_round:
             continue
         polling = False
@@ -603,6 +603,8 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
         if snap.error or snap.state == p.ALARM:
             # motion has stopped: EXECUTED no longer moves (the round's value may be older)
             snap.executed = (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
+            if aborted and snap.error == p.ERROR_ABORT_AT_SPEED:     # our abort cut the steps at speed
+                return Outcome("aborted", snap.executed, seconds, message=stop_note or f"while moving: {AT_SPEED}")
             return Outcome("error", snap.executed, seconds, snap.error, field(v["ERROR"], 8, 3))
         busy = field(v["STATUS"], 3, 1)
         if probe and v["STATUS"] & p.STATUS_PROBE_VALID and not touched and stopping is None and not aborted:

@@ -227,7 +227,7 @@ SIGNED = frozenset({"POS_X.value", "POS_Y.value", "POS_Z.value", "PROBE_X.value"
 # enumerated fields: value -> name
 ENUMS = {
     "STATUS.state": {0: "IDLE", 1: "RUN", 2: "HOLDING", 3: "HELD", 4: "ALARM"},
-    "ERROR.code": {0: "NONE", 1: "UNKNOWN_KIND", 2: "FEED_ZERO", 3: "RANGE", 4: "FAULT", 5: "QUEUE_FULL", 6: "STEP_OVERFLOW", 7: "PLANE", 8: "PROFILE", 9: "LATE", 16: "ESTOP", 17: "LIMIT_SWITCH", 18: "RECORD"},
+    "ERROR.code": {0: "NONE", 1: "UNKNOWN_KIND", 2: "FEED_ZERO", 3: "RANGE", 4: "FAULT", 5: "QUEUE_FULL", 6: "STEP_OVERFLOW", 7: "PLANE", 8: "PROFILE", 9: "LATE", 16: "ESTOP", 17: "LIMIT_SWITCH", 18: "RECORD", 19: "ABORT_AT_SPEED"},
 }
 
 

@@ -544,7 +544,7 @@ class MotionTop(CycleModel):
     watch = {**{f"step_{a}": False for a in AXES}, **{f"dir_{a}": False for a in AXES},
              **{f"pos_{a}": True for a in AXES}, "busy": False, "done": False, "error": False,
              "error_code": False, "cmd_full": False, "queue_level": False, "event_valid": False,
-             "event_code": False, "event_value": True, "speed": False, "stopped": False}
+             "event_code": False, "event_value": True, "speed": False, "stopped": False, "still": False}
     SETTINGS = ("speed_quantum", "block_shift", "jerk_shift", "override")
 
     def __init__(self, w: int = 16, feed_w: int = 16, frac: int = 16, nw: int = 16, pf: int = 12,
@@ -574,6 +574,7 @@ class MotionTop(CycleModel):
         self.step_q = self.busy_q = self.done = self.error = self.error_code = self.sync_overflow_q = 0
         self.event_valid = self.event_code = self.event_value = 0
         self._speed = self._stopped = self._busy = 0
+        self._still = 1
 
     def _flush(self, jerk_shift: int = 0) -> None:
         """What `flush` (rst or a fault) resets: the queues, the step buffer, the speed block, the cores."""
@@ -598,12 +599,13 @@ class MotionTop(CycleModel):
     queue_level = property(lambda self: self.queue.level)
 
     def settled(self, i: Mapping[str, int]) -> None:
-        """The combinational outputs (speed, stopped, busy) on the registers after an edge,
+        """The combinational outputs (speed, stopped, still, busy) on the registers after an edge,
         with the inputs still applied (the bench samples between edges)."""
         nets = self._profile_nets(i)
         self._busy = self.busy_with(nets["moving"])
         self._speed = nets["speed"]
         self._stopped = int(bool(nets["stopped"]) or (bool(i.get("hold", 0)) and not self._busy))
+        self._still = int(nets["still"])
 
     def _profile_nets(self, i, barrier_done: int = 0) -> dict:
         sync, out = self.sync, self.out
@@ -619,6 +621,10 @@ class MotionTop(CycleModel):
     @property
     def stopped(self) -> int:
         return self._stopped
+
+    @property
+    def still(self) -> int:
+        return self._still
 
     def busy_with(self, moving: int) -> int:
         return int((self.state not in (S_IDLE, S_FAULT)) or bool(self.queue.valid) or self.profile.level != 0

@@ -35,7 +35,7 @@ def profile_width(feed_w: int, nw: int, pf: int, len_w: int, zw: int) -> int:
 class PathProfile(CycleModel):
     """Cycle model of rtl/path_profile.v."""
 
-    watch = {"speed": False, "moving": False, "stopped": False}
+    watch = {"speed": False, "moving": False, "stopped": False, "still": False}
 
     def __init__(self, feed_w: int = 16, frac: int = 16, nw: int = 16, pf: int = 12, len_w: int = 34,
                  zw: int = 48, mw: int = 6, qdepth: int = 4, qlw: int = 3):
@@ -108,7 +108,10 @@ class PathProfile(CycleModel):
                     "step_axes": i["step_axes"], "step_cost": i["step_cost"], "drive_ready": i["drive_ready"]}
         self.pacer.set_inputs(pacer_in)
         return {"ramp_in": ramp_in, "jerk_in": jerk_in, "pacer_in": pacer_in, "next_pop": ramp.next_pop,
-                "fire": self.pacer.fire, "speed": ramp.speed, "stopped": ramp.stopped,
+                "fire": self.pacer.fire, "speed": ramp.speed,
+                # the S-curve filter lags the ramp: at rest only once it is empty too
+                "stopped": int(bool(ramp.stopped) and self.jerk.empty),
+                "still": int(ramp.speed == 0 and self.jerk.empty),
                 "moving": int(bool(ramp.moving) or not self.jerk.empty)}
 
     def clock(self, i: Mapping[str, int], nets: Mapping) -> None:

@@ -7,7 +7,7 @@ unknown addresses; records through CMD_DATA and through the byte stream compared
 field with the commands pushed into motion_top; a line + arc + helix program ending at its
 programmed position (POS_*); e-stop and a limit switch mid-arc (the step pins low in the
 cycle the synchronized input shows it, error latched until clear); feed hold and resume
-mid-helix (no step lost); abort (mid-record too) and restart; CONTROL.fill (records held,
+mid-helix (no step lost); abort (mid-record too; at speed: ERROR 19) and restart; CONTROL.fill (records held,
 then released at the unpacker's pace); rst at random cycles (seeded);
 events -> outputs, PWM duty; the probe latch; POS_X/Y/Z set at rest (homing) and refused
 while busy; bad records (kind 6, 7; a curve when the
@@ -310,9 +310,10 @@ async def hold_resume_mid_helix(dut):
 
 @cocotb.test()
 async def abort_and_restart(dut):
-    """Abort mid-program: the steps stop, queue and partial record flushed, positions kept;
-    half a record is not busy, and a record cut by an abort is dropped; the next program runs
-    from where the machine is."""
+    """Abort mid-program at speed: the steps stop, queue and partial record flushed, positions
+    kept, and ERROR 19 (ALARM: the motors may have lost steps) until CONTROL.clear; half a
+    record is not busy, and a record cut by an abort is dropped; the next program runs from
+    where the machine is."""
     tb = await Bench(dut).start()
     cmds = tb.profiled([Command(LINE, ONE // 2, 40, 10, 0), Command(LINE, ONE // 2, -30, 20, 5)] * 3)
     await tb.send(tb.records(cmds))
@@ -323,6 +324,8 @@ async def abort_and_restart(dut):
     assert executed == 1 and await tb.read("EXECUTED") == 1, "the aborted records were never run"
     size = 1 << int(dut.QUEUE_AW.value)
     assert await tb.read("QUEUE_FREE") == size | (size // tb.rb) << 16
+    assert await tb.read("ERROR") == 19 and await tb.state() == ALARM, "an abort at speed"
+    await tb.write("CONTROL", CLEAR)
     assert await tb.read("STATUS") == IDLE and await tb.read("ERROR") == 0
     kept = await tb.position()
     assert kept == tb.steps.position() and kept != [0, 0, 0]

@@ -13,7 +13,8 @@ feed hold / resume and override patterns and with commands arriving late), the
 position counters must equal the programmed end point, the error strobes must name
 exactly the bad commands (checked at the push), and the event strobes must come in
 order, each after every earlier step is out, its pulse over and the speed 0.  The
-virtual speed never changes by more than a quantum per block.  Bench commands get
+virtual speed never changes by more than a quantum per block, and no step starts after
+`stopped` (a hold at rest, the S-curve filter empty too).  Bench commands get
 their profiles from interp.models.profile.profile_for.  Built at the benches' build
 (interp.simulation.motion_build) and at the G-code build (W = 32, FRAC = 48, ...).
 """
@@ -86,7 +87,7 @@ class MotionTB(TB):
         mon = TimingMonitor(3, timing["pulse_width"], timing["setup"], timing["hold_time"])
         pushed, errors, events = [], [], []
         quantum = self.settings["speed_quantum"]
-        last = {"speed": 0}
+        last = {"speed": 0, "step": 0, "stopped": 0}
 
         def observe(sample):
             step = sum(sample[f"step_{a}"] << k for k, a in enumerate("xyz"))
@@ -97,6 +98,9 @@ class MotionTB(TB):
                 assert step == 0, f"{context}: event while a pulse is high"
                 assert sample["speed"] == 0, f"{context}: event while the speed is {sample['speed']}"
                 events.append((len(mon.pulses), sample["event_code"], sample["event_value"]))
+            rising = step & ~last["step"]
+            assert not (last["stopped"] and rising), f"{context}: cycle {mon.cycle}: a step after `stopped`"
+            last["step"], last["stopped"] = step, sample["stopped"]
             jump = abs(sample["speed"] - last["speed"])
             assert (fault and E_CORE in errors) or jump <= 2 * quantum, f"{context}: cycle {mon.cycle}: speed jumps by {jump}"
             last["speed"] = sample["speed"]
