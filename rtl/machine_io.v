@@ -5,9 +5,10 @@
 // PWM duty 0 .. 65535 of `period` clocks, mist and flood coolant, four digital outputs.
 // Event codes: 1 spindle clockwise (value = duty), 2 counter-clockwise (duty), 3 spindle
 // off, 4 spindle speed (duty), 5 mist on, 6 flood on, 7 coolant off, 8 output on
-// (value = output 0 .. 3), 9 output off, 10 pause, 11 tool change, 12 program end
-// (spindle and coolant off); other codes are ignored.  A duty below 0 counts as 0,
-// above 65535 as 65535.  `pause` strobes for codes 10 and 11 (the controller holds).
+// (value = output 0 .. 3), 9 output off, 10 pause, 12 program end (spindle and coolant
+// off); other codes, 11 tool change among them (the host's M6 sends it, then a pause),
+// are ignored.  A duty below 0 counts as 0, above 65535 as 65535.  `pause` strobes for
+// code 10 (the controller holds).
 // `off` (abort, alarm) switches spindle and coolant off at once; the outputs keep.
 // PWM: a counter runs over `period` clocks (0 counts as 1); `pwm` is high while the
 // counter is below duty * period / 65536 (duty 65535: always high), and low while the
@@ -39,7 +40,7 @@ module machine_io #(
 
     localparam [7:0] SPINDLE_CW = 8'd1, SPINDLE_CCW = 8'd2, SPINDLE_OFF = 8'd3, SPINDLE_SPEED = 8'd4,
                      MIST_ON = 8'd5, FLOOD_ON = 8'd6, COOLANT_OFF = 8'd7, OUTPUT_ON = 8'd8,
-                     OUTPUT_OFF = 8'd9, PAUSE = 8'd10, TOOL_CHANGE = 8'd11, PROGRAM_END = 8'd12;
+                     OUTPUT_OFF = 8'd9, PAUSE = 8'd10, PROGRAM_END = 8'd12;
 
     // the value as a duty: clamped to 0 .. 65535
     wire        negative = event_value[W-1];
@@ -61,7 +62,7 @@ module machine_io #(
     wire [3:0]  select   = 4'd1 << event_value[1:0];
     wire        output_number = event_value[W-1:2] == {(W-2){1'b0}};   // 0 .. 3
 
-    assign pause = event_valid & (event_code == PAUSE || event_code == TOOL_CHANGE);
+    assign pause = event_valid & (event_code == PAUSE);
 
     always @(posedge clk) begin
         if (rst) begin

@@ -204,7 +204,10 @@ module motion_top #(
 
     wire [1:0] out_axes = {1'b0, out_step[0]} + {1'b0, out_step[1]} + {1'b0, out_step[2]};
     wire       drained  = ~out_valid & drive_ready & ~moving;   // speed 0, every step out
-    wire       barrier_done = (state == S_DWELL && dwell_q == {W{1'b0}}) || (state == S_EVENT && drained);
+    // an EVENT waits while `hold` is high: a pause event holds the machine (the controller's
+    // M0), so the next one runs only after the release and two pauses stay two
+    wire       event_go = drained & ~hold;
+    wire       barrier_done = (state == S_DWELL && dwell_q == {W{1'b0}}) || (state == S_EVENT && event_go);
     // At rest (not busy, no push) the speed block is held in reset: the ramp's overshoot of
     // the last stop and the pacer's phase left over from it cancel exactly, and a new
     // jerk_shift or speed_quantum starts from a clean state.
@@ -282,7 +285,7 @@ module motion_top #(
                 S_LINE, S_ARC, S_CURVE: if (core_error) state <= S_FAULT;
                                         else if (core_done) state <= S_IDLE;
                 S_DRAIN: if (drained) state <= S_DWELL;
-                S_EVENT: if (drained) state <= S_IDLE;
+                S_EVENT: if (event_go) state <= S_IDLE;
                 S_DWELL: begin
                     if (dwell_q == {W{1'b0}})
                         state <= S_IDLE;
@@ -292,7 +295,7 @@ module motion_top #(
                 default: state <= S_FAULT;      // until rst
             endcase
 
-            event_valid <= state == S_EVENT && drained;
+            event_valid <= state == S_EVENT && event_go;
             step_q <= drv_step;
             pos_x  <= moved(pos_x, drv_step[0] & ~step_q[0], drv_dir[0]);
             pos_y  <= moved(pos_y, drv_step[1] & ~step_q[1], drv_dir[1]);

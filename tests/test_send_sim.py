@@ -209,6 +209,23 @@ def test_program_pause_is_released(files, capsys):
     assert "line 3: resuming after 0.01 s" in captured.err, captured.err
 
 
+def test_pauses_in_a_row_each_hold_once(files, capsys):
+    """M0, M0, T2 M6, M1 with no move between some of them, on a noisy line: each pause holds
+    the controller once, in order, for --pause-seconds, and each message names its own line
+    (a poll round from before a release no longer counts as a new pause, and the pause is
+    found from EXECUTED read at rest)."""
+    program = files / "pauses.nc"
+    program.write_text("G21\nG1 X0.5 F600\nM0\nM0\nG1 X1\nT2 M6\nM1\nG1 X0.2\nM2\n")
+    assert main(["send", str(program), "--sim", "--pause-seconds", "0.05", "--line-noise", "0.01",
+                 "--machine", str(files / "machine.toml")]) == 0
+    captured = capsys.readouterr()
+    lines = [int(w.split(":")[0]) for w in captured.err.split("program paused at line ")[1:]]
+    assert lines == [3, 4, 6, 7], captured.err
+    assert "end (20, 0, 0) steps" in captured.out
+    seconds = float(captured.out.split(" s link time")[0].split(" in ")[-1])
+    assert seconds > 4 * 0.05, captured.out                 # four pauses, each held
+
+
 def run_driver(files, steps, noise: float, seed: int = 1, before=None, keys=None, override=None,
                program: str = "tiny.nc"):
     """The host driver's run through SimLink; (outcome, registers after the run, link result, records).

@@ -174,13 +174,20 @@ def line_of(compiled, executed: int) -> int:
     return cmds[min(max(executed, 1), len(cmds)) - 1].source if cmds else 0
 
 
-def pause_line(compiled, executed: int) -> int:
-    """The G-code line of the last pause or tool change among the first `executed` records (the
-    controller has dispatched the move after it by the time it reports the hold)."""
-    for cmd in reversed(compiled.commands[:max(executed, 1)]):
-        if cmd.kind == gc.EVENT and cmd.x in (gc.EVENT_CODES["pause"], gc.EVENT_CODES["tool_change"]):
-            return cmd.source
-    return line_of(compiled, executed)
+def pause_record(compiled, executed: int, after: int = 0) -> int:
+    """The record number (1-based) of the pause (M0, M1, M60; M6's) holding the controller when
+    EXECUTED = executed: the pause itself was the last record dispatched, or the one before it
+    (the controller dispatches the next record, which then waits for the release).  `after`:
+    the number of the pause reported before (each pause holds once, in order); 0 if none."""
+    cmds = compiled.commands
+
+    def is_pause(n: int) -> bool:
+        cmd = cmds[n - 1] if 1 <= n <= len(cmds) else None
+        return cmd is not None and cmd.kind == gc.EVENT and cmd.x == gc.EVENT_CODES["pause"]
+    for n in (executed - 1, executed):
+        if n > after and is_pause(n):
+            return n
+    return next((n for n in range(min(executed, len(cmds)), after, -1) if is_pause(n)), 0)
 
 
 def limit_names(limits: int) -> str:
@@ -368,10 +375,14 @@ class ProgramRun:
         self.close()
         self.progress = Progress(compiled, self.machine, sys.stderr.isatty())
 
+        last = [0]                              # the record of the pause reported last
+
         def on_pause(snap) -> None:
             how = "press ~ to resume" if self.interactive else f"resuming after {self.args.pause_seconds:g} s"
-            print(f"\ninterp send: program paused at line {pause_line(compiled, snap.executed)}: {how}",
-                  file=sys.stderr)
+            last[0] = pause_record(compiled, snap.executed, last[0]) or last[0]
+            line = compiled.commands[last[0] - 1].source if last[0] else line_of(compiled, snap.executed)
+            lead = "\n" if self.progress.bar is not None else ""      # (below the progress bar)
+            print(f"{lead}interp send: program paused at line {line}: {how}", file=sys.stderr)
 
         self.records_before = self.records
         self.compiled = compiled

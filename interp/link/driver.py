@@ -542,6 +542,8 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     stopping = None                         # link time of a Ctrl-X: holding, then the abort
     hold_write = -1                         # ... the id of its hold write
     after_hold = False                      # this poll round started after that write was acknowledged
+    release_write = -1                      # the id of the last write releasing a hold ('~', a pause's end)
+    after_release = True                    # this poll round started after it was acknowledged
     filling = True
     touched = False                         # probe: the touch held the machine
 
@@ -555,6 +557,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
             driver.fresh.difference_update(REG[n] for n in POLLED)
             driver.poll(POLLED)                 # a new round of polls, at most every poll_seconds
             after_hold = stopping is not None and driver.writes_done > hold_write
+            after_release = driver.writes_done > release_write
             next_round, polling = driver.clock() + driver.poll_seconds, True
         fresh_round = polling and all(REG[n] in driver.fresh for n in POLLED)
         driver.pump()
@@ -567,7 +570,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                     control(p.CONTROL_HOLD)
                     held = True
                 elif key == "~" and (held or paused) and stopping is None and not touched:
-                    control(0)
+                    release_write = control(0)
                     held = paused = False
                     paused_since = None
                 elif key == "\x18" and not aborted and filling:
@@ -615,14 +618,16 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
         if touched and aborted and not busy:
             return Outcome("probed", snap.executed, seconds)
         if snap.state in (p.HOLDING, p.HELD) and not held and not aborted and not paused and stopping is None \
-                and not touched:
+                and not touched and after_release:  # (a round from before a release still shows its hold)
             paused = True                       # the program's own pause: the controller held
+            # EXECUTED now, at rest (the round's value may be older): which pause it is
+            snap.executed = (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
             if on_pause is not None:
                 on_pause(snap)
         if paused and snap.state == p.HELD and pause_resume is not None and stopping is None:
             paused_since = driver.clock() if paused_since is None else paused_since
             if driver.clock() - paused_since >= pause_resume:
-                control(0)
+                release_write = control(0)
                 paused, paused_since = False, None
         late = stopping is not None and driver.clock() - stopping >= STOP_SECONDS
         if stopping is not None and not aborted and (late or after_hold and (snap.state == p.HELD or not busy)):

@@ -722,7 +722,8 @@ class MotionTop(CycleModel):
         out_valid, out_step, out_dir = sync.out_valid, sync.out_step, sync.out_dir
         pre = self._profile_nets(i)                    # moving does not depend on barrier_done
         drained = not out_valid and out.ready and not pre["moving"]
-        barrier_done = int((self.state == S_DWELL and self.dwell_q == 0) or (self.state == S_EVENT and drained))
+        event_go = drained and not i.get("hold", 0)    # an event waits while held (two pauses stay two)
+        barrier_done = int((self.state == S_DWELL and self.dwell_q == 0) or (self.state == S_EVENT and event_go))
         pnets = self._profile_nets(i, barrier_done)
         fire = pnets["fire"]
         core_done = ((self.state == S_LINE and a.done) or
@@ -733,7 +734,7 @@ class MotionTop(CycleModel):
         late = self.profile.ramp.late          # the ramp's register, before the edge
         busy = self.busy_with(pnets["moving"])
         drv_step, drv_dir = out.step, out.dir
-        event_strobe = int(self.state == S_EVENT and drained)
+        event_strobe = int(self.state == S_EVENT and event_go)
 
         # ---- the edge ----
         if fault:                                      # flush: held in reset
@@ -783,7 +784,7 @@ class MotionTop(CycleModel):
             if drained:
                 self.state = S_DWELL
         elif self.state == S_EVENT:
-            if drained:
+            if event_go:
                 self.state = S_IDLE
         elif self.state == S_DWELL:
             if self.dwell_q == 0:

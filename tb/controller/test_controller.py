@@ -411,7 +411,8 @@ async def pwm_high(tb, cycles):
 async def events_drive_outputs(dut):
     """Spindle cw / ccw / speed / off with the PWM duty, mist, flood, coolant off, outputs on /
     off (a bad output number ignored), unknown codes ignored, program end; pause sets the hold
-    (the next move waits until it is released); abort switches the spindle off."""
+    (the next move waits until it is released), and two pauses in a row hold twice; abort
+    switches the spindle off."""
     tb = await Bench(dut).start()
     await tb.write("SPINDLE_PERIOD", 100)
 
@@ -442,6 +443,18 @@ async def events_drive_outputs(dut):
     await tb.write("CONTROL", 0)
     await tb.wait_idle()
     assert await tb.position() == [5, 0, 0]
+    # two pauses in a row (M0, then T2 M6: tool change 2, which does not hold, and pause 6): each
+    # holds, the second only after the first's release
+    cmds = tb.profiled([Command(EVENT, 0, 10, 0), Command(EVENT, 0, 11, 2), Command(EVENT, 0, 10, 6),
+                        Command(LINE, ONE // 2, 5, 0, 0)])
+    await tb.send(tb.records(cmds))
+    for release in range(2):
+        await tb.clocks(300)
+        assert await tb.read("CONTROL") & HOLD and await tb.state() == HELD, f"pause {release + 1}"
+        assert tb.steps.position() == [5, 0, 0]
+        await tb.write("CONTROL", 0)
+    await tb.wait_idle()
+    assert await tb.position() == [10, 0, 0]
     # abort: spindle and coolant off at once
     await events((1, 1000), (6, 0))
     assert int(dut.spindle_on.value) and int(dut.flood.value)
