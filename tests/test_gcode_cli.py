@@ -11,6 +11,7 @@ import importlib.util
 import json
 import math
 import os
+from pathlib import Path
 
 import pytest
 
@@ -197,6 +198,10 @@ def test_event_codes_in_the_commands(fakes, nc, tmp_path):
     (["gcode", "{nc}", "--override", "50@-2"], "--override 50@-2: the time after @ must be"),
     (["gcode", "{nc}", "--check", "--override", "50"], "go with a simulation, not --check"),
     (["gcode", "{nc}", "--plot-speed", "/nonexistent/dir/s.png"], "cannot write /nonexistent/dir/s.png"),
+    (["gcode", "{nc}", "--steps", "{nc}"], "{nc}: an output would overwrite the input {nc}"),
+    (["gcode", "{nc}", "--steps", "{tmp}/a.csv", "--events", "{tmp}/a.csv"], "{tmp}/a.csv: given for two outputs"),
+    (["gcode", "{nc}", "--check", "--steps", "{tmp}/a.csv"], "are written by a simulation, not --check"),
+    (["gcode", "/dev/zero", "--check"], "cannot read /dev/zero: not a file (a device?)"),
 ])
 def test_errors_are_one_line_exit_2(fakes, nc, tmp_path, capsys, argv, text):
     def harness(*a, **k):
@@ -204,7 +209,8 @@ def test_errors_are_one_line_exit_2(fakes, nc, tmp_path, capsys, argv, text):
 
     fakes.setattr(gcode, "run_simulation", harness)
     argv = [a.format(nc=nc, tmp=tmp_path) for a in argv]
-    one_line_error(capsys, 2, argv, text)
+    one_line_error(capsys, 2, argv, text.format(nc=nc, tmp=tmp_path))
+    assert Path(nc).read_text().startswith("G")              # the program is never overwritten
 
 
 def test_controls_reach_the_harness_in_cycles(fakes, nc, tmp_path, capsys):
@@ -432,3 +438,25 @@ def test_scurve_corners_within_their_junction_limit(tmp_path, capsys):
     code = main(["gcode", str(src), *sets, "--clock-hz", "5e6", "--profile", "scurve"])
     out = capsys.readouterr().out
     assert code == 0 and "monitor: ok" in out, out
+
+
+def test_warning_count_includes_those_left_out(tmp_path, capsys):
+    """30 feed moves above the axes' rate: 20 warnings printed, then "10 more warnings like the
+    line above"; the summary and --json count all 30."""
+    program = tmp_path / "fast.nc"
+    program.write_text("G21 G90\n" + "".join(f"G1 X{n % 2} F100000\n" for n in range(1, 31)))
+    assert main(["gcode", str(program), "--check"]) == 0
+    captured = capsys.readouterr()
+    assert "10 more warnings like the line above" in captured.err
+    assert captured.out.rstrip().endswith(", 30 warnings"), captured.out
+    assert main(["gcode", str(program), "--check", "--json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert info["warning_count"] == 30 and len(info["warnings"]) == 21
+
+
+def test_a_program_too_large_is_one_line(monkeypatch, tmp_path, capsys):
+    """Above MAX_PROGRAM_BYTES (256 MiB; here 64 bytes) a program is refused, not read whole."""
+    monkeypatch.setattr(gcode, "MAX_PROGRAM_BYTES", 64)
+    program = tmp_path / "big.nc"
+    program.write_text("G0 X1\n" * 20)
+    one_line_error(capsys, 2, ["gcode", str(program), "--check"], f"{program}: a program of more than 0 MiB")

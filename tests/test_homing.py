@@ -125,7 +125,10 @@ def test_a_switch_that_stays_active_after_the_pull_off(capsys, machine_file, mon
 
 @pytest.mark.parametrize("argv, word", [
     (["--sim"], "--sim has no limit switches"),
+    ([], "interp home: give --port DEVICE"),
+    (["--sim-model", "--seed", "3"], "unrecognized arguments: --seed"),
     (["--sim-model", "--axes", "q"], "--axes q: give axes of XYZ"),
+    (["--sim-model", "--axes", "zz"], "--axes zz: an axis given twice"),
     (["--sim-model", "--axes", "y"], "--axes y: Y has no home end"),
 ])
 def test_usage_errors(capsys, machine_file, argv, word):

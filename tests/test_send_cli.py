@@ -131,9 +131,11 @@ def test_clock_mismatch_exit_2(capsys, program, monkeypatch):
     (["--port"], "expected one argument"),
     (["--sim", "--baud", "9600"], "the link runs at 115200 .. 3000000 baud"),      # before any build
     (["--sim", "--baud", "3000000", "--pause-seconds", "-1"], "--pause-seconds -1"),
+    (["--sim", "--steps", "/nonexistent/dir/s.csv"], "cannot write /nonexistent/dir/s.csv: no directory"),
+    (["--sim", "--steps", "{program}"], "an output would overwrite the input"),
 ])
 def test_usage_errors(capsys, program, argv, word):
-    code, out, err = run(capsys, "send", program, *argv)
+    code, out, err = run(capsys, "send", program, *[a.format(program=program) for a in argv])
     assert code == 2 and word in err and len(err.strip().splitlines()) == 1 and out == ""
 
 

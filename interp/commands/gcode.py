@@ -19,6 +19,8 @@ from __future__ import annotations
 import csv
 import json
 import math
+import os
+import stat
 import sys
 import tempfile
 from pathlib import Path
@@ -108,21 +110,39 @@ def run_simulation(commands_path: str, sim: str, *, steps_path, timing: dict, ma
 
 # ---------------- helpers ----------------
 
+MAX_PROGRAM_BYTES = 1 << 28        # 256 MiB, far above any CAM program
+
+
 def read_program(path: str) -> str:
-    """The program's text; "-" reads standard input (`echo "G91 G0 X10" | interp send - ...`)."""
-    if path == "-":
-        return sys.stdin.buffer.read().decode("utf-8", errors="surrogateescape")
+    """The program's text; "-" reads standard input (`echo "G91 G0 X10" | interp send - ...`).
+    A device (a serial port given as the program by mistake, /dev/zero) is refused, and so is
+    a program above MAX_PROGRAM_BYTES."""
     try:
-        data = Path(path).read_bytes()
-    except IsADirectoryError:
-        raise UsageError(f"cannot read {path}: is a folder") from None
+        if path == "-":
+            data = sys.stdin.buffer.read(MAX_PROGRAM_BYTES + 1)
+        else:
+            mode = os.stat(path).st_mode
+            if stat.S_ISDIR(mode):
+                raise UsageError(f"cannot read {path}: is a folder")
+            if not (stat.S_ISREG(mode) or stat.S_ISFIFO(mode)):
+                raise UsageError(f"cannot read {path}: not a file (a device?)")
+            with open(path, "rb") as f:
+                data = f.read(MAX_PROGRAM_BYTES + 1)
     except OSError as err:
         raise UsageError(f"cannot read {path}: {err.strerror or err}") from None
+    if len(data) > MAX_PROGRAM_BYTES:
+        raise UsageError(f"{path}: a program of more than {MAX_PROGRAM_BYTES >> 20} MiB")
     return data.decode("utf-8", errors="surrogateescape")
 
 
 def fmt(value: float) -> str:
     return str(int(value)) if value == int(value) and abs(value) < 1e15 else f"{value:.6g}"
+
+
+def warning_count(program, compiled: Compiled) -> int:
+    """The warnings, those an "N more warnings like the line above" line stands for included."""
+    more = sum(1 for w in compiled.warnings if w.endswith(" more warnings like the line above"))
+    return len(program.warnings) + len(compiled.warnings) - more + compiled.warnings_left_out
 
 
 def summary(program, compiled: Compiled, machine: Machine) -> dict:
@@ -134,7 +154,8 @@ def summary(program, compiled: Compiled, machine: Machine) -> dict:
             "events": len(compiled.events), "commands": len(compiled.commands),
             "machine_time_s": round(compiled.machine_time_s, 6), "clock_hz": machine.clock_hz,
             "step_events": compiled.step_events, "profile": compiled.profile, "settings": dict(compiled.settings),
-            "warnings": program.warnings + compiled.warnings, "messages": list(program.messages)}
+            "warnings": program.warnings + compiled.warnings, "messages": list(program.messages),
+            "warning_count": warning_count(program, compiled)}
 
 
 def where(program, compiled: Compiled) -> str:
@@ -346,7 +367,7 @@ def cmd_gcode(args) -> int:
     if args.json and not args.check:
         raise UsageError("--json goes with --check")
     if not args.pause_seconds >= 0 or not math.isfinite(args.pause_seconds):
-        raise UsageError("--pause-seconds must be 0 or more")
+        raise UsageError(f"--pause-seconds {args.pause_seconds:g}: give a finite number of seconds >= 0")
     if args.max_seconds is not None and not args.max_seconds > 0:
         raise UsageError("--max-seconds must be positive")
     if args.push_interval is not None and not 1 <= args.push_interval <= 65536:
@@ -355,10 +376,12 @@ def cmd_gcode(args) -> int:
     override, controls, holds = controls_of(args, machine.clock_hz)
     if args.check and (controls or args.plot_speed or override != 100):
         raise UsageError("--hold-at, --resume-at, --override and --plot-speed go with a simulation, not --check")
+    if args.check and any(v is not None for v in (args.steps, args.events, args.vcd, args.plot)):
+        raise UsageError("--steps, --events, --vcd and --plot are written by a simulation, not --check")
     check_plot_format(args.plot, "--plot")
     check_plot_format(args.plot_speed, "--plot-speed")
     if not args.check:
-        check_outputs(args.steps, args.events, args.vcd, args.plot, args.plot_speed)
+        check_outputs(args.steps, args.events, args.vcd, args.plot, args.plot_speed, inputs=(args.file, args.machine))
     program, compiled = compile_text(read_program(args.file), machine, args.pause_seconds, args.profile)
     compiled.settings["override"] = override
     for message in program.messages:
@@ -373,7 +396,7 @@ def cmd_gcode(args) -> int:
             print(f"{Path(args.file).name}: {info['moves']} moves ({info['arcs']} arcs), {info['events']} events, "
                   f"{info['commands']} commands, {info['step_events']} step events, {compiled.profile} profile, "
                   f"machine time {compiled.machine_time_s:.3f} s, end {where(program, compiled)}, "
-                  f"{len(info['warnings'])} warnings")
+                  f"{info['warning_count']} warnings")
         return 0
     return simulate_program(args, program, compiled, machine, controls, holds)
 

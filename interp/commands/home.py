@@ -134,6 +134,8 @@ def axes_to_home(args, machine: Machine) -> list[int]:
         chosen = args.axes.lower()
         if not chosen or any(a not in AXES for a in chosen):
             raise UsageError(f"--axes {args.axes}: give axes of XYZ, e.g. --axes Z or --axes XY")
+        if len(set(chosen)) != len(chosen):
+            raise UsageError(f"--axes {args.axes}: an axis given twice")
         missing = [a.upper() for a in chosen if AXES.index(a) not in axes]
         if missing:
             raise UsageError(f"--axes {args.axes}: {' '.join(missing)} has no home end in the machine file "
@@ -146,9 +148,11 @@ def axes_to_home(args, machine: Machine) -> list[int]:
 
 def cmd_home(args) -> int:
     args.steps = args.line_noise = None
-    check_link_args(args)
     if args.sim:
         raise UsageError("interp home: --sim has no limit switches to home to; use --port")
+    if not (args.port or args.sim_model):
+        raise UsageError("interp home: give --port DEVICE")
+    check_link_args(args)
     machine = load_machine(args.machine, [], None)
     axes = axes_to_home(args, machine)
     try:

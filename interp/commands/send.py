@@ -31,6 +31,7 @@ from ..gcode.moves import ProbeResult
 from ..link.driver import (Driver, FeedOverride, LinkError, MachineError, MismatchError, check_controller,
                            check_idle, configure, read_position, run_program, signed32)
 from ..link.records import DEFAULT_BUILD, Build, encode_program
+from ..simulation.output import check_outputs
 from .gcode import interpret_program, read_program, saved_parameters
 
 DEFAULT_BAUD = 115200
@@ -63,7 +64,7 @@ def open_transport(args, machine: Machine):
 
         baud = args.baud or DEFAULT_BAUD
         return DeviceModel(clock_hz=round(machine.clock_hz), baud=baud, line_noise=args.line_noise or 0.0,
-                           seed=1 if args.seed is None else args.seed, records_per_second=args.sim_model_rate,
+                           seed=1 if getattr(args, "seed", None) is None else args.seed, records_per_second=args.sim_model_rate,
                            fail_at=args.sim_model_fail), baud
     from ..link.simlink import SimLink, baud_problem, default_baud
 
@@ -73,7 +74,7 @@ def open_transport(args, machine: Machine):
     if problem:                     # before the simulator is built
         raise UsageError(f"--sim: {problem}" + ("" if args.baud else " (give --baud)"))
     link = SimLink(steps=getattr(args, "steps", None), line_noise=getattr(args, "line_noise", None) or 0.0,
-                   seed=1 if args.seed is None else args.seed, machine=machine, baud=baud)
+                   seed=1 if getattr(args, "seed", None) is None else args.seed, machine=machine, baud=baud)
     return link, link.baud
 
 
@@ -88,7 +89,7 @@ def check_link_args(args) -> None:
         if args.baud is None:
             args.baud = DEFAULT_BAUD
         for flag, value in (("--steps", getattr(args, "steps", None)), ("--line-noise", getattr(args, "line_noise", None)),
-                            ("--seed", args.seed)):
+                            ("--seed", getattr(args, "seed", None))):
             if value is not None:
                 raise UsageError(f"{flag} goes with --sim, not --port")
     pause = getattr(args, "pause_seconds", 0.0)
@@ -97,6 +98,8 @@ def check_link_args(args) -> None:
     noise = getattr(args, "line_noise", None)
     if noise is not None and not (math.isfinite(noise) and 0.0 <= noise <= 1.0):
         raise UsageError(f"--line-noise {noise:g}: give a bit-flip probability 0 .. 1")
+    if getattr(args, "steps", None) is not None:        # before the simulator is built or run
+        check_outputs(args.steps, inputs=(getattr(args, "file", None), args.machine))
 
 
 # ---------------- the keyboard ----------------
@@ -459,7 +462,7 @@ def save_parameters(args, machine: Machine, before: dict, after: dict) -> None:
           file=sys.stderr)
 
 
-def add_link_options(p_, sim_help: str) -> None:
+def add_link_options(p_, sim_help: str, seed: bool = False) -> None:
     import argparse
 
     p_.add_argument("--port", metavar="DEVICE", help="serial device or pyserial URL (loop://, socket://HOST:PORT)")
@@ -467,7 +470,8 @@ def add_link_options(p_, sim_help: str) -> None:
                     "--sim: 3000000, or the fastest the machine's clock allows at 4 clocks a bit)")
     p_.add_argument("--sim", action="store_true", help=sim_help)
     p_.add_argument("--machine", metavar="FILE.toml", help="machine file (default: the shipped default machine)")
-    p_.add_argument("--seed", type=int, help="--sim: the line noise's seed (default 1)")
+    if seed:                            # (send only: the line noise's)
+        p_.add_argument("--seed", type=int, help="--sim: the line noise's seed (default 1)")
     # the Python model of the controller's link (interp.link.devicemodel), for tests
     p_.add_argument("--sim-model", action="store_true", help=argparse.SUPPRESS)
     p_.add_argument("--sim-model-rate", type=float, default=2000.0, help=argparse.SUPPRESS)
@@ -477,10 +481,10 @@ def add_link_options(p_, sim_help: str) -> None:
 def add_parser(sub) -> None:
     p_ = sub.add_parser("send", help="send a G-code program to the board controller (UART link)")
     p_.add_argument("file", help="G-code file (RS274NGC, as `interp gcode` reads it); - reads standard input")
-    add_link_options(p_, "the Verilator model of the controller instead of a port")
+    add_link_options(p_, "the Verilator model of the controller instead of a port", seed=True)
     p_.add_argument("--steps", metavar="FILE", help="--sim: CSV of the steps (cycle,dx,dy,dz)")
     p_.add_argument("--line-noise", type=float, metavar="P", help="--sim: bit-flip probability per bit, both ways")
     p_.add_argument("--pause-seconds", type=float, default=0.0, metavar="S",
-                    help="a program pause (M0, M1, M6) ends after S seconds when no terminal is attached to "
+                    help="a program pause (M0, M1, M6, M60) ends after S seconds when no terminal is attached to "
                          "resume it with ~ (default 0)")
     p_.set_defaults(func=cmd_send)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import os
 from pathlib import Path
 
 from ..models.base import Run
@@ -43,13 +44,27 @@ def write_model_vcd(path, samples: list[dict], scope: str) -> None:
                 vcd.change(variables[n], t + PERIOD_NS // 2, v)
 
 
-def check_outputs(*paths) -> None:
-    """Refuse, before anything runs, an output path that cannot be written."""
+def check_outputs(*paths, inputs=()) -> None:
+    """Refuse, before anything runs, an output path that cannot be written, that names one of
+    the `inputs` (the program, the machine file: it would be overwritten) or another output."""
     from ..cores import UsageError
 
-    for path in paths:
-        if path is None:
-            continue
+    def same(a, b) -> bool:
+        try:
+            return Path(a).resolve() == Path(b).resolve() or (Path(a).exists() and Path(b).exists()
+                                                              and os.path.samefile(a, b))
+        except OSError:
+            return False
+
+    given = [path for path in paths if path is not None]
+    for n, path in enumerate(given):
+        for source in inputs:
+            if source not in (None, "-") and same(path, source):
+                raise UsageError(f"{path}: an output would overwrite the input {source}")
+        for other in given[:n]:
+            if same(path, other):
+                raise UsageError(f"{path}: given for two outputs")
+    for path in given:
         p = Path(path)
         folder = p.parent if str(p.parent) else Path(".")
         if p.is_dir():
