@@ -125,6 +125,16 @@ def test_simulation_summary_and_files(fakes, nc, tmp_path, capsys):
     assert steps.read_text().startswith("cycle,dx,dy,dz\n")
 
 
+def test_vcd_size_warning(fakes, nc, tmp_path, capsys):
+    """--vcd of seconds of machine time at 50 MHz is many GB: a warning with the estimate; at
+    1 MHz (the same program) no warning."""
+    assert main(["gcode", str(nc), "--vcd", str(tmp_path / "w.vcd")]) == 0
+    err = capsys.readouterr().err
+    assert f"interp: warning: --vcd {tmp_path / 'w.vcd'}: about " in err and " GB for " in err, err
+    assert main(["gcode", str(nc), "--vcd", str(tmp_path / "w.vcd"), "--clock-hz", "1e5"]) == 0
+    assert "--vcd" not in capsys.readouterr().err
+
+
 def test_plot_without_steps_file(fakes, nc, tmp_path):
     png = tmp_path / "p.png"
     assert main(["gcode", str(nc), "--plot", str(png)]) == 0

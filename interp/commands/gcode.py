@@ -110,6 +110,7 @@ def run_simulation(commands_path: str, sim: str, *, steps_path, timing: dict, ma
 
 # ---------------- helpers ----------------
 
+VCD_BYTES_PER_CLOCK = 3300         # motion_top's waveform, measured (every net, a change each clock)
 MAX_PROGRAM_BYTES = 1 << 28        # 256 MiB, far above any CAM program
 
 
@@ -414,6 +415,11 @@ def simulate_program(args, program, compiled: Compiled, machine: Machine, contro
         if any(r is None for _, r in holds):            # held to the end: a second after the hold
             max_seconds = min(max_seconds, max(h for h, _ in holds) + 1 + compiled.machine_time_s * 0.01)
     max_cycles = math.ceil(max_seconds * clock)
+    if args.vcd is not None:
+        gigabytes = compiled.machine_time_s * clock * VCD_BYTES_PER_CLOCK / 1e9
+        if gigabytes >= 1:
+            print(f"interp: warning: --vcd {args.vcd}: about {gigabytes:.0f} GB for {compiled.machine_time_s:.3g} s of "
+                  f"machine time at {clock:g} Hz (--max-seconds cuts it short)", file=sys.stderr)
     progress = Progress(compiled, clock, sys.stderr.isatty())
     with tempfile.TemporaryDirectory(prefix="interp_gcode_") as tmp:
         commands_path = Path(tmp) / "commands.txt"
