@@ -146,7 +146,7 @@ def test_soft_limits():
     assert str(err.value) == "line 4: X 312.5 mm is beyond the X travel 0 .. 300 mm (machine file)"
     # an arc whose ends are inside but whose bulge is not
     arc = Arc((290, 0, 0), (290, 24, 0), (290, 12, 0), "XY", True, 1, 500, 7)
-    with pytest.raises(CompileError, match=r"^line 7: X 302 mm is beyond the X travel 0 \.\. 300 mm"):
+    with pytest.raises(CompileError, match=r"^line 7: the arc reaches X 302 mm, beyond the X travel 0 \.\. 300 mm"):
         compile_program(Program([Line((0, 0, 0), (290, 0, 0), None, 6), arc]), m)
     ok = Arc((290, 0, 0), (290, 24, 0), (290, 12, 0), "XY", False, 1, 500, 7)        # bulges to -X: fine
     compile_program(Program([Line((0, 0, 0), (290, 0, 0), None, 6), ok]), m)

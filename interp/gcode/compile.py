@@ -271,11 +271,13 @@ class Compiler:
     def steps(self, point) -> list[int]:
         return [_round(p * s) for p, s in zip(point, self.spm)]
 
-    def check_travel(self, line: int, axis: int, value: float) -> None:
+    def check_travel(self, line: int, axis: int, value: float, inside_arc: bool = False) -> None:
+        """inside_arc: the value is an arc's extreme, not a coordinate the program wrote."""
         a = self.axes[axis]
         if not a.min_mm - 1e-6 <= value <= a.max_mm + 1e-6:
             name = AXES[axis].upper()
-            raise CompileError(f"line {line}: {name} {value:.6g} mm is beyond the {name} travel "
+            where = f"the arc reaches {name} {value:.6g} mm," if inside_arc else f"{name} {value:.6g} mm is"
+            raise CompileError(f"line {line}: {where} beyond the {name} travel "
                                f"{a.min_mm:g} .. {a.max_mm:g} mm (machine file)")
 
     def room(self, count: int, line: int) -> None:
@@ -527,7 +529,7 @@ class Compiler:
             if sweep >= 2 * math.pi or ahead <= sweep:
                 axis, value = (iu, m.centre[iu] + r * math.cos(ang)) if quarter % 2 == 0 else \
                     (iv, m.centre[iv] + r * math.sin(ang))
-                self.check_travel(m.line, axis, round(value, 9))
+                self.check_travel(m.line, axis, round(value, 9), inside_arc=True)
 
     def chords(self, m: Arc, r: float, a0: float, signed_sweep: float, reason: str | None,
                start_w: float | None = None) -> None:
