@@ -32,7 +32,7 @@ module machine_io #(
     output reg          mist,
     output reg          flood,
     output reg  [3:0]   dout,
-    output wire         pause           // strobe: a pause or tool-change event
+    output wire         pause           // strobe: a pause event (code 10)
 );
     initial begin
         if (W < 4) $error("%m: W must be at least 4");

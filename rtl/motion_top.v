@@ -22,7 +22,7 @@
 // after, `error_code` held: 1 kind, 2 feed, 3 range, 5 queue full, 7 plane, 8 profile);
 // at run time 4 a core refused its command (FAULT until rst: queues flushed, speed block
 // stopped), 6 step buffer overflow (a monitor), 9 `late` (a segment ended above its
-// target speed).  `hold` decelerates the path to speed 0 (`stopped`, once the S-curve
+// target speed).  A DWELL or EVENT waits while `hold` is high.  `hold` decelerates the path to speed 0 (`stopped`, once the S-curve
 // filter is empty too) and resumes on release; no step is lost.  `still`: no speed in the
 // ramp or the filter, so no step comes (a stop now loses nothing).  pos_x/y/z count the pulses at the drive (rising edges of
 // step_*).
@@ -204,10 +204,11 @@ module motion_top #(
 
     wire [1:0] out_axes = {1'b0, out_step[0]} + {1'b0, out_step[1]} + {1'b0, out_step[2]};
     wire       drained  = ~out_valid & drive_ready & ~moving;   // speed 0, every step out
-    // an EVENT waits while `hold` is high: a pause event holds the machine (the controller's
-    // M0), so the next one runs only after the release and two pauses stay two
+    // an EVENT or DWELL waits while `hold` is high (a feed hold holds the program, as Grbl's
+    // suspends a dwell): a pause event holds the machine (the controller's M0), so the next
+    // one runs only after the release and two pauses stay two
     wire       event_go = drained & ~hold;
-    wire       barrier_done = (state == S_DWELL && dwell_q == {W{1'b0}}) || (state == S_EVENT && event_go);
+    wire       barrier_done = (state == S_DWELL && dwell_q == {W{1'b0}} && ~hold) || (state == S_EVENT && event_go);
     // At rest (not busy, no push) the speed block is held in reset: the ramp's overshoot of
     // the last stop and the pacer's phase left over from it cancel exactly, and a new
     // jerk_shift or speed_quantum starts from a clean state.
@@ -224,7 +225,7 @@ module motion_top #(
         .stopped(ramp_stopped), .still(profile_still), .late(late)
     );
     assign stopped = ramp_stopped | (hold & ~busy);
-    assign still   = profile_still;
+    assign still   = profile_still & drive_ready;     // (and no pulse or direction timing under way)
 
     wire [2:0] drv_step, drv_dir;
     step_dir #(.AXES(3), .TW(TW)) u_out (
@@ -284,9 +285,9 @@ module motion_top #(
                 end
                 S_LINE, S_ARC, S_CURVE: if (core_error) state <= S_FAULT;
                                         else if (core_done) state <= S_IDLE;
-                S_DRAIN: if (drained) state <= S_DWELL;
+                S_DRAIN: if (event_go) state <= S_DWELL;
                 S_EVENT: if (event_go) state <= S_IDLE;
-                S_DWELL: begin
+                S_DWELL: if (~hold) begin
                     if (dwell_q == {W{1'b0}})
                         state <= S_IDLE;
                     else

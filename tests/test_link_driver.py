@@ -229,6 +229,19 @@ def test_feed_override_keys():
                                                     (150, "3"), (20, "x"))] == [200, 200, 10, 10, 100, 30, 20]
 
 
+def test_resume_key_mid_round_is_no_pause():
+    """'!' then '~' typed at every point of a poll round: a round whose reads went out before
+    the release still shows HELD, and must not be taken for a program pause (which would wait
+    for another '~' and end the run as a timeout)."""
+    for offset in range(40):
+        model = DeviceModel(records_per_second=100)
+        script = iter([""] * 200 + ["!"] + [""] * (200 + offset) + ["~"])
+        pauses = []
+        _, outcome = run(model, commands(40), keys=lambda: next(script, ""), pause_resume=None, max_seconds=3.0,
+                         on_pause=lambda snap: pauses.append(snap.executed))
+        assert (outcome.status, pauses, len(model.executed)) == ("done", [], 40), offset
+
+
 def test_stop_key_aborts_at_rest():
     """Ctrl-X holds first and aborts only once the controller reports HELD: the machine has come
     to rest on its path, so the position counters are the motors' position."""

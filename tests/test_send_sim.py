@@ -210,20 +210,23 @@ def test_program_pause_is_released(files, capsys):
 
 
 def test_pauses_in_a_row_each_hold_once(files, capsys):
-    """M0, M0, T2 M6, M1 with no move between some of them, on a noisy line: each pause holds
-    the controller once, in order, for --pause-seconds, and each message names its own line
+    """M0, M0, T2 M6, G4, M1 with no move between some of them, on a noisy line: each pause holds
+    the controller once, in order, for --pause-seconds (against a run with 0), and each
+    message names its own line (the dwell waits while held)
     (a poll round from before a release no longer counts as a new pause, and the pause is
     found from EXECUTED read at rest)."""
     program = files / "pauses.nc"
-    program.write_text("G21\nG1 X0.5 F600\nM0\nM0\nG1 X1\nT2 M6\nM1\nG1 X0.2\nM2\n")
-    assert main(["send", str(program), "--sim", "--pause-seconds", "0.05", "--line-noise", "0.01",
-                 "--machine", str(files / "machine.toml")]) == 0
-    captured = capsys.readouterr()
-    lines = [int(w.split(":")[0]) for w in captured.err.split("program paused at line ")[1:]]
-    assert lines == [3, 4, 6, 7], captured.err
-    assert "end (20, 0, 0) steps" in captured.out
-    seconds = float(captured.out.split(" s link time")[0].split(" in ")[-1])
-    assert seconds > 4 * 0.05, captured.out                 # four pauses, each held
+    program.write_text("G21\nG1 X0.5 F600\nM0\nM0\nG1 X1\nT2 M6\nG4 P0.02\nM1\nG1 X0.2\nM2\n")
+    seconds = []
+    for pause in ("0.1", "0"):
+        assert main(["send", str(program), "--sim", "--pause-seconds", pause, "--line-noise", "0.01",
+                     "--machine", str(files / "machine.toml")]) == 0
+        captured = capsys.readouterr()
+        lines = [int(w.split(":")[0]) for w in captured.err.split("program paused at line ")[1:]]
+        assert lines == [3, 4, 6, 8], captured.err
+        assert "end (20, 0, 0) steps" in captured.out
+        seconds.append(float(captured.out.split(" s link time")[0].split(" in ")[-1]))
+    assert seconds[0] - seconds[1] > 4 * 0.1 * 0.9, seconds         # four pauses, each held 0.1 s
 
 
 def run_driver(files, steps, noise: float, seed: int = 1, before=None, keys=None, override=None,

@@ -190,7 +190,7 @@ def pause_record(compiled, executed: int, after: int = 0) -> int:
     for n in (executed - 1, executed):
         if n > after and is_pause(n):
             return n
-    return next((n for n in range(min(executed, len(cmds)), after, -1) if is_pause(n)), 0)
+    return next((n for n in range(after + 1, min(executed, len(cmds)) + 1) if is_pause(n)), 0)
 
 
 def limit_names(limits: int) -> str:

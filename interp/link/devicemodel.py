@@ -83,7 +83,7 @@ class DeviceModel:
         self.probe = probe
         self.probe_armed = self.probe_stop = self.probe_valid = False
         self.probe_position = [0, 0, 0]
-        self.hold = self.hold_moving = False
+        self.hold = self.hold_moving = self.moving = False
         self.hold_since = 0.0
         self.enabled = False
         self.fill = False
@@ -340,7 +340,7 @@ class DeviceModel:
                 self.queue.clear()
                 self.reader = RecordReader(self.build)
                 return
-            self.busy = True
+            self.busy, self.moving = True, record["kind"] < 4       # (a dwell or event does not move)
             self.running_until = self.t + self.record_time
 
     def switch_active(self, axis: int) -> bool:
@@ -435,9 +435,9 @@ class DeviceModel:
         self.write_states.append(self.state())
         if name == "CONTROL":
             # an abort that cuts a record while the machine moves (not held at rest): ERROR 19
-            at_speed = self.state() == p.HOLDING or (self.state() == p.RUN and self.busy)
+            at_speed = self.state() == p.HOLDING or (self.state() == p.RUN and self.busy and self.moving)
             if value & p.CONTROL_HOLD and not self.hold:
-                self.hold_since, self.hold_moving = self.t, self.busy
+                self.hold_since, self.hold_moving = self.t, self.busy and self.moving
             self.hold = bool(value & p.CONTROL_HOLD)
             self.enabled = bool(value & p.CONTROL_ENABLE)
             self.probe_stop = bool(value & p.CONTROL_PROBE_STOP)

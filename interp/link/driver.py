@@ -570,7 +570,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                     control(p.CONTROL_HOLD)
                     held = True
                 elif key == "~" and (held or paused) and stopping is None and not touched:
-                    release_write = control(0)
+                    release_write, after_release = control(0), False     # (this round's reads may be older)
                     held = paused = False
                     paused_since = None
                 elif key == "\x18" and not aborted and filling:
@@ -627,7 +627,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
         if paused and snap.state == p.HELD and pause_resume is not None and stopping is None:
             paused_since = driver.clock() if paused_since is None else paused_since
             if driver.clock() - paused_since >= pause_resume:
-                release_write = control(0)
+                release_write, after_release = control(0), False
                 paused, paused_since = False, None
         late = stopping is not None and driver.clock() - stopping >= STOP_SECONDS
         if stopping is not None and not aborted and (late or after_hold and (snap.state == p.HELD or not busy)):

@@ -605,7 +605,7 @@ class MotionTop(CycleModel):
         self._busy = self.busy_with(nets["moving"])
         self._speed = nets["speed"]
         self._stopped = int(bool(nets["stopped"]) or (bool(i.get("hold", 0)) and not self._busy))
-        self._still = int(nets["still"])
+        self._still = int(bool(nets["still"]) and bool(self.out.ready))
 
     def _profile_nets(self, i, barrier_done: int = 0) -> dict:
         sync, out = self.sync, self.out
@@ -722,8 +722,9 @@ class MotionTop(CycleModel):
         out_valid, out_step, out_dir = sync.out_valid, sync.out_step, sync.out_dir
         pre = self._profile_nets(i)                    # moving does not depend on barrier_done
         drained = not out_valid and out.ready and not pre["moving"]
-        event_go = drained and not i.get("hold", 0)    # an event waits while held (two pauses stay two)
-        barrier_done = int((self.state == S_DWELL and self.dwell_q == 0) or (self.state == S_EVENT and event_go))
+        event_go = drained and not i.get("hold", 0)    # an event or dwell waits while held (two pauses stay two)
+        barrier_done = int((self.state == S_DWELL and self.dwell_q == 0 and not i.get("hold", 0))
+                           or (self.state == S_EVENT and event_go))
         pnets = self._profile_nets(i, barrier_done)
         fire = pnets["fire"]
         core_done = ((self.state == S_LINE and a.done) or
@@ -781,13 +782,15 @@ class MotionTop(CycleModel):
             elif core_done:
                 self.state = S_IDLE
         elif self.state == S_DRAIN:
-            if drained:
+            if event_go:
                 self.state = S_DWELL
         elif self.state == S_EVENT:
             if event_go:
                 self.state = S_IDLE
         elif self.state == S_DWELL:
-            if self.dwell_q == 0:
+            if i.get("hold", 0):
+                pass                                   # a dwell waits while held
+            elif self.dwell_q == 0:
                 self.state = S_IDLE
             else:
                 self.dwell_q -= 1
