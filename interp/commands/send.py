@@ -59,12 +59,13 @@ def open_transport(args, machine: Machine):
             cause = err.__context__
             text = cause.strerror if isinstance(cause, OSError) and cause.strerror else str(err)
             raise LinkError(f"cannot open {args.port}: {text}") from None
+    seed = 1 if getattr(args, "seed", None) is None else args.seed        # (send's --seed only)
     if getattr(args, "sim_model", False):
         from ..link.devicemodel import DeviceModel
 
         baud = args.baud or DEFAULT_BAUD
         return DeviceModel(clock_hz=round(machine.clock_hz), baud=baud, line_noise=args.line_noise or 0.0,
-                           seed=1 if getattr(args, "seed", None) is None else args.seed, records_per_second=args.sim_model_rate,
+                           seed=seed, records_per_second=args.sim_model_rate,
                            fail_at=args.sim_model_fail), baud
     from ..link.simlink import SimLink, baud_problem, default_baud
 
@@ -74,7 +75,7 @@ def open_transport(args, machine: Machine):
     if problem:                     # before the simulator is built
         raise UsageError(f"--sim: {problem}" + ("" if args.baud else " (give --baud)"))
     link = SimLink(steps=getattr(args, "steps", None), line_noise=getattr(args, "line_noise", None) or 0.0,
-                   seed=1 if getattr(args, "seed", None) is None else args.seed, machine=machine, baud=baud)
+                   seed=seed, machine=machine, baud=baud)
     return link, link.baud
 
 

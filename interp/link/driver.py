@@ -510,8 +510,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     typed since the last call ('!' hold, '~' resume, Ctrl-X stop; with `override`, the
     feed override keys of OVERRIDE_STEPS and OVERRIDE_SETS: OVERRIDE at once, except in a
     probe move, which runs at 100 % as in Grbl and takes the keys' percent when it ends).
-    Ctrl-X stops as a
-    sender keeps the position: nothing more is sent, a feed hold brings the machine to
+    Ctrl-X stops as a sender keeps the position: nothing more is sent, a feed hold brings the machine to
     rest on its path, then CONTROL.abort flushes the queue (within STOP_SECONDS in any
     case); a second Ctrl-X aborts at once (at speed the motors may lose steps that the
     position counters have counted).

@@ -2,9 +2,10 @@
 """motion_top: queues -> cores -> synchronization buffer -> path profile -> step/dir.
 
 Every cycle the RTL is compared with the cycle model (interp.models.motion.MotionTop:
-the block models wired as the RTL wires them: line_pair (the two lin_exact cores of a
-line, lead selection and axis mapping), arc_plane (circ_arc in a plane, with the
-helix axis) and path_profile (the profile queue, speed_ramp, jerk_filter, step_pacer)
+the block models wired as the RTL wires them: motion_cores (the cores and the choice of
+the running one's steps) with line_pair (the two lin_exact cores of a line, lead
+selection and axis mapping) and arc_plane (circ_arc in a plane, with the helix axis),
+and path_profile (the profile queue, speed_ramp, jerk_filter, step_pacer)
 are verified here, through motion_top) and a monitor checks
 the drive timing (pulse width, dir setup and hold) and records each pulse; at the end
 the pulses must equal, in order, the steps of the step-level models of every accepted
