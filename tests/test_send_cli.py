@@ -72,6 +72,21 @@ def test_machine_error_line(capsys, program):
                            f"{len(compiled.commands)}, line {line}")
 
 
+def test_a_board_reports_its_end_position(capsys, tmp_path, monkeypatch):
+    """A serial port says nothing when it closes: the summary's end position comes from the
+    controller's POS_X/Y/Z, read once the program is done."""
+    class Port(DeviceModel):
+        def close(self):
+            super().close()
+            return None
+
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (Port(), 115200))
+    program = tmp_path / "p.nc"
+    program.write_text("G21 G90\nG1 X8 Y-4 F600\nM2\n")
+    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    assert code == 0 and err == "" and out.rstrip().endswith("end (800, -400, 0) steps"), out
+
+
 def test_a_program_starts_where_the_machine_is(capsys, tmp_path, monkeypatch):
     """The controller's position counters survive a run (only its reset clears them): the next
     program is compiled from there, as Grbl runs it, so G90 X0 goes back to machine zero.  A

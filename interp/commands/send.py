@@ -214,7 +214,7 @@ def cmd_send(args) -> int:
         print(f"interp: error: link: {err}", file=sys.stderr)
         return 1
     keyboard = progress = None
-    result = None
+    result = at_end = None
     try:
         driver = Driver(transport, baud=baud)
         driver.connect()
@@ -240,6 +240,10 @@ def cmd_send(args) -> int:
         run = ProgramRun(args, driver, machine, text, start, saved, keyboard, interactive)
         try:
             run.all()
+            try:                                # where the machine stands (POS_X/Y/Z)
+                at_end = read_position(driver)
+            except LinkError:
+                at_end = None
         except KeyboardInterrupt:
             driver.drop_stream()
             driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_ENABLE)
@@ -282,7 +286,8 @@ def cmd_send(args) -> int:
     if outcome.status != "done":
         print(f"interp: error: the run did not end ({where})", file=sys.stderr)
         return 1
-    position = result.get("position") if isinstance(result, dict) else None
+    # the simulators count the pulses at the pins; a board reports its position registers
+    position = result.get("position") if isinstance(result, dict) else at_end
     end = f", end {tuple(position)} steps" if position is not None else ""
     print(f"sent {records} records ({run.bytes} bytes) in {run.seconds:.3f} s link time at {baud} baud, "
           f"{stats}{end}")
