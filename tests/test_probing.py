@@ -29,6 +29,14 @@ def attach(monkeypatch, device):
     monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
 
 
+def send_program(capsys, tmp_path, monkeypatch, device, text, flag="--sim-model"):
+    """`interp send` of `text` to `device` (the controller model): (exit status, stdout, stderr)."""
+    attach(monkeypatch, device)
+    program = tmp_path / "p.nc"
+    program.write_text(text)
+    return run(capsys, "send", str(program), flag)
+
+
 def linear_moves(device):
     return [(r["x"], r["y"], r["z"]) for r in device.executed if r["kind"] == 0]
 
@@ -99,10 +107,7 @@ def test_a_z_touch_off(capsys, tmp_path, monkeypatch):
 
 def test_no_touch_is_an_error_for_g382(capsys, tmp_path, monkeypatch):
     device = DeviceModel(probe=(2, "min", -2000))
-    attach(monkeypatch, device)
-    program = tmp_path / "touch.nc"
-    program.write_text(TOUCH_OFF)
-    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, TOUCH_OFF)
     assert code == 1
     assert err.strip() == "interp: error: line 3: G38.2: the probe did not touch before the end of the move"
     assert device.position == [500, 0, -1000] and len(linear_moves(device)) == 2
@@ -110,30 +115,21 @@ def test_no_touch_is_an_error_for_g382(capsys, tmp_path, monkeypatch):
 
 def test_no_touch_goes_on_for_g383(capsys, tmp_path, monkeypatch):
     device = DeviceModel(probe=(2, "min", -2000))
-    attach(monkeypatch, device)
-    program = tmp_path / "p.nc"
-    program.write_text("G21 G90\nG38.3 Z-10 F50\no1 if [#5070 EQ 0]\nG0 X1\no1 else\nG0 X2\no1 endif\nM2\n")
-    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, "G21 G90\nG38.3 Z-10 F50\no1 if [#5070 EQ 0]\nG0 X1\no1 else\nG0 X2\no1 endif\nM2\n")
     assert code == 0, err
     assert device.position == [100, 0, -1000]
 
 
 def test_a_probe_touching_before_the_move(capsys, tmp_path, monkeypatch):
     device = DeviceModel(probe=(2, "min", 0))
-    attach(monkeypatch, device)
-    program = tmp_path / "touch.nc"
-    program.write_text(TOUCH_OFF)
-    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, TOUCH_OFF)
     assert code == 1 and err.strip() == "interp: error: line 3: G38.2: the probe touches already before the move"
     assert linear_moves(device) == [(500, 0, 0)]
 
 
 def test_the_simulator_has_no_probe(capsys, tmp_path, monkeypatch):
     device = DeviceModel()
-    attach(monkeypatch, device)
-    program = tmp_path / "touch.nc"
-    program.write_text(TOUCH_OFF)
-    code, out, err = run(capsys, "send", str(program), "--sim")
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, TOUCH_OFF, "--sim")
     assert code == 2 and "line 3: G38.2: the simulated controller has no probe" in err
     assert not device.executed
 
@@ -149,10 +145,7 @@ def test_probes_in_a_loop(capsys, tmp_path, monkeypatch):
     """Two probe moves from a loop, each followed by a retract: every move runs once, in order,
     and the loop's message is printed once per pass."""
     device = DeviceModel(probe=(2, "min", -320))
-    attach(monkeypatch, device)
-    program = tmp_path / "p.nc"
-    program.write_text("G21 G90\no1 repeat [2]\n(MSG, probing)\nG38.2 Z-10 F50\nG0 Z0\no1 endrepeat\nM2\n")
-    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, "G21 G90\no1 repeat [2]\n(MSG, probing)\nG38.2 Z-10 F50\nG0 Z0\no1 endrepeat\nM2\n")
     assert code == 0, err
     assert linear_moves(device) == [(0, 0, -1000), (0, 0, 323)] * 2
     assert err.splitlines() == ["interp: message: line 3: probing"] * 2
@@ -161,20 +154,14 @@ def test_probes_in_a_loop(capsys, tmp_path, monkeypatch):
 def test_a_stop_code_in_the_probe_block_waits_for_the_result(capsys, tmp_path, monkeypatch):
     """G38.2 ... M0: the pause comes after the probe move, which runs armed."""
     device = DeviceModel(probe=(2, "min", -320))
-    attach(monkeypatch, device)
-    program = tmp_path / "p.nc"
-    program.write_text("G21 G90\nG38.2 Z-10 F50 M0\nG0 Z0\nM2\n")
-    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, "G21 G90\nG38.2 Z-10 F50 M0\nG0 Z0\nM2\n")
     assert code == 0, err
     assert linear_moves(device) == [(0, 0, -1000), (0, 0, 323)] and device.probe_position[2] == -320
 
 
 def test_probing_with_the_spindle_on_is_refused_before_anything_moves(capsys, tmp_path, monkeypatch):
     device = DeviceModel(probe=(2, "min", -320))
-    attach(monkeypatch, device)
-    program = tmp_path / "p.nc"
-    program.write_text("G21 G90\nG0 X1\nM3 S1000\nG38.2 Z-10 F50\n")
-    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, "G21 G90\nG0 X1\nM3 S1000\nG38.2 Z-10 F50\n")
     assert code == 2 and not device.executed
     assert err.strip() == ("interp: error: line 4, column 1: G38.2: G38.2 with the spindle or coolant on: stop "
                            "them (M5, M9) before probing")
@@ -182,17 +169,11 @@ def test_probing_with_the_spindle_on_is_refused_before_anything_moves(capsys, tm
 
 def test_a_probe_touching_before_the_first_move(capsys, tmp_path, monkeypatch):
     device = DeviceModel(probe=(2, "min", 0))
-    attach(monkeypatch, device)
-    program = tmp_path / "p.nc"
-    program.write_text("G21 G90\nG38.2 Z-10 F50\n")
-    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, "G21 G90\nG38.2 Z-10 F50\n")
     assert code == 1 and err.strip() == "interp: error: line 2: G38.2: the probe touches already before the move"
 
 
 def test_a_gcode_error_after_a_probe_stops_the_program_before_anything_moves(capsys, tmp_path, monkeypatch):
     device = DeviceModel(probe=(2, "min", -320))
-    attach(monkeypatch, device)
-    program = tmp_path / "p.nc"
-    program.write_text("G21 G90\nG0 X5\nG38.2 Z-10 F50\nG0 X1 I5\n")
-    code, out, err = run(capsys, "send", str(program), "--sim-model")
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, "G21 G90\nG0 X5\nG38.2 Z-10 F50\nG0 X1 I5\n")
     assert code == 2 and not device.executed and "line 4" in err
