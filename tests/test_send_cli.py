@@ -168,9 +168,10 @@ def test_missing_file(capsys):
 
 
 def test_port_cannot_open(capsys, program):
-    code, _, err = run(capsys, "send", program, "--port", "/dev/nonexistent-tty")
-    assert code == 1 and err.startswith("interp: error: link: cannot open /dev/nonexistent-tty")
-    assert len(err.strip().splitlines()) == 1
+    for argv in (("send", program), ("status",)):
+        code, _, err = run(capsys, *argv, "--port", "/dev/nonexistent-tty")
+        assert code == 1 and err.startswith("interp: error: link: cannot open /dev/nonexistent-tty"), argv
+        assert len(err.strip().splitlines()) == 1
 
 
 def test_port_without_controller(capsys, program):

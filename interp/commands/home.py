@@ -155,11 +155,10 @@ def cmd_home(args) -> int:
     check_link_args(args)
     machine = load_machine(args.machine, [], None)
     axes = axes_to_home(args, machine)
-    try:
-        transport, baud = send.open_transport(args, machine)     # (looked up: tests replace it)
-    except LinkError as err:
-        print(f"interp: error: link: {err}", file=sys.stderr)
+    opened = send.open_or_report(args, machine)
+    if opened is None:
         return 1
+    transport, baud = opened
     driver = None
     try:
         driver = Driver(transport, baud=baud)

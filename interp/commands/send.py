@@ -79,6 +79,16 @@ def open_transport(args, machine: Machine):
     return link, link.baud
 
 
+def open_or_report(args, machine: Machine):
+    """open_transport's (transport, baud), or None after one line on stderr when the link
+    cannot be opened (`interp send`, `status`, `home`: exit status 1)."""
+    try:
+        return open_transport(args, machine)
+    except LinkError as err:
+        print(f"interp: error: link: {err}", file=sys.stderr)
+        return None
+
+
 def check_link_args(args) -> None:
     chosen = [name for name, on in (("--port", args.port), ("--sim", args.sim),
                                     ("--sim-model", getattr(args, "sim_model", False))) if on]
@@ -208,11 +218,10 @@ def cmd_send(args) -> int:
     if machine.parameter_file is not None and not args.sim:
         check_writable(machine.parameter_file)      # before the machine moves
     build = compile_build()
-    try:
-        transport, baud = open_transport(args, machine)
-    except LinkError as err:
-        print(f"interp: error: link: {err}", file=sys.stderr)
+    opened = open_or_report(args, machine)
+    if opened is None:
         return 1
+    transport, baud = opened
     keyboard = progress = None
     result = at_end = None
     try:

@@ -21,11 +21,10 @@ def cmd_status(args) -> int:
     args.steps = args.line_noise = None
     check_link_args(args)
     machine = load_machine(args.machine, [], None)
-    try:
-        transport, baud = send.open_transport(args, machine)     # (looked up: tests replace it)
-    except LinkError as err:
-        print(f"interp: error: link: {err}", file=sys.stderr)
+    opened = send.open_or_report(args, machine)
+    if opened is None:
         return 1
+    transport, baud = opened
     try:
         driver = Driver(transport, baud=baud)
         driver.connect()
