@@ -32,7 +32,8 @@ from ..link.driver import (Driver, FeedOverride, LinkError, MachineError, Mismat
                            check_idle, configure, read_position, run_program, signed32)
 from ..link.records import DEFAULT_BUILD, Build, encode_program
 from ..simulation.output import check_outputs
-from .gcode import interpret_program, read_program, saved_parameters
+from . import gcode as gcode_command          # (its interpret_program looked up at each call)
+from .gcode import read_program, saved_parameters
 
 DEFAULT_BAUD = 115200
 CURVE = 3
@@ -350,12 +351,12 @@ class ProgramRun:
     def all(self) -> None:
         done, here = 0, tuple(self.start)                 # moves run so far; the machine's position
         while True:
-            self.program = program = interpret_program(self.text, self.machine, self.start, self.saved,
+            self.program = program = gcode_command.interpret_program(self.text, self.machine, self.start, self.saved,
                                                        probes=self.results)
             whole = program
             if program.probe_pending and not self.results:
                 # the whole program once (each touch at its move's end): G-code errors before anything moves
-                whole = interpret_program(self.text, self.machine, self.start, self.saved)
+                whole = gcode_command.interpret_program(self.text, self.machine, self.start, self.saved)
             if self.machine.parameter_file is not None and (whole is not program or not program.probe_pending):
                 check_lengths(whole.saved)
             self.show(program.messages, "message")

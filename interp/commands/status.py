@@ -12,7 +12,7 @@ from ..gcode.machine import load_machine
 from ..link import registers
 from ..gcode.parameter_file import describe
 from ..link.driver import Driver, LinkError, read_position
-from .gcode import interpret_program
+from . import gcode as gcode_command          # (its interpret_program looked up at each call)
 from . import send
 from .send import add_link_options, check_link_args, mm_text
 
@@ -38,7 +38,7 @@ def cmd_status(args) -> int:
         lines.append(f"machine position {mm_text(machine, position)} mm")
         if machine.parameter_file is not None:        # and in the work coordinates the file keeps
             try:
-                program = interpret_program("", machine, position)
+                program = gcode_command.interpret_program("", machine, position)
             except UsageError as err:
                 lines.append(f"work position unknown: {err}")
             else:
