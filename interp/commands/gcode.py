@@ -140,12 +140,6 @@ def fmt(value: float) -> str:
     return str(int(value)) if value == int(value) and abs(value) < 1e15 else f"{value:.6g}"
 
 
-def warning_count(program, compiled: Compiled) -> int:
-    """The warnings, those an "N more warnings like the line above" line stands for included."""
-    more = sum(1 for w in compiled.warnings if w.endswith(" more warnings like the line above"))
-    return len(program.warnings) + len(compiled.warnings) - more + compiled.warnings_left_out
-
-
 def summary(program, compiled: Compiled, machine: Machine) -> dict:
     """The --check --json object."""
     return {"end": [round(v, 6) for v in program.end_work], "units": program.units,
@@ -156,7 +150,7 @@ def summary(program, compiled: Compiled, machine: Machine) -> dict:
             "machine_time_s": round(compiled.machine_time_s, 6), "clock_hz": machine.clock_hz,
             "step_events": compiled.step_events, "profile": compiled.profile, "settings": dict(compiled.settings),
             "warnings": program.warnings + compiled.warnings, "messages": list(program.messages),
-            "warning_count": warning_count(program, compiled)}
+            "warning_count": len(program.warnings) + compiled.warning_count}
 
 
 def where(program, compiled: Compiled) -> str:

@@ -187,7 +187,7 @@ class Cmd(Command):
 class Compiled:
     commands: list[Cmd] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
-    warnings_left_out: int = 0      # warnings counted in an "N more warnings like the line above"
+    warning_count: int = 0          # the warnings, those an "N more warnings like the line above" stands for too
     end_steps: tuple[int, int, int] = (0, 0, 0)
     machine_time_s: float = 0.0
     moves: int = 0              # lines and arcs of the program
@@ -836,9 +836,9 @@ class Compiler:
         self.profile()
         for kind, seen in self._warnings.items():
             self.out.warnings += seen
+            self.out.warning_count += len(seen) + self._more.get(kind, 0)
             if self._more.get(kind):
                 self.out.warnings.append(f"{self._more[kind]} more warnings like the line above")
-                self.out.warnings_left_out += self._more[kind]
         return self.out
 
 
