@@ -162,6 +162,24 @@ def test_gcode_error_like_interp_gcode(capsys, tmp_path):
     assert code == code_g == 2 and err == err_g and "line 3" in err
 
 
+@pytest.mark.parametrize("text, word", [
+    ("G21\nG1 X1 F600\nG1 Q7 X2\n", "line 3"),
+    ("G21\nG1 X5000 F600\n", "line 2: X 5000 mm is beyond the X travel"),
+    ("G21\nG38.2 Z-5 F100\nG1 Q7\n", "line 2: G38.2: the simulated controller has no probe"),
+])
+def test_sim_reports_gcode_errors_before_the_simulator(capsys, tmp_path, monkeypatch, text, word):
+    """--sim interprets and compiles the program from 0 (where a fresh simulated controller
+    stands) before it builds and starts the simulator: a G-code error, a soft limit or a probe
+    move is one line at once, and no transport is opened."""
+    def no_transport(args, machine):
+        raise AssertionError("the simulator was started")
+    monkeypatch.setattr(send, "open_transport", no_transport)
+    path = tmp_path / "bad.nc"
+    path.write_text(text)
+    code, out, err = run(capsys, "send", str(path), "--sim")
+    assert code == 2 and word in err and len(err.strip().splitlines()) == 1 and out == "", err
+
+
 def test_missing_file(capsys):
     code, _, err = run(capsys, "send", "/nonexistent/x.nc", "--sim-model")
     assert code == 2 and "cannot read /nonexistent/x.nc" in err

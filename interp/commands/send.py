@@ -211,11 +211,28 @@ def limit_names(limits: int) -> str:
 
 # ---------------- the command ----------------
 
+def refuse_probe(move) -> None:
+    raise UsageError(f"line {move.line}: G38.{move.probe - 380}: the simulated controller has no "
+                     "probe (interp gcode takes the touch at the end of the move)")
+
+
+def check_for_sim(text: str, machine: Machine, saved: dict) -> None:
+    """--sim: the program as the run will interpret and compile it (a fresh simulated
+    controller stands at 0), so that a G-code error, or a probe move the simulator cannot
+    run, is reported before the simulator is built and started."""
+    program = gcode_command.interpret_program(text, machine, (0, 0, 0), saved, probes=[])
+    if program.probe_pending:
+        refuse_probe(program.moves[-1])
+    compile_program(program, machine, start_steps=(0, 0, 0))
+
+
 def cmd_send(args) -> int:
     check_link_args(args)
     machine = load_machine(args.machine, [], None)
     text = read_program(args.file)
     saved = saved_parameters(machine)
+    if args.sim:
+        check_for_sim(text, machine, saved)
     if machine.parameter_file is not None and not args.sim:
         check_writable(machine.parameter_file)      # before the machine moves
     build = compile_build()
@@ -364,8 +381,7 @@ class ProgramRun:
             moves = program.moves[done:]
             probe = moves.pop() if program.probe_pending else None      # (the interpretation's last move)
             if probe is not None and self.args.sim:
-                raise UsageError(f"line {probe.line}: G38.{probe.probe - 380}: the simulated controller has no "
-                                 "probe (interp gcode takes the touch at the end of the move)")
+                refuse_probe(probe)
             if moves or (probe is None and self.compiled is None):
                 if not self.piece(program, moves, here, last=probe is None):
                     return
