@@ -13,6 +13,8 @@
 //                 while the FIRE1 button is pressed (LOCK and the button
 //                 synchronized by two flip-flops)
 //   UART ........ the FT231X USB serial port (ftdi_txd in, ftdi_rxd out)
+//   ESP32 ....... its GPIO0 held high (both board revisions' pins), as the board's
+//                 reference designs do: low, it can reset the board into the ESP32's loader
 //   machine ..... step/dir/enable, inputs, spindle, coolant, digital outputs on
 //                 the GPIO headers; the LEDs show uart_controller's led[7:0]
 module top #(
@@ -28,6 +30,8 @@ module top #(
     input  wire       reset_button,   // FIRE1, high while pressed
     input  wire       ftdi_txd,       // host -> FPGA
     output wire       ftdi_rxd,       // FPGA -> host
+    output wire       wifi_gpio0,     // ESP32 GPIO0 on PCB v2.x / v3.0.x: held high
+    output wire       wifi_gpio0_v31, // ESP32 GPIO0 on PCB v3.1.x (its enable on v3.0.x): held high
     output wire [7:0] led,
     output wire [2:0] step,
     output wire [2:0] dir,
@@ -115,6 +119,9 @@ module top #(
         else if (!(&por_q))              por_q <= por_q + {{(RESET_BITS-1){1'b0}}, 1'b1};
         rst_q <= ~&por_q;
     end
+
+    assign wifi_gpio0     = 1'b1;
+    assign wifi_gpio0_v31 = 1'b1;
 
     uart_controller #(.CLK_HZ(CLK_HZ), .BAUD(BAUD), .CURVES(CURVES)) u_controller (
         .clk(clk), .rst(rst_q),

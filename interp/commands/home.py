@@ -21,11 +21,9 @@ import sys
 from ..cores import UsageError
 from ..gcode.machine import AXES, Machine, load_machine
 from ..link import protocol as p
-from ..link.driver import (Driver, LinkError, MismatchError, check_controller, check_idle, configure,
-                           read_position, run_program)
-from ..link.records import encode_program
-from .gcode import compile_text
+from ..link.driver import Driver, LinkError, MismatchError, check_controller, check_idle, read_position
 from . import send
+from .jog import relative_move
 from .send import add_link_options, check_link_args, compile_build, mm_text
 
 SEEK_TRAVELS = 1.5          # the seek goes at most 1.5 travels (and a pull-off) towards the switch
@@ -46,11 +44,7 @@ def unlimited(machine: Machine) -> Machine:
 
 def move(driver: Driver, machine: Machine, free: Machine, axis: int, distance_mm: float, rate: float):
     """One G91 G1 move of `axis` by distance_mm at `rate` mm/min: the run's Outcome."""
-    text = f"G21 G91 G1 {AXES[axis].upper()}{distance_mm:.6f} F{rate:.6f}\n"
-    _, compiled = compile_text(text, free, start_steps=read_position(driver), saved={})
-    stream = encode_program(compiled.commands, compile_build())
-    configure(driver, machine.timing(), compiled.settings)
-    return run_program(driver, stream, len(compiled.commands))
+    return relative_move(driver, machine, free, [distance_mm if a == axis else 0.0 for a in range(3)], rate)
 
 
 def switch_active(driver: Driver, axis: int) -> bool:
@@ -180,16 +174,7 @@ def cmd_home(args) -> int:
         print(f"interp: error: link: {err}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
-        told = ""
-        if driver is not None:
-            try:
-                driver.drop_stream()
-                driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_ENABLE)
-                told = ": the controller was told to abort"
-            except LinkError as err:
-                told = f": telling the controller to abort failed ({err})"
-        print(f"interp: interrupted{told}", file=sys.stderr)
-        return 1
+        return send.interrupted(driver)
     finally:
         transport.close()
     return 0

@@ -90,6 +90,21 @@ def open_or_report(args, machine: Machine):
         return None
 
 
+def interrupted(driver: Driver | None) -> int:
+    """Ctrl-C in `interp home` or `jog`: nothing more is sent and the controller is told to
+    abort (at once: the motors may lose steps, as a second Ctrl-X); one line, exit status 1."""
+    told = ""
+    if driver is not None:
+        try:
+            driver.drop_stream()
+            driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_ENABLE)
+            told = ": the controller was told to abort"
+        except LinkError as err:
+            told = f": telling the controller to abort failed ({err})"
+    print(f"interp: interrupted{told}", file=sys.stderr)
+    return 1
+
+
 def check_link_args(args) -> None:
     chosen = [name for name, on in (("--port", args.port), ("--sim", args.sim),
                                     ("--sim-model", getattr(args, "sim_model", False))) if on]
