@@ -8,8 +8,9 @@
 //     -> motion_top (queues, cores, path-speed profile, step/dir)
 //     -> input_guard (e-stop and limit switches gate the steps, probe latch) -> step, dir
 //   motion_top's events -> machine_io (spindle, PWM, coolant, digital outputs)
+//   every output pin: the logical output XOR its OUTPUT_INVERT bit (active-low drivers)
 //   controller_regs: the register map (Wishbone B4 classic slave).
-// Positions (POS_X/Y/Z) count the rising edges of the step pins, here, so that an abort
+// Positions (POS_X/Y/Z) count the rising edges of the (logical) step pulses, here, so that an abort
 // (which resets motion_top) keeps them; a register write at rest sets one (homing).  Any error latched in ERROR puts the controller in
 // ALARM: motion_top held in reset (steps stop at once), queue and partial record flushed,
 // incoming record bytes taken and dropped, spindle and coolant off, until CONTROL.clear.
@@ -196,19 +197,17 @@ module controller #(
     // ---------------- inputs, positions, errors ----------------
     wire [4:0]       inputs, input_invert;
     wire             estop_trip, probe_valid, probe_hit, probe_stop;
-    wire [2:0]       limit_trip;
+    wire [2:0]       limit_trip, steps;       // steps: the gated step pulses (logical)
     reg  [POS_W-1:0] pos_x, pos_y, pos_z;
     wire [POS_W-1:0] probe_x, probe_y, probe_z;
     input_guard #(.POS_W(POS_W)) u_guard (
         .clk(clk), .rst(rst), .estop(estop), .limit(limit), .probe(probe), .invert(input_invert),
-        .alarm(alarm), .probe_arm(probe_arm), .step_in(m_step), .step_out(step),
+        .alarm(alarm), .probe_arm(probe_arm), .step_in(m_step), .step_out(steps),
         .inputs(inputs), .estop_trip(estop_trip), .limit_trip(limit_trip),
         .pos_x(pos_x), .pos_y(pos_y), .pos_z(pos_z),
         .probe_valid(probe_valid), .probe_hit(probe_hit), .probe_x(probe_x), .probe_y(probe_y),
         .probe_z(probe_z)
     );
-    assign dir = m_dir;
-
     reg  [2:0] step_q;
     wire [2:0]       position_write;             // a register write sets a counter (homing)
     wire [POS_W-1:0] position_value;
@@ -226,10 +225,10 @@ module controller #(
             error_code   <= 8'd0;
             error_limits <= 3'b000;
         end else begin
-            step_q <= step;
-            pos_x  <= position_write[0] ? position_value : moved(pos_x, step[0] & ~step_q[0], dir[0]);
-            pos_y  <= position_write[1] ? position_value : moved(pos_y, step[1] & ~step_q[1], dir[1]);
-            pos_z  <= position_write[2] ? position_value : moved(pos_z, step[2] & ~step_q[2], dir[2]);
+            step_q <= steps;
+            pos_x  <= position_write[0] ? position_value : moved(pos_x, steps[0] & ~step_q[0], m_dir[0]);
+            pos_y  <= position_write[1] ? position_value : moved(pos_y, steps[1] & ~step_q[1], m_dir[1]);
+            pos_z  <= position_write[2] ? position_value : moved(pos_z, steps[2] & ~step_q[2], m_dir[2]);
             if (clear)
                 error_limits <= 3'b000;
             // the first error wins until CONTROL.clear
@@ -254,13 +253,14 @@ module controller #(
     end
 
     // ---------------- outputs, registers ----------------
-    wire [15:0] duty;
-    wire        pause;
+    wire [15:0] duty, output_invert;
+    wire        pause, io_spindle_on, io_spindle_ccw, io_spindle_pwm, io_mist, io_flood;
+    wire [3:0]  io_dout;
     machine_io #(.W(W)) u_io (
         .clk(clk), .rst(rst), .event_valid(event_valid), .event_code(event_code),
         .event_value(event_value), .off(flush), .period(spindle_period),
-        .spindle_on(spindle_on), .spindle_ccw(spindle_ccw), .duty(duty), .spindle_pwm(spindle_pwm),
-        .mist(mist), .flood(flood), .dout(dout), .pause(pause)
+        .spindle_on(io_spindle_on), .spindle_ccw(io_spindle_ccw), .duty(duty), .spindle_pwm(io_spindle_pwm),
+        .mist(io_mist), .flood(io_flood), .dout(io_dout), .pause(pause)
     );
     assign hold_set = pause | (probe_hit & probe_stop);     // M0..; the probe's touch (G38.2)
 
@@ -284,7 +284,9 @@ module controller #(
     wire [2:0]  state = alarm ? 3'd4 : hold ? (halted ? 3'd3 : 3'd2) : busy ? 3'd1 : 3'd0;
     assign status_state = {5'd0, state};
     assign status_error = error_code;
-    assign enable = enabled;
+    // the pins: the logical outputs XOR OUTPUT_INVERT (positions and OUTPUTS are logical)
+    assign {dout, flood, mist, spindle_pwm, spindle_ccw, spindle_on, enable, dir, step} = output_invert
+        ^ {io_dout, io_flood, io_mist, io_spindle_pwm, io_spindle_ccw, io_spindle_on, enabled, m_dir, steps};
 
     wire [15:0] spindle_period;
     controller_regs #(.CLK_HZ(CLK_HZ), .W(W), .FEED_W(FEED_W), .FRAC(FRAC), .NW(NW), .PF(PF),
@@ -297,13 +299,13 @@ module controller #(
         .error_limits(error_limits), .free_bytes(queue_free), .free_records(free_records),
         .pos_x(pos_x), .pos_y(pos_y), .pos_z(pos_z), .probe_x(probe_x), .probe_y(probe_y),
         .probe_z(probe_z), .inputs(inputs),
-        .outputs({8'd0, dout, flood, mist, spindle_ccw, spindle_on}), .duty(duty),
+        .outputs({8'd0, io_dout, io_flood, io_mist, io_spindle_ccw, io_spindle_on}), .duty(duty),
         .link_frames(link_frames), .link_duplicates(link_duplicates), .link_errors(link_errors),
         .link_gaps(link_gaps), .executed(executed), .hold_set(hold_set),
         .hold(hold), .enable(enabled), .fill(fill), .probe_stop(probe_stop), .abort_strobe(abort), .clear_strobe(clear), .arm_strobe(probe_arm),
         .override_percent(override_percent), .pulse_width(pulse_width), .dir_setup(dir_setup),
         .dir_hold(dir_hold), .quantum(quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
-        .input_invert(input_invert), .spindle_period(spindle_period),
+        .input_invert(input_invert), .output_invert(output_invert), .spindle_period(spindle_period),
         .position_write(position_write), .position_value(position_value),
         .data_write(data_write), .data_word(data_word), .data_lanes(data_lanes), .data_ready(data_ready)
     );

@@ -86,6 +86,7 @@ module controller_regs #(
     output reg  [3:0]        block_shift,
     output reg  [3:0]        jerk_shift,
     output reg  [4:0]        input_invert,
+    output reg  [15:0]       output_invert,
     output reg  [15:0]       spindle_period,
     output wire [2:0]        position_write, // strobes: set POS_X / POS_Y / POS_Z to position_value
     output wire [POS_W-1:0]  position_value,
@@ -204,6 +205,7 @@ module controller_regs #(
         words[REG_LINK_FRAMES[6:2] * 32 +: 32]    = {link_duplicates, link_frames};
         words[REG_LINK_ERRORS[6:2] * 32 +: 32]    = {link_gaps, link_errors};
         words[REG_EXECUTED[6:2] * 32 +: 32]       = executed;
+        words[REG_OUTPUT_INVERT[6:2] * 32 +: 32]  = {16'd0, output_invert};
     end
     wire [31:0] value = address[7] ? 32'd0 : words[address[6:2] * 32 +: 32];
 
@@ -231,6 +233,7 @@ module controller_regs #(
             block_shift      <= 4'd2;
             jerk_shift       <= 4'd0;
             input_invert     <= 5'd0;
+            output_invert    <= 16'd0;
             spindle_period   <= PERIOD_RESET[15:0];
             refused          <= 1'b0;
             position_set     <= 3'b000;
@@ -255,6 +258,7 @@ module controller_regs #(
                     REG_QUANTUM_HI[7:0]:     quantum <= quantum_hi[FEED_W-1:0];
                     REG_MOTION[7:0]:         {jerk_shift, block_shift} <= wb_dat_w[7:0];
                     REG_INPUT_INVERT[7:0]:   input_invert <= wb_dat_w[4:0];
+                    REG_OUTPUT_INVERT[7:0]:  output_invert <= wb_dat_w[15:0];
                     REG_SPINDLE_PERIOD[7:0]: spindle_period <= wb_dat_w[15:0];
                     default: ;
                 endcase

@@ -34,6 +34,7 @@ localparam [7:0] REG_LINK_FRAMES = 8'h6C;  // RO Link frames
 localparam [7:0] REG_LINK_ERRORS = 8'h70;  // RO Link errors
 localparam [7:0] REG_CMD_DATA = 8'h74;  // WO Command data
 localparam [7:0] REG_EXECUTED = 8'h78;  // RO Executed records
+localparam [7:0] REG_OUTPUT_INVERT = 8'h7C;  // RW Output polarity
 // ID
 localparam integer ID_VALUE_LSB = 0;
 localparam integer ID_VALUE_WIDTH = 32;
@@ -211,4 +212,23 @@ localparam integer CMD_DATA_DATA_WIDTH = 32;
 // EXECUTED
 localparam integer EXECUTED_COUNT_LSB = 0;
 localparam integer EXECUTED_COUNT_WIDTH = 32;
+// OUTPUT_INVERT
+localparam integer OUTPUT_INVERT_STEP_LSB = 0;
+localparam integer OUTPUT_INVERT_STEP_WIDTH = 3;
+localparam integer OUTPUT_INVERT_DIR_LSB = 3;
+localparam integer OUTPUT_INVERT_DIR_WIDTH = 3;
+localparam integer OUTPUT_INVERT_ENABLE_LSB = 6;
+localparam integer OUTPUT_INVERT_ENABLE_WIDTH = 1;
+localparam integer OUTPUT_INVERT_SPINDLE_ON_LSB = 7;
+localparam integer OUTPUT_INVERT_SPINDLE_ON_WIDTH = 1;
+localparam integer OUTPUT_INVERT_SPINDLE_CCW_LSB = 8;
+localparam integer OUTPUT_INVERT_SPINDLE_CCW_WIDTH = 1;
+localparam integer OUTPUT_INVERT_SPINDLE_PWM_LSB = 9;
+localparam integer OUTPUT_INVERT_SPINDLE_PWM_WIDTH = 1;
+localparam integer OUTPUT_INVERT_MIST_LSB = 10;
+localparam integer OUTPUT_INVERT_MIST_WIDTH = 1;
+localparam integer OUTPUT_INVERT_FLOOD_LSB = 11;
+localparam integer OUTPUT_INVERT_FLOOD_WIDTH = 1;
+localparam integer OUTPUT_INVERT_DIGITAL_LSB = 12;
+localparam integer OUTPUT_INVERT_DIGITAL_WIDTH = 4;
 /* verilator lint_on UNUSEDPARAM */

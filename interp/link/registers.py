@@ -41,6 +41,7 @@ REG_LINK_FRAMES = 0x6C
 REG_LINK_ERRORS = 0x70
 REG_CMD_DATA = 0x74
 REG_EXECUTED = 0x78
+REG_OUTPUT_INVERT = 0x7C
 
 REGISTERS = {
     "ID": REG_ID,
@@ -74,6 +75,7 @@ REGISTERS = {
     "LINK_ERRORS": REG_LINK_ERRORS,
     "CMD_DATA": REG_CMD_DATA,
     "EXECUTED": REG_EXECUTED,
+    "OUTPUT_INVERT": REG_OUTPUT_INVERT,
 }
 
 # register -> access of the register as a whole (ro, rw, wo)
@@ -109,6 +111,7 @@ ACCESS = {
     "LINK_ERRORS": "ro",
     "CMD_DATA": "wo",
     "EXECUTED": "ro",
+    "OUTPUT_INVERT": "rw",
 }
 
 FIELDS = {
@@ -185,6 +188,15 @@ FIELDS = {
     "LINK_ERRORS.gaps": (16, 16, "ro"),
     "CMD_DATA.data": (0, 32, "wo"),
     "EXECUTED.count": (0, 32, "ro"),
+    "OUTPUT_INVERT.step": (0, 3, "rw"),
+    "OUTPUT_INVERT.dir": (3, 3, "rw"),
+    "OUTPUT_INVERT.enable": (6, 1, "rw"),
+    "OUTPUT_INVERT.spindle_on": (7, 1, "rw"),
+    "OUTPUT_INVERT.spindle_ccw": (8, 1, "rw"),
+    "OUTPUT_INVERT.spindle_pwm": (9, 1, "rw"),
+    "OUTPUT_INVERT.mist": (10, 1, "rw"),
+    "OUTPUT_INVERT.flood": (11, 1, "rw"),
+    "OUTPUT_INVERT.digital": (12, 4, "rw"),
 }
 
 RESETS = {
@@ -219,6 +231,7 @@ RESETS = {
     "LINK_ERRORS": 0x00000000,
     "CMD_DATA": 0x00000000,
     "EXECUTED": 0x00000000,
+    "OUTPUT_INVERT": 0x00000000,
 }
 
 # fields whose value is a two's-complement number

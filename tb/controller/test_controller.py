@@ -109,7 +109,8 @@ async def registers(dut):
         assert tb.last_ack <= 2, f"{name}: ack after {tb.last_ack} cycles"
     rw = {"OVERRIDE": 0xFF, "PULSE_WIDTH": tw_mask, "DIR_SETUP": tw_mask, "DIR_HOLD": tw_mask,
           "QUANTUM_LO": feed_mask & 0xFFFFFFFF, "QUANTUM_HI": feed_mask >> 32, "MOTION": 0xFF,
-          "SPINDLE_PERIOD": 0xFFFF, "POS_X": 0xFFFFFFFF, "POS_Y": 0xFFFFFFFF, "POS_Z": 0xFFFFFFFF}
+          "SPINDLE_PERIOD": 0xFFFF, "POS_X": 0xFFFFFFFF, "POS_Y": 0xFFFFFFFF, "POS_Z": 0xFFFFFFFF,
+          "OUTPUT_INVERT": 0xFFFF}
     for name, mask in rw.items():
         for value in (0xFFFFFFFF, 0x5A5A5A5A, 0):
             await tb.write(name, value)
@@ -133,7 +134,7 @@ async def registers(dut):
     assert await tb.read("CONTROL") == 0 and int(dut.enable.value) == 0
     # unknown addresses and CMD_DATA read 0; writes there change nothing
     snapshot = {n: await tb.read(n) for n in names}
-    for address in (0x7C, 0x80, 0xA4, 0xFC, 0x7D, 0x03):
+    for address in (0x80, 0xA4, 0xFC, 0x81, 0x03):
         await tb.write(address, 0xFFFFFFFF)
         assert await tb.read(address) == (0 if address != 0x03 else 0x494E5450), f"address {address:#x}"
     assert {n: await tb.read(n) for n in names} == snapshot
@@ -152,7 +153,14 @@ async def registers(dut):
     await tb.write("INPUT_INVERT", 0)
     await tb.write("CONTROL", CLEAR)
     assert await tb.read("ERROR") == 0 and await tb.state() == IDLE
+    # OUTPUT_INVERT: each output pin is its logical value XOR its bit (at rest all logical 0)
+    pins = ("step", "dir", "enable", "spindle_on", "spindle_ccw", "spindle_pwm", "mist", "flood", "dout")
+    for value in (0xFFFF, 0x5A5A, 0):
+        await tb.write("OUTPUT_INVERT", value)
+        got = [int(getattr(dut, pin).value) for pin in pins]
+        assert got == [value & 7, value >> 3 & 7, *[value >> b & 1 for b in range(6, 12)], value >> 12], got
     # rst restores every reset value
+    await tb.write("OUTPUT_INVERT", 0xFFFF)
     await tb.write("OVERRIDE", 33)
     await tb.reset()
     assert {n: await tb.read(n) for n in names} == {**want, "LINK_FRAMES": 0xABCD1234, "LINK_ERRORS": 0xFFFF0007}
@@ -256,6 +264,23 @@ async def trip_mid_arc(tb, pin, value, code):
     size = 1 << int(dut.QUEUE_AW.value)
     assert await tb.read("QUEUE_FREE") & 0xFFFF == size, "ALARM flushes the queue"
     assert await tb.read("EXECUTED") == executed + 1, "the records behind the arc never ran"
+
+
+@cocotb.test()
+async def inverted_step_and_dir_pins(dut):
+    """OUTPUT_INVERT on step and dir (active-low drivers, a motor turning the wrong way): the pins
+    carry the complements, so the pins' rising edges (the monitor's) are as many as the steps and
+    the pins' travel is the negated one, while POS_X/Y/Z count the logical steps."""
+    tb = await Bench(dut).start()
+    await tb.write("OUTPUT_INVERT", 0x3F)
+    assert len(tb.steps.edges) == 3
+    tb.steps.edges.clear()                  # the write's edge on each step pin (documented)
+    cmds = tb.profiled(LINE_ARC_HELIX)
+    await tb.send(tb.records(cmds))
+    await tb.wait_idle()
+    end, n = tb.end_of(cmds)
+    assert await tb.position() == end and tb.steps.position() == [-v for v in end], (end, tb.steps.position())
+    assert len(tb.steps.edges) == n and int(dut.step.value) == 7
 
 
 @cocotb.test()
@@ -670,7 +695,8 @@ async def position_set_at_rest(dut):
     assert await tb.position() == [0, 0, 0] and await tb.read("STATUS") >> 16 == 0
 
 
-SMALL_TESTS = ["registers", "records_to_motion_top", "program_ends_at_its_position", "estop_and_limit_mid_arc",
+SMALL_TESTS = ["registers", "records_to_motion_top", "program_ends_at_its_position", "inverted_step_and_dir_pins",
+               "estop_and_limit_mid_arc",
                "hold_resume_mid_helix", "abort_and_restart", "fill_then_run", "reset_at_random_cycles",
                "events_drive_outputs", "probe_latch", "probe_stops_the_motion", "bad_records", "settings_wait_for_idle",
                "position_set_at_rest"]
