@@ -82,6 +82,9 @@ def test_omitted_keys_take_the_defaults(tmp_path):
     ("[controller]\nclock_hz = 1000\n", "axis.x.max_rate_mm_min (6000 mm/min = 10000 steps/s) is more than one step"),
     ("[output]\npulse_ns = 2e6\n", "output.pulse_ns is more than 65535 clock cycles"),
     ("[tool.a]\nlength_mm = 1\n", "m.toml: unknown section [tool.a]"),
+    ("[output]\ninvert = [\"step_w\"]\n", "m.toml: output.invert: 'step_w' is not one of step_x, step_y"),
+    ("[input]\ninvert = \"probe\"\n", "m.toml: input.invert must be a list of names of estop, limit_x"),
+    ("[input]\ninvert = [\"probe\", \"probe\"]\n", "m.toml: input.invert: a name given twice"),
     ("axis = 3\n", "m.toml: unknown key"),
     ("[axis.x\n", "m.toml: not valid TOML"),
 ])
@@ -91,6 +94,13 @@ def test_bad_machine_files(tmp_path, text, message):
     with pytest.raises(MachineError) as err:
         load_machine(str(f))
     assert message in str(err.value) and "\n" not in str(err.value)
+
+
+def test_polarity_masks():
+    """input.invert and output.invert as the INPUT_INVERT and OUTPUT_INVERT bits (regs/controller.rdl)."""
+    assert load_machine().polarity() == {"INPUT_INVERT": 0, "OUTPUT_INVERT": 0}
+    m = load_machine(sets=['input.invert=["probe", "estop"]', 'output.invert=["dir_y", "enable", "dout3", "step_x"]'])
+    assert m.polarity() == {"INPUT_INVERT": 0b10001, "OUTPUT_INVERT": 1 << 4 | 1 << 6 | 1 << 15 | 1}
 
 
 def test_overrides():

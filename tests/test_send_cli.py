@@ -124,6 +124,38 @@ def test_a_run_after_an_alarm_warns_of_lost_steps(capsys, program, monkeypatch):
             "once, so the motors may have lost steps the position counts") in err.splitlines()
 
 
+def test_the_machine_files_polarity_is_written_once(capsys, program, tmp_path, monkeypatch):
+    """input.invert and output.invert reach INPUT_INVERT and OUTPUT_INVERT before anything runs,
+    and only where they differ: a second run writes neither."""
+    device = DeviceModel()
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
+    machine = tmp_path / "m.toml"
+    machine.write_text('[input]\ninvert = ["probe"]\n[output]\ninvert = ["dir_y", "enable"]\n')
+    for _ in range(2):
+        assert run(capsys, "send", program, "--sim-model", "--machine", str(machine))[0] == 0
+    assert device.regs["INPUT_INVERT"] == 0x10 and device.regs["OUTPUT_INVERT"] == 0x50
+    written = [name for name, _ in device.writes if name.endswith("_INVERT")]
+    assert written == ["INPUT_INVERT", "OUTPUT_INVERT"]
+    assert device.writes[:2] == [("INPUT_INVERT", 0x10), ("OUTPUT_INVERT", 0x50)]      # before anything else
+
+
+@pytest.mark.parametrize("changed", [True, False])
+def test_an_error_of_the_old_input_polarity_is_cleared(capsys, program, tmp_path, monkeypatch, changed):
+    """After the controller's reset a normally-open e-stop reads active until INPUT_INVERT is
+    written: that error 16 is cleared with the change, with no warning of lost steps.  An error
+    latched under the machine file's polarity is kept and warned of."""
+    device = DeviceModel()
+    device.error = 16
+    if not changed:
+        device.regs["INPUT_INVERT"] = 1
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
+    machine = tmp_path / "m.toml"
+    machine.write_text('[input]\ninvert = ["estop"]\n')
+    code, out, err = run(capsys, "send", program, "--sim-model", "--machine", str(machine))
+    assert code == 0, err
+    assert ("stopped on error 16" in err) != changed, err
+
+
 def test_build_mismatch_exit_2(capsys, program, monkeypatch):
     monkeypatch.setattr(send, "open_transport", lambda args, machine: (DeviceModel(build=Build(MW=10)), 115200))
     code, out, err = run(capsys, "send", program, "--sim-model")

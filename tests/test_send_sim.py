@@ -161,6 +161,25 @@ def test_input_pins(files):
             link.set_pin("spindle", 1)
 
 
+def test_polarity_on_the_rtl(files):
+    """apply_polarity through the link on the RTL: OUTPUT_INVERT takes the machine file's bits and
+    the pins follow them; an e-stop pin that reads active only under the new INPUT_INVERT (a real
+    e-stop) latches ERROR 16, which the write's clear cannot clear while it is active."""
+    from interp.gcode.machine import load_machine
+    from interp.link.driver import Driver, apply_polarity
+
+    with SimLink(machine=load_machine(str(files / "machine.toml"))) as link:
+        driver = Driver(link, baud=link.baud)
+        driver.connect()
+        apply_polarity(driver, {"OUTPUT_INVERT": 0x1FFFF})
+        assert driver.read_register("OUTPUT_INVERT") == 0xFFFF and driver.read_register("ERROR") == 0
+        apply_polarity(driver, {"INPUT_INVERT": 1})         # the e-stop pin is low: active low, pressed
+        assert driver.read_register("OUTPUT_INVERT") == 0 and driver.read_register("ERROR") & 0xFF == 16
+        link.set_pin("estop", 1)
+        driver.write_register("CONTROL", p.CONTROL_CLEAR)
+        assert driver.read_register("ERROR") == 0 and driver.read_register("INPUTS") == 0
+
+
 def test_homing_on_the_rtl(files, tmp_path):
     """interp home's cycle through the controller's RTL: a switch that follows the pulses
     counted at the step pins (0.37 mm below where the machine powered up) stops the seek and

@@ -21,7 +21,8 @@ import sys
 from ..cores import UsageError
 from ..gcode.machine import AXES, Machine, load_machine
 from ..link import protocol as p
-from ..link.driver import Driver, LinkError, MismatchError, check_controller, check_idle, read_position
+from ..link.driver import (Driver, LinkError, MismatchError, apply_polarity, check_controller, check_idle,
+                           read_position)
 from . import send
 from .jog import relative_move
 from .send import add_link_options, check_link_args, compile_build, mm_text
@@ -159,6 +160,7 @@ def cmd_home(args) -> int:
         driver.connect()
         check_controller(driver, compile_build(), machine.clock_hz)
         check_idle(driver)
+        apply_polarity(driver, machine.polarity())
         start = driver.clock()
         for axis in axes:
             switch_mm, end_mm = home_axis(driver, machine, axis)

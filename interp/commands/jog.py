@@ -25,8 +25,8 @@ import time
 from ..cores import UsageError
 from ..gcode.machine import Machine, load_machine
 from ..link import protocol as p
-from ..link.driver import (Driver, LinkError, MismatchError, check_controller, check_idle, configure,
-                           read_position, run_program)
+from ..link.driver import (Driver, LinkError, MismatchError, apply_polarity, check_controller, check_idle,
+                           configure, read_position, run_program)
 from ..link.records import encode_program
 from .gcode import compile_text
 from . import send
@@ -161,6 +161,7 @@ def cmd_jog(args) -> int:
         driver.connect()
         check_controller(driver, compile_build(), machine.clock_hz)
         check_idle(driver)
+        apply_polarity(driver, machine.polarity())
         if keys_wanted:
             keyboard = Keyboard(True)
             return interactive(driver, machine, args.feed, keyboard)

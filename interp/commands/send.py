@@ -28,8 +28,8 @@ from ..gcode.parameter_file import check_lengths, check_writable, describe, writ
 from ..link import protocol as p
 from ..gcode.compile import compile_program
 from ..gcode.moves import ProbeResult
-from ..link.driver import (Driver, FeedOverride, LinkError, MachineError, MismatchError, check_controller,
-                           check_idle, configure, read_position, run_program, signed32)
+from ..link.driver import (Driver, FeedOverride, LinkError, MachineError, MismatchError, apply_polarity,
+                           check_controller, check_idle, configure, read_position, run_program, signed32)
 from ..link.records import DEFAULT_BUILD, Build, encode_program
 from ..simulation.output import check_outputs
 from . import gcode as gcode_command          # (its interpret_program looked up at each call)
@@ -262,6 +262,7 @@ def cmd_send(args) -> int:
         driver.connect()
         check_controller(driver, build, machine.clock_hz)
         check_idle(driver)
+        apply_polarity(driver, machine.polarity())
         if not args.sim:                    # the simulator has no switches to home to
             check_homed(driver, machine)
         # the program starts where the machine is: the controller's position counters

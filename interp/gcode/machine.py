@@ -21,6 +21,10 @@ from ..cores import UsageError
 
 AXES = "xyz"
 TIMING_MAX = (1 << 16) - 1      # output-stage timing registers (TW = 16 bits), clock cycles
+# the pins of INPUT_INVERT and OUTPUT_INVERT, bit 0 first (regs/controller.rdl)
+INPUT_NAMES = ("estop", "limit_x", "limit_y", "limit_z", "probe")
+OUTPUT_NAMES = ("step_x", "step_y", "step_z", "dir_x", "dir_y", "dir_z", "enable", "spindle_on", "spindle_ccw",
+                "spindle_pwm", "mist", "flood", "dout0", "dout1", "dout2", "dout3")
 POSITION_MAX = (1 << 31) - 1    # motion_top's position counters (POS_W = 32, signed)
 
 
@@ -55,6 +59,10 @@ SCHEMA: dict[str, dict[str, tuple]] = {
         "pulse_ns": ("float>", 1000.0, 0, 1e9, "ns", "step pulse width"),
         "dir_setup_ns": ("float", 1000.0, 0, 1e9, "ns", "direction set-up before a step pulse"),
         "dir_hold_ns": ("float", 1000.0, 0, 1e9, "ns", "direction hold after a step pulse"),
+        "invert": ("names", (), OUTPUT_NAMES, None, "", "output pins that are active low (the controller's OUTPUT_INVERT)"),
+    },
+    "input": {
+        "invert": ("names", (), INPUT_NAMES, None, "", "input pins that are active low (the controller's INPUT_INVERT)"),
     },
     "spindle": {
         "max_s": ("float>", 24000.0, 0, 1e9, "rpm", "the S value of 100 % PWM duty"),
@@ -139,6 +147,11 @@ class Machine:
         """The axes `interp home` homes, in its order (0 = x)."""
         return [AXES.index(a) for a in self.homing["order"] if self.values[f"axis.{a}"]["home"] != "none"]
 
+    def polarity(self) -> dict[str, int]:
+        """The controller's INPUT_INVERT and OUTPUT_INVERT of input.invert and output.invert."""
+        return {"INPUT_INVERT": sum(1 << INPUT_NAMES.index(n) for n in self.values["input"]["invert"]),
+                "OUTPUT_INVERT": sum(1 << OUTPUT_NAMES.index(n) for n in self.values["output"]["invert"])}
+
     @property
     def max_s(self) -> float:
         return self.values["spindle"]["max_s"]
@@ -175,6 +188,15 @@ def _check(where: str, key: str, spec: tuple, value):
         if not isinstance(value, str):
             raise MachineError(f"{name} must be a string (got {value!r})")
         return value
+    if kind == "names":
+        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+            raise MachineError(f"{name} must be a list of names of {', '.join(low)} (got {value!r})")
+        for v in value:
+            if v not in low:
+                raise MachineError(f"{name}: {v!r} is not one of {', '.join(low)}")
+        if len(set(value)) != len(value):
+            raise MachineError(f"{name}: a name given twice")
+        return tuple(value)
     if kind == "point":
         if not isinstance(value, list) or len(value) != 3:
             raise MachineError(f"{name} must be a list of three numbers [x, y, z] in mm (got {value!r})")

@@ -88,7 +88,8 @@ class DeviceModel:
         self.enabled = False
         self.fill = False
         self.regs = {"OVERRIDE": 100, "PULSE_WIDTH": 25, "DIR_SETUP": 25, "DIR_HOLD": 25, "QUANTUM_LO": 1,
-                     "QUANTUM_HI": 0, "MOTION": 0, "INPUT_INVERT": 0, "SPINDLE_PERIOD": clock_hz // 20000}
+                     "QUANTUM_HI": 0, "MOTION": 0, "INPUT_INVERT": 0, "SPINDLE_PERIOD": clock_hz // 20000,
+                     "OUTPUT_INVERT": 0}
         self.writes: list[tuple[str, int]] = []     # register writes executed, in order
         self.write_states: list[int] = []           # ... and the state each found
 
@@ -471,4 +472,4 @@ class DeviceModel:
             self.position[axis] = new
             self.position_set |= 1 << axis
         elif name in self.regs:
-            self.regs[name] = value
+            self.regs[name] = value & {"INPUT_INVERT": 0x1F, "OUTPUT_INVERT": 0xFFFF}.get(name, 0xFFFFFFFF)

@@ -452,6 +452,29 @@ def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
             ("OVERRIDE", int(settings.get("override", 100)))]
 
 
+POLARITY_MASKS = {"INPUT_INVERT": 0x1F, "OUTPUT_INVERT": 0xFFFF}
+
+
+def apply_polarity(driver: Driver, polarity: dict[str, int]) -> None:
+    """Write INPUT_INVERT and OUTPUT_INVERT (the machine file's input.invert, output.invert)
+    where the controller's differ: after its reset both are 0.  An e-stop or limit error latched
+    while INPUT_INVERT still had another value came from the polarity, not the machine (a
+    normally-open switch reads active until then): it is cleared with the change.  Call it at
+    rest (check_idle), before reading ERROR.  LinkError if the controller does not take them."""
+    changed_inputs = False
+    for name, mask in POLARITY_MASKS.items():
+        value = polarity.get(name, 0) & mask
+        if driver.read_register(name) & mask != value:
+            driver.write_register(name, value)
+            if driver.read_register(name) & mask != value:
+                raise LinkError(f"the controller did not take {name} = 0x{value:X}")
+            changed_inputs |= name == "INPUT_INVERT"
+    if changed_inputs and driver.read_register("ERROR") & 0xFF in (16, 17):
+        keep = driver.read_register("CONTROL") & (p.CONTROL_HOLD | p.CONTROL_ENABLE | p.CONTROL_FILL
+                                                  | p.CONTROL_PROBE_STOP)
+        driver.write_register("CONTROL", keep | p.CONTROL_CLEAR)
+
+
 POSITION = ("POS_X", "POS_Y", "POS_Z")
 STOP_SECONDS = 10.0         # Ctrl-X: the longest wait for the feed hold before the abort
 AT_SPEED = "the motors may have lost steps"
