@@ -40,6 +40,17 @@ def test_pin_file_names_every_top_port_once(board):
             assert p.pullup, p.port
 
 
+@pytest.mark.parametrize("board", BOARD_NAMES)
+def test_shipped_machine_file_has_the_boards_clock(board):
+    """boards/<board>/machine.toml loads and gives the top's CLK_HZ (interp send refuses a
+    controller whose CLOCK_HZ differs from the machine file's clock)."""
+    from interp.gcode.machine import load_machine
+
+    top = synth.BOARDS[board].top
+    clock = int(re.search(r"parameter integer CLK_HZ\s*=\s*(\d+)", top.read_text()).group(1))
+    assert load_machine(str(top.parent / "machine.toml")).clock_hz == clock
+
+
 def test_pin_file_parse_error_is_one_line(tmp_path, monkeypatch):
     pcf = tmp_path / "hx8k_breakout"
     pcf.mkdir()
