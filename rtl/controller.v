@@ -35,7 +35,9 @@ module controller #(
     parameter integer QLW      = 4,         // width of motion_top's queue level (2^QLW > QDEPTH)
     parameter integer SDEPTH   = 2,         // steps motion_top's synchronization buffer holds
     parameter integer CURVES   = 1,         // 1: curve core present; 0: left out, kind 3 refused (error 1)
-    parameter integer QUEUE_AW = 12         // segment queue: 2^QUEUE_AW bytes (4 .. 15)
+    parameter integer QUEUE_AW = 12,        // segment queue: 2^QUEUE_AW bytes (4 .. 15)
+    parameter integer INPUT_INVERT_RESET  = 0,  // INPUT_INVERT after rst: active-low inputs from the start (0 .. 31)
+    parameter integer OUTPUT_INVERT_RESET = 0   // OUTPUT_INVERT after rst: active-low pins rest inactive from the start (0 .. 65535)
 ) (
     input  wire        clk,
     input  wire        rst,
@@ -72,13 +74,17 @@ module controller #(
     output wire        spindle_pwm,
     output wire        mist,
     output wire        flood,
-    output wire [3:0]  dout
+    output wire [3:0]  dout,
+    output wire        enable_state,    // CONTROL.enable and spindle on, before OUTPUT_INVERT (LEDs)
+    output wire        spindle_state
 );
     initial begin
         if (W < 6 || W > 255) $error("%m: W must be 6 .. 255");
         if (POS_W < W || POS_W > 32) $error("%m: POS_W must be W .. 32");
         if (CURVES < 0 || CURVES > 1) $error("%m: CURVES must be 0 or 1");
         if (QUEUE_AW < 4 || QUEUE_AW > 15) $error("%m: QUEUE_AW must be 4 .. 15");
+        if (INPUT_INVERT_RESET < 0 || INPUT_INVERT_RESET > 31) $error("%m: INPUT_INVERT_RESET must be 0 .. 31");
+        if (OUTPUT_INVERT_RESET < 0 || OUTPUT_INVERT_RESET > 65535) $error("%m: OUTPUT_INVERT_RESET must be 0 .. 65535");
         if (RECORD_BYTES > (1 << QUEUE_AW)) $error("%m: the segment queue must hold a record");
     end
 
@@ -287,11 +293,14 @@ module controller #(
     // the pins: the logical outputs XOR OUTPUT_INVERT (positions and OUTPUTS are logical)
     assign {dout, flood, mist, spindle_pwm, spindle_ccw, spindle_on, enable, dir, step} = output_invert
         ^ {io_dout, io_flood, io_mist, io_spindle_pwm, io_spindle_ccw, io_spindle_on, enabled, m_dir, steps};
+    assign enable_state  = enabled;
+    assign spindle_state = io_spindle_on;
 
     wire [15:0] spindle_period;
     controller_regs #(.CLK_HZ(CLK_HZ), .W(W), .FEED_W(FEED_W), .FRAC(FRAC), .NW(NW), .PF(PF),
                       .LEN_W(LEN_W), .ZW(ZW), .MW(MW), .TW(TW), .POS_W(POS_W), .QUEUE_AW(QUEUE_AW),
-                      .CURVES(CURVES), .RECORD_BYTES(RECORD_BYTES)) u_regs (
+                      .CURVES(CURVES), .RECORD_BYTES(RECORD_BYTES), .INPUT_INVERT_RESET(INPUT_INVERT_RESET),
+                      .OUTPUT_INVERT_RESET(OUTPUT_INVERT_RESET)) u_regs (
         .clk(clk), .rst(rst), .wb_adr(wb_adr), .wb_dat_w(wb_dat_w), .wb_dat_r(wb_dat_r), .wb_we(wb_we),
         .wb_sel(wb_sel), .wb_stb(wb_stb), .wb_cyc(wb_cyc), .wb_ack(wb_ack),
         .state(state), .busy(busy), .stopped(halted), .probe_valid(probe_valid),

@@ -32,7 +32,9 @@ module controller_regs #(
     parameter integer POS_W    = 32,        // position counter width (VERSION; 2 .. 32)
     parameter integer QUEUE_AW = 12,        // segment queue: 2^QUEUE_AW bytes (QUEUE_SIZE; 4 .. 15)
     parameter integer CURVES   = 1,         // curve core present (QUEUE_SIZE bit 24; 0 or 1)
-    parameter integer RECORD_BYTES = 84     // bytes of a record (VERSION; 1 .. 255)
+    parameter integer RECORD_BYTES = 84,    // bytes of a record (VERSION; 1 .. 255)
+    parameter integer INPUT_INVERT_RESET  = 0,  // INPUT_INVERT after rst (0 .. 31)
+    parameter integer OUTPUT_INVERT_RESET = 0   // OUTPUT_INVERT after rst (0 .. 65535)
 ) (
     input  wire              clk,
     input  wire              rst,
@@ -110,6 +112,8 @@ module controller_regs #(
         if (QUEUE_AW < 4 || QUEUE_AW > 15) $error("%m: QUEUE_AW must be 4 .. 15");
         if (CURVES < 0 || CURVES > 1) $error("%m: CURVES must be 0 or 1");
         if (RECORD_BYTES < 1 || RECORD_BYTES > 255) $error("%m: RECORD_BYTES must be 1 .. 255");
+        if (INPUT_INVERT_RESET < 0 || INPUT_INVERT_RESET > 31) $error("%m: INPUT_INVERT_RESET must be 0 .. 31");
+        if (OUTPUT_INVERT_RESET < 0 || OUTPUT_INVERT_RESET > 65535) $error("%m: OUTPUT_INVERT_RESET must be 0 .. 65535");
     end
 
     /* verilator lint_off UNUSEDPARAM */
@@ -232,8 +236,8 @@ module controller_regs #(
             quantum          <= {{(FEED_W-1){1'b0}}, 1'b1};
             block_shift      <= 4'd2;
             jerk_shift       <= 4'd0;
-            input_invert     <= 5'd0;
-            output_invert    <= 16'd0;
+            input_invert     <= INPUT_INVERT_RESET[4:0];
+            output_invert    <= OUTPUT_INVERT_RESET[15:0];
             spindle_period   <= PERIOD_RESET[15:0];
             refused          <= 1'b0;
             position_set     <= 3'b000;

@@ -27,7 +27,9 @@ module uart_controller #(
     parameter integer QLW      = 4,             // motion_top's queue level width (controller)
     parameter integer SDEPTH   = 2,             // motion_top's step buffer depth (controller)
     parameter integer CURVES   = 1,             // curve core present (controller; 0 or 1)
-    parameter integer QUEUE_AW = 12             // segment queue: 2^QUEUE_AW bytes (controller)
+    parameter integer QUEUE_AW = 12,            // segment queue: 2^QUEUE_AW bytes (controller)
+    parameter integer INPUT_INVERT_RESET  = 0,  // INPUT_INVERT after rst (controller; 0 .. 31)
+    parameter integer OUTPUT_INVERT_RESET = 0   // OUTPUT_INVERT after rst (controller; 0 .. 65535)
 ) (
     input  wire       clk,
     input  wire       rst,
@@ -61,6 +63,7 @@ module uart_controller #(
     wire        wb_we, wb_stb, wb_cyc, wb_ack;
     wire [7:0]  status_state, status_error;
     wire [15:0] link_frames, link_duplicates, link_errors, link_gaps;
+    wire        enable_state, spindle_state;    // logical (the LEDs), before OUTPUT_INVERT
 
     uart_link #(.CLK_HZ(CLK_HZ), .BAUD(BAUD), .LMAX(128), .FRAME_TIMEOUT(FRAME_TIMEOUT)) u_link (
         .clk(clk), .rst(rst), .rx(uart_rx), .tx(uart_tx),
@@ -74,7 +77,8 @@ module uart_controller #(
 
     controller #(.CLK_HZ(CLK_HZ), .W(W), .FEED_W(FEED_W), .FRAC(FRAC), .NW(NW), .PF(PF), .LEN_W(LEN_W),
                  .ZW(ZW), .MW(MW), .TW(TW), .POS_W(POS_W), .QDEPTH(QDEPTH), .QLW(QLW), .SDEPTH(SDEPTH),
-                 .CURVES(CURVES), .QUEUE_AW(QUEUE_AW)) u_controller (
+                 .CURVES(CURVES), .QUEUE_AW(QUEUE_AW), .INPUT_INVERT_RESET(INPUT_INVERT_RESET),
+                 .OUTPUT_INVERT_RESET(OUTPUT_INVERT_RESET)) u_controller (
         .clk(clk), .rst(rst), .cmd_valid(cmd_valid), .cmd_data(cmd_data), .cmd_ready(cmd_ready),
         .queue_free(queue_free),
         .wb_adr(wb_adr), .wb_dat_w(wb_dat_w), .wb_dat_r(wb_dat_r), .wb_we(wb_we), .wb_sel(wb_sel),
@@ -83,7 +87,7 @@ module uart_controller #(
         .link_gaps(link_gaps), .status_state(status_state), .status_error(status_error),
         .step(step), .dir(dir), .enable(enable), .estop(estop), .limit(limit), .probe(probe),
         .spindle_on(spindle_on), .spindle_ccw(spindle_ccw), .spindle_pwm(spindle_pwm),
-        .mist(mist), .flood(flood), .dout(dout)
+        .mist(mist), .flood(flood), .dout(dout), .enable_state(enable_state), .spindle_state(spindle_state)
     );
 
     // heartbeat: bit HB of a free-running counter toggles about every 0.25 s
@@ -98,7 +102,7 @@ module uart_controller #(
 
     wire [2:0] state = status_state[2:0];
     wire       moving = state == 3'd1 || state == 3'd2;
-    assign led = {beat[HB], enable, spindle_on, state == 3'd4, moving, state};
+    assign led = {beat[HB], enable_state, spindle_state, state == 3'd4, moving, state};
     wire unused = &{1'b0, status_state[7:3]};
 endmodule
 `default_nettype wire

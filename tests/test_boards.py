@@ -75,7 +75,7 @@ def test_bitstream_csv_and_failure_row(tmp_path, monkeypatch, capsys):
     """One row per board; a board that does not fit keeps its row (note), exit status 1."""
     monkeypatch.setattr(synth, "have_tools", lambda: True)
 
-    def fake(name, out, log=print, force=False):
+    def fake(name, out, log=print, force=False, params=None):
         row = synth.board_row(synth.BOARDS[name])
         if name == "hx8k_breakout":
             row.update(luts=20000, lut_capacity=7680, ffs=9000, brams=8, note="does not fit: needs 20000 ICESTORM_LC of 7680")
@@ -96,6 +96,23 @@ def test_bitstream_refuses_core_options(capsys):
     assert main(["synth", "--bitstream", "out", "--core", "lin-std"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--bitstream" in err[0]
+
+
+def test_bitstream_params_are_the_tops(capsys, monkeypatch):
+    """--param with --bitstream sets a board top's parameter (OUTPUT_INVERT for active-low
+    drivers); a name the top does not declare is one line, exit 2, before any tool runs."""
+    assert main(["synth", "--bitstream", "out", "--param", "STEP_INVERT=1"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["interp: error: board hx8k_breakout: boards/hx8k_breakout/top.v has no parameter STEP_INVERT"]
+    board = synth.board_with("ulx3s", {"OUTPUT_INVERT": 64})
+    assert board.parameters["OUTPUT_INVERT"] == 64 and board.parameters["CLK_HZ"] == 15_000_000
+    assert synth.board_lint(board) is None
+    built = []
+    monkeypatch.setattr(synth, "have_tools", lambda: True)
+    monkeypatch.setattr(synth, "bitstream", lambda name, out, **kw: built.append((name, kw["params"])) or
+                        (None, {**synth.board_row(synth.BOARDS[name]), "note": "stub"}))
+    assert main(["synth", "--bitstream", "out", "--family", "ecp5", "--param", "OUTPUT_INVERT=64"]) == 1
+    assert built == [("ulx3s", {"OUTPUT_INVERT": 64})]
 
 
 def test_docs_tables_match_pin_files_and_csv():

@@ -7,7 +7,7 @@ from __future__ import annotations
 import os
 import pty
 import select
-import subprocess
+import termios
 import sys
 import time
 
@@ -49,10 +49,34 @@ def test_one_move(capsys, device):
 
 
 def test_beyond_the_travel_nothing_moves(capsys, device):
+    """The travel of a homed axis (STATUS.position_set) holds; an axis not homed since the
+    controller's reset jogs freely, as Grbl keeps soft limits only once homed."""
+    device.position_set = 0b001                                  # X homed
     code, out, err = run(capsys, "jog", "--sim-model", "X1001")
     assert code == 2 and out == ""
     assert err == "interp: error: jog: X 1001 mm is beyond the X travel -1000 .. 1000 mm (machine file)\n"
     assert device.executed == []
+    code, out, err = run(capsys, "jog", "--sim-model", "Y1001")
+    assert code == 0 and out == "machine position X0.000 Y1001.000 Z0.000 mm\n", err
+
+
+def test_less_than_half_a_step_is_refused(capsys, device):
+    code, out, err = run(capsys, "jog", "--sim-model", "X0.004", "Y-0.0049")   # 100 steps/mm
+    assert code == 2 and err == "interp: error: jog: less than half a step on every axis: nothing to move\n"
+    assert device.executed == []
+
+
+def test_a_stop_is_warned_of_and_homing_required_refuses(capsys, device, tmp_path):
+    """An error latched in ERROR (here an abort at speed) is warned of, as interp send does; with
+    homing.required the jog is refused until interp home, as Grbl's alarm lock refuses $J."""
+    device.error = 19
+    code, out, err = run(capsys, "jog", "--sim-model", "X1")
+    assert code == 0 and "interp jog: warning: the controller stopped on error 19" in err
+    device.error = 19
+    machine = tmp_path / "m.toml"
+    machine.write_text("[homing]\nrequired = true\n[axis.x]\nhome = \"min\"\n")
+    code, out, err = run(capsys, "jog", "--sim-model", "X1", "--machine", str(machine))
+    assert code == 1 and "run interp home (homing.required)" in err and len(moves(device)) == 1
 
 
 @pytest.mark.parametrize("argv, word", [
@@ -93,18 +117,26 @@ def test_the_keys(capsys):
     command is ignored."""
     model = DeviceModel()
     machine = load_machine()
-    keys = Keys(RIGHT, "]", UP + RIGHT + RIGHT, PAGE_DOWN, "[[", "", "x", LEFT, DOWN, PAGE_UP, "q", RIGHT)
+    keys = Keys(RIGHT, "]", UP + RIGHT + RIGHT, PAGE_DOWN, "[[", "", "x", "\x1b[", "D", DOWN, "\x1b", "[5~", "q",
+                RIGHT)
     assert jog.interactive(connected(model), machine, 600.0, keys, jog_keys=str) == 0
     assert moves(model) == [(100, 0, 0), (0, 1000, 0), (0, 0, -1000), (-10, 0, 0), (0, -10, 0), (0, 0, 10)]
     assert model.position == [90, 990, -990]
     out, err = capsys.readouterr()
     assert out.splitlines()[-1] == "machine position X0.900 Y9.900 Z-9.900 mm"
     assert "increment 1 mm at 600 mm/min" in err and "increment 0.1 mm" in err and keys.typed == [RIGHT]
+    assert "increment 0.01 mm" not in err               # (an arrow cut between two reads is one key)
+
+
+def test_ctrl_c_between_jogs_quits(capsys):
+    def keys():
+        raise KeyboardInterrupt
+    assert jog.interactive(connected(DeviceModel()), load_machine(), 600.0, keys) == 0
 
 
 def test_a_key_beyond_the_travel_is_refused_and_the_keys_go_on(capsys):
     model = DeviceModel()
-    model.position = [95000, 0, 0]                              # X 950 mm of a travel to 1000 mm
+    model.position, model.position_set = [95000, 0, 0], 0b111   # homed; X 950 mm of a travel to 1000 mm
     keys = Keys("]]", RIGHT, "[", RIGHT, "q")
     assert jog.interactive(connected(model), load_machine(), 6000.0, keys, jog_keys=str) == 0
     assert moves(model) == [(1000, 0, 0)] and model.position == [96000, 0, 0]
@@ -112,14 +144,20 @@ def test_a_key_beyond_the_travel_is_refused_and_the_keys_go_on(capsys):
     assert "interp: jog: X 1050 mm is beyond the X travel -1000 .. 1000 mm (machine file)\n" in err, err
 
 
-def test_ctrl_x_stops_a_jog(capsys):
-    """Ctrl-X during a jog: hold, then abort; the loop ends with the position and exit status 1."""
+def test_ctrl_x_stops_a_jog_and_the_keys_go_on(capsys):
+    """Ctrl-X during a jog: hold, then abort; the position is printed and the loop goes on."""
     model = DeviceModel(records_per_second=1.0)
-    keys = Keys(RIGHT, "y", jog.STOP)
-    assert jog.interactive(connected(model), load_machine(), 600.0, keys) == 1
+    keys = Keys(RIGHT, "y", jog.STOP, "q")
+    assert jog.interactive(connected(model), load_machine(), 600.0, keys) == 0
     out = capsys.readouterr().out
     assert out.startswith("machine position X") and out.rstrip().endswith(": the jog was stopped"), out
-    assert keys.typed == []                             # "y" read during the jog, dropped
+
+
+def test_a_controller_error_ends_the_keys(capsys):
+    """A limit switch during a jog (ERROR 17): the position and the error, exit status 1."""
+    model = DeviceModel(fail_at=1)
+    assert jog.interactive(connected(model), load_machine(), 600.0, Keys(RIGHT, RIGHT), jog_keys=str) == 1
+    assert capsys.readouterr().out.rstrip().endswith(": controller error 17 (limit switch)")
 
 
 @pytest.mark.skipif(sys.platform != "linux", reason="a pty")
@@ -144,13 +182,14 @@ def test_the_keys_on_a_terminal(tmp_path):
 
     try:
         read_until(b"keys: arrows")
+        assert not termios.tcgetattr(fd)[3] & (termios.ICANON | termios.ECHO)       # cbreak, no echo
         os.write(fd, RIGHT.encode())
         read_until(b"machine position X1.000 Y0.000 Z0.000 mm")
         os.write(fd, b"q")
-        read_until(b"", 0)
         _, status = os.waitpid(pid, 0)
         pid = 0
         assert os.waitstatus_to_exitcode(status) == 0, output
+        assert termios.tcgetattr(fd)[3] & termios.ICANON and termios.tcgetattr(fd)[3] & termios.ECHO
     finally:
         if pid:
             os.kill(pid, 9)

@@ -139,21 +139,55 @@ def test_the_machine_files_polarity_is_written_once(capsys, program, tmp_path, m
     assert device.writes[:2] == [("INPUT_INVERT", 0x10), ("OUTPUT_INVERT", 0x50)]      # before anything else
 
 
-@pytest.mark.parametrize("changed", [True, False])
-def test_an_error_of_the_old_input_polarity_is_cleared(capsys, program, tmp_path, monkeypatch, changed):
-    """After the controller's reset a normally-open e-stop reads active until INPUT_INVERT is
-    written: that error 16 is cleared with the change, with no warning of lost steps.  An error
-    latched under the machine file's polarity is kept and warned of."""
+@pytest.mark.parametrize("error, limits, before, after, cleared", [
+    (16, 0, 0, 0b00001, True),           # the e-stop's polarity changed, it reads inactive now
+    (16, 0, 0b00001, 0b00001, False),    # no change: a real e-stop
+    (16, 0, 0, 0b10000, False),          # only the probe's polarity changed
+    (17, 0b001, 0, 0b00010, True),       # the X limit's polarity changed
+    (17, 0b011, 0, 0b00010, False),      # X and Y tripped, only X's polarity changed
+    (19, 0, 0, 0b11111, False),          # an abort at speed is not an input
+])
+def test_an_error_of_the_old_input_polarity_is_cleared(error, limits, before, after, cleared):
+    """apply_polarity clears an e-stop or limit error only when the polarity of every input
+    behind it changed (a normally-open switch read active under the reset's polarity) and
+    the input reads inactive now; any other error stays."""
+    from interp.link.driver import Driver, apply_polarity
+
     device = DeviceModel()
-    device.error = 16
-    if not changed:
-        device.regs["INPUT_INVERT"] = 1
+    device.error, device.limits, device.regs["INPUT_INVERT"] = error, limits, before
+    driver = Driver(device, baud=115200)
+    driver.connect()
+    apply_polarity(driver, {"INPUT_INVERT": after})
+    assert device.regs["INPUT_INVERT"] == after
+    assert device.error == (0 if cleared else error)
+
+
+def test_output_polarity_is_written_with_the_drivers_disabled():
+    """A changed step bit makes an edge on its pin: CONTROL.enable is off while OUTPUT_INVERT
+    changes, then restored; an unchanged value is not written."""
+    from interp.link.driver import Driver, apply_polarity
+    from interp.link import protocol as p
+
+    device = DeviceModel()
+    driver = Driver(device, baud=115200)
+    driver.connect()
+    driver.write_register("CONTROL", p.CONTROL_ENABLE)
+    device.writes.clear()
+    apply_polarity(driver, {"OUTPUT_INVERT": 0x7})
+    assert device.writes == [("CONTROL", 0), ("OUTPUT_INVERT", 7), ("CONTROL", p.CONTROL_ENABLE)]
+    apply_polarity(driver, {"OUTPUT_INVERT": 0x7})
+    assert len(device.writes) == 3
+
+
+def test_the_simulator_takes_no_polarity(capsys, program, tmp_path, monkeypatch):
+    """--sim: the simulated pins are ideal (and its steps file counts them): the machine file's
+    polarity is not written."""
+    device = DeviceModel()
     monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
     machine = tmp_path / "m.toml"
-    machine.write_text('[input]\ninvert = ["estop"]\n')
-    code, out, err = run(capsys, "send", program, "--sim-model", "--machine", str(machine))
-    assert code == 0, err
-    assert ("stopped on error 16" in err) != changed, err
+    machine.write_text('[input]\ninvert = ["estop"]\n[output]\ninvert = ["step_x"]\n')
+    assert run(capsys, "send", program, "--sim", "--machine", str(machine))[0] == 0
+    assert not [name for name, _ in device.writes if name.endswith("_INVERT")]
 
 
 def test_build_mismatch_exit_2(capsys, program, monkeypatch):

@@ -16,6 +16,8 @@ module top #(
     parameter integer PLL_DIVQ   = 5,         // PLL output divider: 2^PLL_DIVQ (1 .. 6)
     parameter integer BAUD       = 115200,    // UART bit rate (host side: interp send --baud)
     parameter integer CURVES     = 0,         // curve core (kind 3): 0 leaves it out (kind 3 refused with error 1), to save area
+    parameter integer INPUT_INVERT  = 0,      // active-low inputs from the reset on: INPUT_INVERT's bits (0 .. 31)
+    parameter integer OUTPUT_INVERT = 0,      // active-low pins from the reset on: OUTPUT_INVERT's bits (0 .. 65535)
     parameter integer RESET_BITS = 4          // reset lasts 2^RESET_BITS - 1 clocks after lock (1 .. 24)
 ) (
     input  wire       clk_12mhz,
@@ -44,6 +46,8 @@ module top #(
             $error("%m: CLK_HZ must be exactly 12 MHz * (PLL_DIVF + 1) / 2^PLL_DIVQ");
         if (BAUD < 1 || BAUD * 4 > CLK_HZ) $error("%m: BAUD must be 1 .. CLK_HZ / 4");
         if (CURVES != 0 && CURVES != 1) $error("%m: CURVES must be 0 or 1");
+        if (INPUT_INVERT < 0 || INPUT_INVERT > 31) $error("%m: INPUT_INVERT must be 0 .. 31");
+        if (OUTPUT_INVERT < 0 || OUTPUT_INVERT > 65535) $error("%m: OUTPUT_INVERT must be 0 .. 65535");
         if (RESET_BITS < 1 || RESET_BITS > 24) $error("%m: RESET_BITS must be 1 .. 24");
     end
 
@@ -88,7 +92,8 @@ module top #(
         rst_q <= ~&por_q;
     end
 
-    uart_controller #(.CLK_HZ(CLK_HZ), .BAUD(BAUD), .CURVES(CURVES)) u_controller (
+    uart_controller #(.CLK_HZ(CLK_HZ), .BAUD(BAUD), .CURVES(CURVES), .INPUT_INVERT_RESET(INPUT_INVERT),
+                      .OUTPUT_INVERT_RESET(OUTPUT_INVERT)) u_controller (
         .clk(clk), .rst(rst_q),
         .uart_rx(uart_rx), .uart_tx(uart_tx),
         .step(step), .dir(dir), .enable(enable),

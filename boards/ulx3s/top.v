@@ -24,6 +24,8 @@ module top #(
     parameter integer PLL_CLKOP_DIV = 40,     // PLL output divider: VCO / CLK_HZ (1 .. 128)
     parameter integer BAUD       = 115200,    // UART bit rate (host side: interp send --baud)
     parameter integer CURVES     = 0,         // curve core (kind 3): 1 present (45F, 85F), 0 left out (kind 3 refused with error 1)
+    parameter integer INPUT_INVERT  = 0,      // active-low inputs from the reset on: INPUT_INVERT's bits (0 .. 31)
+    parameter integer OUTPUT_INVERT = 0,      // active-low pins from the reset on: OUTPUT_INVERT's bits (0 .. 65535)
     parameter integer RESET_BITS = 4          // power-on reset lasts 2^RESET_BITS - 1 clocks (1 .. 24)
 ) (
     input  wire       clk_25mhz,
@@ -55,6 +57,8 @@ module top #(
             $error("%m: the VCO (CLK_HZ * PLL_CLKOP_DIV) must be 400 .. 800 MHz");
         if (BAUD < 1 || BAUD * 4 > CLK_HZ) $error("%m: BAUD must be 1 .. CLK_HZ / 4");
         if (CURVES != 0 && CURVES != 1) $error("%m: CURVES must be 0 or 1");
+        if (INPUT_INVERT < 0 || INPUT_INVERT > 31) $error("%m: INPUT_INVERT must be 0 .. 31");
+        if (OUTPUT_INVERT < 0 || OUTPUT_INVERT > 65535) $error("%m: OUTPUT_INVERT must be 0 .. 65535");
         if (RESET_BITS < 1 || RESET_BITS > 24) $error("%m: RESET_BITS must be 1 .. 24");
     end
 
@@ -123,7 +127,8 @@ module top #(
     assign wifi_gpio0     = 1'b1;
     assign wifi_gpio0_v31 = 1'b1;
 
-    uart_controller #(.CLK_HZ(CLK_HZ), .BAUD(BAUD), .CURVES(CURVES)) u_controller (
+    uart_controller #(.CLK_HZ(CLK_HZ), .BAUD(BAUD), .CURVES(CURVES), .INPUT_INVERT_RESET(INPUT_INVERT),
+                      .OUTPUT_INVERT_RESET(OUTPUT_INVERT)) u_controller (
         .clk(clk), .rst(rst_q),
         .uart_rx(ftdi_txd), .uart_tx(ftdi_rxd),
         .step(step), .dir(dir), .enable(enable),

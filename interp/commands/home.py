@@ -24,7 +24,7 @@ from ..link import protocol as p
 from ..link.driver import (Driver, LinkError, MismatchError, apply_polarity, check_controller, check_idle,
                            read_position)
 from . import send
-from .jog import relative_move
+from .jog import relative_move, unlimited
 from .send import add_link_options, check_link_args, compile_build, mm_text
 
 SEEK_TRAVELS = 1.5          # the seek goes at most 1.5 travels (and a pull-off) towards the switch
@@ -33,14 +33,6 @@ BOUNCES = 5                 # a pull-off tripped again by a bouncing switch is r
 
 class HomingError(Exception):
     """The cycle cannot go on: one line."""
-
-
-def unlimited(machine: Machine) -> Machine:
-    """The machine without its travel limits: homing moves start where the position is unknown."""
-    values = {section: dict(keys) for section, keys in machine.values.items()}
-    for a in AXES:
-        values[f"axis.{a}"].update(min_mm=-1e12, max_mm=1e12)
-    return Machine(values, machine.tools, machine.source, machine.source_is_file)
 
 
 def move(driver: Driver, machine: Machine, free: Machine, axis: int, distance_mm: float, rate: float):

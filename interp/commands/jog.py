@@ -23,7 +23,7 @@ import sys
 import time
 
 from ..cores import UsageError
-from ..gcode.machine import Machine, load_machine
+from ..gcode.machine import AXES, Machine, load_machine
 from ..link import protocol as p
 from ..link.driver import (Driver, LinkError, MismatchError, apply_polarity, check_controller, check_idle,
                            configure, read_position, run_program)
@@ -61,6 +61,15 @@ def parse_words(words: list[str]) -> tuple[float, float, float]:
     return tuple(delta)
 
 
+def unlimited(machine: Machine, axes=range(3)) -> Machine:
+    """The machine without the travel limits of `axes` (homing: the position is not known yet;
+    a jog: an axis not homed since the controller's reset)."""
+    values = {section: dict(keys) for section, keys in machine.values.items()}
+    for a in axes:
+        values[f"axis.{AXES[a]}"].update(min_mm=-1e12, max_mm=1e12)
+    return Machine(values, machine.tools, machine.source, machine.source_is_file)
+
+
 def relative_move(driver: Driver, machine: Machine, limits: Machine, delta_mm, rate: float, keys=None):
     """One G91 G1 move by delta_mm (x, y, z) at `rate` mm/min, compiled with `limits`' travel (home:
     a machine without limits) from the controller's position: the run's Outcome."""
@@ -72,23 +81,39 @@ def relative_move(driver: Driver, machine: Machine, limits: Machine, delta_mm, r
                        keys=keys)
 
 
-def jog(driver: Driver, machine: Machine, delta_mm, rate: float, keys=None) -> str:
-    """Run one jog; its result as one line ("" when it ran to its end).  UsageError (one line,
-    without the G-code line number) when the compiler refuses it: beyond the travel."""
+def travel(driver: Driver, machine: Machine) -> Machine:
+    """The machine whose travel limits a jog keeps: those of the axes whose position was set
+    since the controller's reset (STATUS.position_set: homed), as Grbl keeps soft limits only
+    once homed; an axis not homed yet jogs freely (to its switch, off it)."""
+    homed = driver.read_register("STATUS") >> 16 & 7
+    return unlimited(machine, [a for a in range(3) if not homed >> a & 1])
+
+
+def jog(driver: Driver, machine: Machine, limits: Machine, delta_mm, rate: float, keys=None) -> tuple[str, str]:
+    """Run one jog: (Outcome.status, what to say: "" when it ran to its end).  UsageError (one
+    line, without the G-code line number) when it is refused before anything moves: beyond the
+    travel, or less than half a step on every axis."""
+    if all(abs(d * spm) < 0.5 for d, spm in zip(delta_mm, machine.steps_per_mm)):
+        raise UsageError("jog: less than half a step on every axis: nothing to move")
     try:
-        outcome = relative_move(driver, machine, machine, delta_mm, rate, keys)
+        outcome = relative_move(driver, machine, limits, delta_mm, rate, keys)
     except UsageError as err:
         raise UsageError("jog: " + re.sub(r"^line \d+: ", "", str(err))) from None
     if outcome.status == "done":
-        return ""
+        return "done", ""
     if outcome.status == "error":
-        return f"controller error {outcome.error} ({p.error_text(outcome.error)})"
-    return "the jog was stopped" + (f" ({outcome.message})" if outcome.message else "")
+        return "error", f"controller error {outcome.error} ({p.error_text(outcome.error)})"
+    return outcome.status, "the jog was stopped" + (f" ({outcome.message})" if outcome.message else "")
 
 
 def key_tokens(typed: str) -> list[str]:
     """Keys typed as tokens: an escape sequence (an arrow, a page key) is one."""
     return re.findall(r"\x1b\[[0-9;]*[A-Za-z~]|\x1bO[A-Za-z]|[\s\S]", typed)
+
+
+def unfinished(typed: str) -> bool:
+    """The keys end inside an escape sequence (its bytes can come in two reads over ssh)."""
+    return re.search(r"\x1b(\[[0-9;]*|O)?$", typed) is not None
 
 
 def key_jog(token: str):
@@ -100,20 +125,34 @@ def key_jog(token: str):
     return None
 
 
+def read_keys(keyboard) -> str:
+    """The keys typed; an escape sequence cut between two reads is completed (50 ms)."""
+    typed = keyboard()
+    if typed and unfinished(typed):
+        time.sleep(0.05)
+        typed += keyboard()
+    return typed
+
+
 def interactive(driver: Driver, machine: Machine, rate: float, keyboard, jog_keys=None) -> int:
-    """The keys' loop: 0 when quit, 1 after a jog that did not end well.  keyboard() -> the keys
-    typed since the last call; jog_keys() -> those typed during a jog (default: keyboard's, of which
-    only Ctrl-X counts: a key held down repeats, and its jogs must not pile up)."""
+    """The keys' loop: 0 when quit (q, Esc, or Ctrl-C between jogs), 1 after a controller error.
+    keyboard() -> the keys typed since the last call; jog_keys() -> those typed during a jog
+    (default: keyboard's, of which only Ctrl-X counts: a key held down repeats, and its jogs
+    must not pile up).  Ctrl-X stops a jog (on its path, then flushed) and the loop goes on."""
     if jog_keys is None:
         def jog_keys() -> str:
             return STOP if STOP in keyboard() else ""
     increment = FIRST_INCREMENT
+    limits = travel(driver, machine)
     print(f"interp jog: increment {INCREMENTS[increment]:g} mm at {rate:g} mm/min; {KEYS_HELP}", file=sys.stderr)
     while True:
-        tokens = key_tokens(keyboard())
-        if not tokens:
-            time.sleep(0.02)
-            continue
+        try:
+            tokens = key_tokens(read_keys(keyboard))
+            if not tokens:
+                time.sleep(0.02)
+                continue
+        except KeyboardInterrupt:                       # Ctrl-C while nothing moves: quit
+            return 0
         for token in tokens:
             if token in QUIT:
                 return 0
@@ -128,13 +167,12 @@ def interactive(driver: Driver, machine: Machine, rate: float, keyboard, jog_key
             delta = [0.0, 0.0, 0.0]
             delta[axis] = sign * INCREMENTS[increment]
             try:
-                failed = jog(driver, machine, delta, rate, jog_keys)
+                status, said = jog(driver, machine, limits, delta, rate, jog_keys)
             except UsageError as err:                   # beyond the travel: nothing moved
                 print(f"interp: {err}", file=sys.stderr)
                 break
-            print(f"machine position {mm_text(machine, read_position(driver))} mm"
-                  + (f": {failed}" if failed else ""))
-            if failed:
+            print(f"machine position {mm_text(machine, read_position(driver))} mm" + (f": {said}" if said else ""))
+            if status == "error":
                 return 1
             break                                       # keys typed ahead of the jog are dropped
 
@@ -161,20 +199,23 @@ def cmd_jog(args) -> int:
         driver.connect()
         check_controller(driver, compile_build(), machine.clock_hz)
         check_idle(driver)
-        apply_polarity(driver, machine.polarity())
+        if not args.sim:                                # (the simulator's pins are ideal)
+            apply_polarity(driver, machine.polarity())
+            send.check_homed(driver, machine)
+        send.warn_of_stop(driver, "interp jog")
         if keys_wanted:
             keyboard = Keyboard(True)
             return interactive(driver, machine, args.feed, keyboard)
-        failed = jog(driver, machine, delta, args.feed)
+        status, said = jog(driver, machine, travel(driver, machine), delta, args.feed)
         print(f"machine position {mm_text(machine, read_position(driver))} mm")
-        if failed:
-            print(f"interp: error: {failed}", file=sys.stderr)
+        if said:
+            print(f"interp: error: {said}", file=sys.stderr)
             return 1
         return 0
     except MismatchError as err:
         raise UsageError(str(err)) from None
-    except LinkError as err:
-        print(f"interp: error: link: {err}", file=sys.stderr)
+    except (LinkError, send.NotHomed) as err:
+        print(f"interp: error: {'link: ' if isinstance(err, LinkError) else ''}{err}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         return send.interrupted(driver)

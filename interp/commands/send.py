@@ -262,8 +262,8 @@ def cmd_send(args) -> int:
         driver.connect()
         check_controller(driver, build, machine.clock_hz)
         check_idle(driver)
-        apply_polarity(driver, machine.polarity())
-        if not args.sim:                    # the simulator has no switches to home to
+        if not args.sim:                    # the simulator's pins are ideal; it has no switches to home to
+            apply_polarity(driver, machine.polarity())
             check_homed(driver, machine)
         # the program starts where the machine is: the controller's position counters
         # (machine coordinates, zero at its reset), as Grbl's and LinuxCNC's programs do;
@@ -274,10 +274,7 @@ def cmd_send(args) -> int:
                   "the program starts there", file=sys.stderr)
         if describe(saved):
             print(f"interp send: offsets from {machine.parameter_file}: {describe(saved)}", file=sys.stderr)
-        error = driver.read_register("ERROR") & 0xFF
-        if error:
-            print(f"interp send: warning: the controller stopped on error {error} ({p.error_text(error)}): its "
-                  "steps stopped at once, so the motors may have lost steps the position counts", file=sys.stderr)
+        warn_of_stop(driver, "interp send")
         interactive = sys.stdin.isatty() and sys.stderr.isatty()
         keyboard = Keyboard(interactive)
         run = ProgramRun(args, driver, machine, text, start, saved, keyboard, interactive)
@@ -469,6 +466,14 @@ class ProgramRun:
         self.probe_stop = stop                              # the next piece starts there
         self.outcome = dataclasses.replace(self.outcome, status="done")
         return True
+
+
+def warn_of_stop(driver: Driver, who: str) -> None:
+    """A warning on stderr when ERROR holds a stop (the next run clears it)."""
+    error = driver.read_register("ERROR") & 0xFF
+    if error:
+        print(f"{who}: warning: the controller stopped on error {error} ({p.error_text(error)}): its "
+              "steps stopped at once, so the motors may have lost steps the position counts", file=sys.stderr)
 
 
 class NotHomed(Exception):

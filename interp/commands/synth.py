@@ -33,8 +33,8 @@ def add_parser(sub) -> None:
                    help="set each chosen core's width parameter (WIDTH; W for motion_top) to N; "
                    "cores without one (feed_rate, step_sync, step_dir) keep theirs unless named")
     p.add_argument("--param", action="append", metavar="NAME=VALUE",
-                   help="set a Verilog parameter of the chosen cores (repeatable); "
-                   "each chosen module must declare it")
+                   help="set a Verilog parameter of the chosen cores, or with --bitstream of the board tops "
+                   "(repeatable); each chosen module must declare it")
     p.add_argument("--seeds", type=int, metavar="N",
                    help="placement seeds to try (default: the table's, 8 for the cores with an Fmax goal)")
     p.add_argument("--force", action="store_true", help="re-run even where a cached result is current")
@@ -64,16 +64,18 @@ def run(args) -> int:
         raise UsageError("--width must be at least 2")
     params = synth.parse_params(args.param)
     if args.bitstream:
-        if args.core or args.param or args.width is not None or args.seeds is not None:
+        if args.core or args.width is not None or args.seeds is not None:
             raise UsageError("--bitstream builds the boards (boards/*/top.v) only: "
-                             "no --core, --param, --width or --seeds")
+                             "no --core, --width or --seeds (--param sets the tops' parameters)")
+        chosen = [name for name, board in synth.BOARDS.items() if not args.family or board.family in args.family]
+        for name in chosen:                 # every --param a parameter of each chosen top
+            synth.board_with(name, params)
         need_tools(synth)
         rows, failed = [], 0
-        for name, board in synth.BOARDS.items():
-            if args.family and board.family not in args.family:
-                continue
+        for name in chosen:
             try:
-                path, row = synth.bitstream(name, Path(args.bitstream), log=progress, force=args.force)
+                path, row = synth.bitstream(name, Path(args.bitstream), log=progress, force=args.force,
+                                            params=params)
             except synth.FlowError as exc:
                 print(f"synth: failed: {str(exc).splitlines()[0]}", file=sys.stderr)
                 failed += 1

@@ -29,7 +29,7 @@ import shutil
 import statistics
 import subprocess
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from ..cores import UsageError
@@ -594,14 +594,27 @@ def board_row(board: Board) -> dict:
             "lut_capacity": None, "ffs": None, "brams": None, "note": ""}
 
 
-def bitstream(name: str, out: Path, log=print, force: bool = False) -> tuple[Path | None, dict]:
-    """boards/<name>/top.v (the board's PLL and reset around rtl/uart_controller.v) to a
-    bitstream in `out`; returns (bitstream or None, CSV row).
+def board_with(name: str, params: dict | None = None) -> Board:
+    """The board with some of its top's parameters set (--param: BAUD, OUTPUT_INVERT, ...);
+    UsageError naming a parameter boards/<name>/top.v does not declare."""
+    board = BOARDS[name]
+    if not params:
+        return board
+    unknown = sorted(set(params) - declared_parameters(board.top))
+    if unknown:
+        raise UsageError(f"board {name}: boards/{name}/top.v has no parameter {unknown[0]}")
+    return replace(board, parameters={**board.parameters, **params})
+
+
+def bitstream(name: str, out: Path, log=print, force: bool = False,
+              params: dict | None = None) -> tuple[Path | None, dict]:
+    """boards/<name>/top.v (the board's PLL and reset around rtl/uart_controller.v), with
+    `params` over its parameters, to a bitstream in `out`; returns (bitstream or None, CSV row).
 
     The row is returned also when the design does not fit the device or misses
     its clock (no bitstream; `note` says why).  FlowError: a tool failed or the
     top does not lint.  Cached like `implement` (build/synth/board_<name>/)."""
-    board = BOARDS[name]
+    board = board_with(name, params)
     fam = FAMILIES[board.family]
     files = board_sources(board)
     work = BUILD / f"board_{name}"

@@ -455,24 +455,43 @@ def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
 POLARITY_MASKS = {"INPUT_INVERT": 0x1F, "OUTPUT_INVERT": 0xFFFF}
 
 
+CONTROL_KEPT = p.CONTROL_HOLD | p.CONTROL_ENABLE | p.CONTROL_FILL | p.CONTROL_PROBE_STOP    # CONTROL's RW bits
+
+
 def apply_polarity(driver: Driver, polarity: dict[str, int]) -> None:
     """Write INPUT_INVERT and OUTPUT_INVERT (the machine file's input.invert, output.invert)
-    where the controller's differ: after its reset both are 0.  An e-stop or limit error latched
-    while INPUT_INVERT still had another value came from the polarity, not the machine (a
-    normally-open switch reads active until then): it is cleared with the change.  Call it at
-    rest (check_idle), before reading ERROR.  LinkError if the controller does not take them."""
-    changed_inputs = False
+    where the controller's differ (after its reset: the build's INPUT_INVERT_RESET and
+    OUTPUT_INVERT_RESET, 0 by default).  Call it at rest (check_idle), before reading ERROR.
+      * OUTPUT_INVERT is written with the drivers disabled (CONTROL.enable 0, then restored):
+        a changed step bit makes an edge on its pin.
+      * An e-stop error (16) latched under another e-stop polarity, or a limit error (17) whose
+        switches all had another polarity, came from the polarity, not the machine (a
+        normally-open switch reads active until then): it is cleared if those inputs read
+        inactive now.  Any other error stays.
+    LinkError if the controller does not take a value (a bitstream older than the register)."""
+    before = {name: driver.read_register(name) & mask for name, mask in POLARITY_MASKS.items()}
     for name, mask in POLARITY_MASKS.items():
         value = polarity.get(name, 0) & mask
+        if before[name] == value:
+            continue
+        control = driver.read_register("CONTROL") & CONTROL_KEPT
+        off = name == "OUTPUT_INVERT" and control & p.CONTROL_ENABLE
+        if off:
+            driver.write_register("CONTROL", control & ~p.CONTROL_ENABLE)
+        driver.write_register(name, value)
+        if off:
+            driver.write_register("CONTROL", control)
         if driver.read_register(name) & mask != value:
-            driver.write_register(name, value)
-            if driver.read_register(name) & mask != value:
-                raise LinkError(f"the controller did not take {name} = 0x{value:X}")
-            changed_inputs |= name == "INPUT_INVERT"
-    if changed_inputs and driver.read_register("ERROR") & 0xFF in (16, 17):
-        keep = driver.read_register("CONTROL") & (p.CONTROL_HOLD | p.CONTROL_ENABLE | p.CONTROL_FILL
-                                                  | p.CONTROL_PROBE_STOP)
-        driver.write_register("CONTROL", keep | p.CONTROL_CLEAR)
+            raise LinkError(f"the controller did not take {name} = 0x{value:X} (a bitstream without it: "
+                            "build and load the current one)")
+    changed = before["INPUT_INVERT"] ^ (polarity.get("INPUT_INVERT", 0) & POLARITY_MASKS["INPUT_INVERT"])
+    if not changed:
+        return
+    error, inputs = driver.read_register("ERROR"), driver.read_register("INPUTS")
+    code, limits = error & 0xFF, error >> 8 & 7
+    if (code == 16 and changed & 1 and not inputs & 1) or \
+            (code == 17 and limits and (changed >> 1) & limits == limits and not (inputs >> 1) & limits):
+        driver.write_register("CONTROL", (driver.read_register("CONTROL") & CONTROL_KEPT) | p.CONTROL_CLEAR)
 
 
 POSITION = ("POS_X", "POS_Y", "POS_Z")

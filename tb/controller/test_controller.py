@@ -284,6 +284,29 @@ async def inverted_step_and_dir_pins(dut):
 
 
 @cocotb.test()
+async def polarity_from_the_reset(dut):
+    """INPUT_INVERT_RESET and OUTPUT_INVERT_RESET (a board built for active-low drivers and a
+    touch plate): the registers and the pins have them from rst on, before any write, and rst
+    restores them after one."""
+    tb = await Bench(dut).start()
+    inputs, outputs = int(dut.INPUT_INVERT_RESET.value), int(dut.OUTPUT_INVERT_RESET.value)
+    assert outputs and inputs == 0x10
+
+    async def check():
+        assert await tb.read("OUTPUT_INVERT") == outputs and await tb.read("INPUT_INVERT") == inputs
+        assert await tb.read("INPUTS") == 0x10 and await tb.read("ERROR") == 0      # the probe pin at 0: touching
+        assert [int(dut.step.value), int(dut.dir.value), int(dut.enable.value)] == \
+            [outputs & 7, outputs >> 3 & 7, outputs >> 6 & 1]
+
+    await check()
+    await tb.write("OUTPUT_INVERT", 0)
+    await tb.write("INPUT_INVERT", 0)
+    assert int(dut.enable.value) == 0 and await tb.read("INPUTS") == 0
+    await tb.reset()
+    await check()
+
+
+@cocotb.test()
 async def estop_and_limit_mid_arc(dut):
     """E-stop mid-arc: steps gated at once, ERROR 16 until the e-stop is released and cleared.
     A limit switch (y) mid-arc: ERROR 17 with bit 9 (y); cleared while the switch is still
@@ -455,8 +478,22 @@ async def events_drive_outputs(dut):
     assert await pwm_high(tb, 300) == 0
     assert await events((4, 65535 >> (16 - min(16, tb.build["W"] - 1))), (3, 0)) & 0xFFFF == 2
     assert await events((5, 0), (6, 0)) & 0xF == 0b1110
+
+    async def pins_follow(mask):
+        # each pin: its logical output (OUTPUTS) XOR its OUTPUT_INVERT bit
+        await tb.write("OUTPUT_INVERT", mask)
+        out = await tb.read("OUTPUTS")
+        for pin, at, bit, width in (("spindle_on", 0, 7, 1), ("spindle_ccw", 1, 8, 1), ("mist", 2, 10, 1),
+                                    ("flood", 3, 11, 1), ("dout", 4, 12, 4)):
+            field = (1 << width) - 1
+            assert int(getattr(dut, pin).value) == (out >> at & field) ^ (mask >> bit & field), (pin, hex(mask))
+
+    for mask in (0xFF80, 0x5A80, 0):
+        await pins_follow(mask)
     assert await events((7, 0)) & 0xF == 0b0010
     assert await events((8, 2), (8, 0), (8, 7), (8, -1)) & 0xF0 == 0b0101 << 4
+    for mask in (0xF580, 0x3100, 0):
+        await pins_follow(mask)
     assert await events((9, 2), (99, 1), (0, 3)) & 0xF0 == 0b0001 << 4
     assert await events((1, 100), (5, 0), (6, 0), (12, 0)) & 0xFF == 0b00010000   # program end
     # pause: CONTROL.hold set; the line after it waits
@@ -707,6 +744,14 @@ def test_controller(sim):
     icarus_in_make_test(sim)
     run_cocotb(toplevel="controller", test_module="test_controller", sim=sim, parameters=SMALL,
                name="controller", testcase=SMALL_TESTS)
+
+
+def test_controller_reset_polarity(sim):
+    """The small build with INPUT_INVERT_RESET and OUTPUT_INVERT_RESET set."""
+    icarus_in_make_test(sim)
+    run_cocotb(toplevel="controller", test_module="test_controller", sim=sim,
+               parameters={**SMALL, "INPUT_INVERT_RESET": 0x10, "OUTPUT_INVERT_RESET": 0x0049},
+               name="controller_polarity", testcase=["polarity_from_the_reset"])
 
 
 def test_controller_cli_build(sim):
