@@ -69,11 +69,12 @@ class CNCController(LiteXModule):
 
     clk_freq: the system clock in Hz (the CLOCK_HZ register and the reset timings).
     curves: 1 = the curve core (about 2100 ECP5 LUT4s; G-code never emits curves).
-    queue_aw: the segment queue holds 2^queue_aw bytes.  widths: controller parameters
-    (WIDTHS), for builds other than the G-code compiler's."""
+    queue_aw: the segment queue holds 2^queue_aw bytes.  input_invert, output_invert: INPUT_INVERT
+    and OUTPUT_INVERT after reset (active-low pins inactive from the reset on).  widths:
+    controller parameters (WIDTHS), for builds other than the G-code compiler's."""
 
     def __init__(self, platform=None, pads=None, clk_freq: int = 50_000_000, curves: int = 0,
-                 queue_aw: int = 12, **widths):
+                 queue_aw: int = 12, input_invert: int = 0, output_invert: int = 0, **widths):
         unknown = set(widths) - set(WIDTHS)
         if unknown:
             raise ValueError(f"unknown controller parameter(s): {', '.join(sorted(unknown))}")
@@ -81,6 +82,7 @@ class CNCController(LiteXModule):
         for name, width, _ in PADS:
             setattr(self, name, Signal(width, name=name))
         parameters = {"p_CLK_HZ": int(clk_freq), "p_CURVES": int(curves), "p_QUEUE_AW": int(queue_aw),
+                      "p_INPUT_INVERT_RESET": int(input_invert), "p_OUTPUT_INVERT_RESET": int(output_invert),
                       **{f"p_{k}": int(v) for k, v in widths.items()}}
         ports = {f"{'o' if direction == 'out' else 'i'}_{name}": getattr(self, name)
                  for name, _, direction in PADS}

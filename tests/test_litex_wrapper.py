@@ -56,7 +56,8 @@ def test_wrapper_follows_the_rtl():
     from interp.litex import WIDTHS
 
     text = (RTL / "controller.v").read_text()
-    assert declared_parameters(RTL / "controller.v") == set(WIDTHS) | {"CLK_HZ", "CURVES", "QUEUE_AW"}
+    assert declared_parameters(RTL / "controller.v") == set(WIDTHS) | {"CLK_HZ", "CURVES", "QUEUE_AW",
+                                                                       "INPUT_INVERT_RESET", "OUTPUT_INVERT_RESET"}
     ports = {name: (direction, int(msb) + 1 if msb else 1) for direction, msb, name in
              re.findall(r"^\s*(input|output)\s+wire\s+(?:\[(\d+):0\]\s+)?(\w+)", text, re.M)}
     for name, width, direction in PADS:

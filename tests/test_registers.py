@@ -27,9 +27,9 @@ CONTRACT = {"ID": 0x00, "VERSION": 0x04, "BUILD0": 0x08, "BUILD1": 0x0C, "CLOCK_
             "PROBE_X": 0x30, "PROBE_Y": 0x34, "PROBE_Z": 0x38, "INPUTS": 0x3C, "CONTROL": 0x40, "OVERRIDE": 0x44,
             "PULSE_WIDTH": 0x48, "DIR_SETUP": 0x4C, "DIR_HOLD": 0x50, "QUANTUM_LO": 0x54, "QUANTUM_HI": 0x58,
             "MOTION": 0x5C, "INPUT_INVERT": 0x60, "SPINDLE_PERIOD": 0x64, "OUTPUTS": 0x68, "LINK_FRAMES": 0x6C,
-            "LINK_ERRORS": 0x70, "CMD_DATA": 0x74, "EXECUTED": 0x78}
+            "LINK_ERRORS": 0x70, "CMD_DATA": 0x74, "EXECUTED": 0x78, "OUTPUT_INVERT": 0x7C}
 WRITABLE = {"CONTROL", "OVERRIDE", "PULSE_WIDTH", "DIR_SETUP", "DIR_HOLD", "QUANTUM_LO", "QUANTUM_HI", "MOTION",
-            "INPUT_INVERT", "SPINDLE_PERIOD", "POS_X", "POS_Y", "POS_Z"}        # (POS_*: set at rest, homing)
+            "INPUT_INVERT", "SPINDLE_PERIOD", "POS_X", "POS_Y", "POS_Z", "OUTPUT_INVERT"}        # (POS_*: set at rest, homing)
 
 
 @pytest.fixture(scope="module")
