@@ -276,6 +276,16 @@ def test_status_sim_model(capsys):
     assert lines[-1] == "machine position X0.000 Y0.000 Z0.000 mm"
 
 
+def test_status_names_a_polarity_not_written_yet(capsys, tmp_path):
+    machine = tmp_path / "m.toml"
+    machine.write_text('[input]\ninvert = ["probe"]\n')
+    code, out, err = run(capsys, "status", "--sim-model", "--machine", str(machine))
+    assert code == 0, err
+    assert f"INPUT_INVERT differs from the machine file's (0x10, {machine}): interp send, home and jog write " \
+           "it when they connect" in out.splitlines()
+    assert not any(line.startswith("OUTPUT_INVERT differs") for line in out.splitlines())
+
+
 def test_status_usage(capsys):
     code, out, err = run(capsys, "status")
     assert code == 2 and "give one of --port DEVICE or --sim" in err
