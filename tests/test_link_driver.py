@@ -440,3 +440,24 @@ def test_controller_reset_mid_stream_is_one_line_error():
     with pytest.raises(LinkError, match="was it reset"):
         run_program(driver, b"".join(encode(c) for c in commands(60)), 60, max_seconds=20)
     assert model.t < 5
+
+
+@pytest.mark.parametrize("reset_at, earlier, hold, why", [
+    (0.2, 0, False, "was it reset"),                  # while the records stream: a NAK names it
+    (0.7, 0, False, "with records still to run"),     # all sent, some running: idle with records missing
+    (0.7, 5, False, "EXECUTED went back"),            # ... after an earlier program: the count went back
+    (0.7, 0, True, "was it reset"),                   # held ('!') from the start, waiting for credit:
+                                                      # the credit probe's ACK names it
+])
+def test_a_controller_reset_during_a_run_is_a_link_error(reset_at, earlier, hold, why):
+    """The controller reset during a run (power, its board's button): one LinkError, not a run that
+    waits forever for records that are gone, nor one that reports them done.  (A program pause
+    holds after its record was dispatched, so EXECUTED goes back there too.)"""
+    model = DeviceModel(records_per_second=100.0)
+    if earlier:
+        assert run(model, commands(earlier))[1].status == "done"
+    model.reset_at = model.t + reset_at
+    keys = iter(["!"])
+    with pytest.raises(LinkError, match=why):
+        run(model, commands(60), max_seconds=30.0, keys=(lambda: next(keys, "")) if hold else None)
+    assert model.reset_at is None and model.t < 5.0 + earlier        # (it happened, and soon after)

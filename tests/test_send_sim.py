@@ -180,6 +180,65 @@ def test_polarity_on_the_rtl(files):
         assert driver.read_register("ERROR") == 0 and driver.read_register("INPUTS") == 0
 
 
+class ResetAt:
+    """The SimLink, with the controller's reset pressed once at `at` simulated seconds (None: not yet)."""
+
+    def __init__(self, link, at):
+        self.link, self.at, self.done = link, at, False
+
+    def _maybe(self):
+        if not self.done and self.at is not None and self.link.now() >= self.at:
+            self.done = True
+            self.link.set_pin("rst", 1)
+            self.link.sleep(2e-6)
+            self.link.set_pin("rst", 0)
+
+    def read(self, size=1):
+        self._maybe()
+        return self.link.read(size)
+
+    @property
+    def in_waiting(self):
+        self._maybe()
+        return self.link.in_waiting
+
+    @property
+    def timeout(self):
+        return self.link.timeout
+
+    @timeout.setter
+    def timeout(self, value):
+        self.link.timeout = value
+
+    def __getattr__(self, name):
+        return getattr(self.link, name)
+
+
+@pytest.mark.parametrize("at", [0.005, 0.06])
+def test_a_reset_during_a_run_on_the_rtl(files, at):
+    """The board's reset pressed during a run (while the records stream; after they are all in,
+    with moves still to run): the driver stops with one LinkError that says so, instead of
+    waiting for records the controller lost."""
+    from interp.commands.gcode import compile_text
+    from interp.commands.send import compile_build
+    from interp.gcode.machine import load_machine
+    from interp.link.driver import Driver, LinkError, configure, run_program
+    from interp.link.records import encode_program
+
+    machine = load_machine(str(files / "machine.toml"))
+    _, compiled = compile_text("G21 G91\n" + "G1 X0.3 F3000\nG1 Y0.3\nG1 X-0.3\nG1 Y-0.3\n" * 10, machine)
+    with SimLink(machine=machine) as link:
+        port = ResetAt(link, None)
+        driver = Driver(port, baud=link.baud)
+        driver.connect()
+        configure(driver, machine.timing(), compiled.settings)
+        at = port.at = link.now() + at                  # (seconds into the run)
+        with pytest.raises(LinkError, match="reset"):
+            run_program(driver, encode_program(compiled.commands, compile_build()), len(compiled.commands),
+                        max_seconds=5.0)
+        assert port.done and link.now() < at + 1.0
+
+
 def test_homing_on_the_rtl(files, tmp_path):
     """interp home's cycle through the controller's RTL: a switch that follows the pulses
     counted at the step pins (0.37 mm below where the machine powered up) stops the seek and

@@ -35,7 +35,11 @@ class DeviceModel:
                  records_per_second: float = 1000.0, frame_timeout: int = p.FRAME_TIMEOUT_BYTES,
                  fail_at: int | None = None, fail_code: int = 17, hold_seconds: float = 0.002,
                  switches: dict[int, tuple[str, int]] | None = None,
-                 probe: tuple[int, str, int] | None = None):
+                 probe: tuple[int, str, int] | None = None, reset_at: float | None = None):
+        # (reset_at: the controller resets at that simulated time, as at power-on or its board's
+        # button: registers, queue, positions and frame layer start again; the line goes on)
+        self._args = {k: v for k, v in locals().items() if k not in ("self", "reset_at")}
+        self.reset_at = reset_at
         self.build, self.clock_hz, self.baud = build, int(clock_hz), baud
         self.byte_time = 10.0 / baud
         self.noise, self.rng = float(line_noise), random.Random(seed)
@@ -175,8 +179,17 @@ class DeviceModel:
             if byte is not None:
                 self.host_rx.append(byte)
 
+    def power_cycle(self) -> None:
+        """The controller's reset: everything but the line (bytes on it, the time) starts again."""
+        line = {k: getattr(self, k) for k in ("t", "down", "down_free", "up", "up_free", "host_rx", "timeout",
+                                             "rng", "_flip_in", "sent_frames", "clean", "crc_escapes")}
+        self.__init__(**self._args)
+        self.__dict__.update(line)
+
     def _next_event(self) -> float | None:
         times = []
+        if self.reset_at is not None:
+            times.append(max(self.reset_at, self.t))
         if self.down:
             times.append(self.down[0][0])
         if self.up:
@@ -199,6 +212,9 @@ class DeviceModel:
             if step is None or step > until:
                 return
             self.t = step
+            if self.reset_at is not None and step >= self.reset_at:
+                self.power_cycle()
+                continue
             if self.down and self.down[0][0] <= step:
                 when, byte = self.down.popleft()
                 if self.parser.pending() and when - self.last_rx > self.frame_timeout:

@@ -198,6 +198,11 @@ class Driver:
             if self._advance(reply.seq, reply.free):
                 self.device_state, self.device_error = reply.state, reply.error
                 self._waiting = False
+            elif not self.sent:
+                # nothing in flight, so every ACK of ours came before and E can only be base (the
+                # credit probe's answer): the controller lost its state
+                raise LinkError(f"the controller expects frame {reply.seq}, the driver {self.base % 256}: "
+                                "was it reset? (its queue and position are lost)")
             return None
         self.naks += 1
         if self._advance(reply.seq, reply.free) and reply.reason == p.NAK_TYPE:
@@ -495,6 +500,7 @@ def apply_polarity(driver: Driver, polarity: dict[str, int]) -> None:
 
 
 POSITION = ("POS_X", "POS_Y", "POS_Z")
+RESET_TEXT = "the controller was reset during the run: its queue and position are lost"
 STOP_SECONDS = 10.0         # Ctrl-X: the longest wait for the feed hold before the abort
 AT_SPEED = "the motors may have lost steps"
 
@@ -571,7 +577,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     check_idle(driver)
     arm = p.CONTROL_PROBE_ARM | p.CONTROL_PROBE_STOP if probe else 0
     driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_CLEAR | p.CONTROL_ENABLE | p.CONTROL_FILL | arm)
-    base = driver.read_register("EXECUTED")
+    base = last_executed = driver.read_register("EXECUTED")
     if override is not None and (override.set or probe):     # over the run's settings
         driver.write_register("OVERRIDE", 100 if probe else override.percent)
     fill_bytes = max(1, min(len(stream), driver.free - driver.lmax))
@@ -637,6 +643,9 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
         polling = False
         v = {n: driver.values[REG[n]] for n in POLLED}
         driver.fresh.difference_update(REG[n] for n in POLLED)
+        if (v["EXECUTED"] - last_executed) & 0xFFFFFFFF > 0x7FFFFFFF:   # it only grows: a reset
+            raise LinkError(f"{RESET_TEXT} (EXECUTED went back from {last_executed} to {v['EXECUTED']})")
+        last_executed = v["EXECUTED"]
         snap.executed = (v["EXECUTED"] - base) & 0xFFFFFFFF
         snap.state, snap.queue_records = field(v["STATUS"], 0, 3), field(v["STATUS"], 8, 8)
         snap.position = [signed32(v[name]) for name in POSITION]
@@ -680,5 +689,12 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
         if driver.stream_done() and snap.executed >= records and not busy and snap.queue_records == 0 \
                 and not paused:                 # (a pause at the end holds until it is released)
             return Outcome("done", snap.executed, seconds)
+        if driver.stream_done() and snap.state == p.IDLE and not busy and snap.queue_records == 0 \
+                and snap.executed < records and not aborted:
+            # every record acknowledged, none waiting, the controller idle: all must have run (the
+            # round read EXECUTED before STATUS, so read it again); fewer: they were lost
+            snap.executed = (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
+            if snap.executed < records:
+                raise LinkError(f"{RESET_TEXT} (idle and empty, with records still to run)")
         if max_seconds is not None and seconds > max_seconds:
             return Outcome("timeout", snap.executed, seconds)

@@ -181,7 +181,7 @@ class SimLink:
         self._run(1 << 62, self._cycles(seconds))
 
     def set_pin(self, name: str, value: int) -> None:
-        """Drive an input pin of the model: estop, limit (3 bits: x, y, z), probe."""
+        """Drive an input pin of the model: estop, limit (3 bits: x, y, z), probe, rst (the reset)."""
         words = self._ask(f"p {name} {int(value)}").split(" ")
         self._cycle = int(words[1])
 

@@ -13,7 +13,8 @@
 //   r SIZE CYCLES    run until SIZE bytes have come from uart_tx (since the last answer)
 //                    or CYCLES cycles have passed (0: just report).  Answer
 //                    "d CYCLE HEX" with every byte received since the last "d".
-//   p NAME VALUE     set an input pin: estop, limit (3 bits), probe.  Answer "ok CYCLE".
+//   p NAME VALUE     set an input pin: estop, limit (3 bits), probe, or rst (the design's reset,
+//                    as a board's button: held while 1).  Answer "ok CYCLE".
 //   s AXIS SIDE AT   a limit switch on axis 0..2 (x, y, z) at harness position AT (steps
 //                    counted at the pins, 0 at reset): SIDE 0 active at or below AT, 1 at
 //                    or above; from then on that limit bit follows the position after
@@ -145,7 +146,8 @@ class Board {
         if (name == "estop") top_->estop = value & 1;
         else if (name == "limit") top_->limit = value & 7;
         else if (name == "probe") top_->probe = value & 1;
-        else fail("unknown pin " + name + " (estop, limit, probe)");
+        else if (name == "rst") top_->rst = value & 1;
+        else fail("unknown pin " + name + " (estop, limit, probe, rst)");
         calm_ = 0;
     }
 
