@@ -258,6 +258,28 @@ def test_port_cannot_open(capsys, program):
         assert len(err.strip().splitlines()) == 1
 
 
+@pytest.mark.skipif(sys.platform != "linux", reason="a pty")
+def test_a_port_another_program_holds(capsys, program):
+    """The port is opened exclusively: a second `interp send` or `status` on a port a sender holds
+    is refused at once instead of mixing its frames into the running link."""
+    import os
+
+    import serial
+
+    master, slave = os.openpty()
+    name = os.ttyname(slave)
+    holder = serial.serial_for_url(name, baudrate=115200, timeout=0.01, exclusive=True)
+    try:
+        for argv in (["send", program], ["status"]):
+            code, out, err = run(capsys, *argv, "--port", name)
+            assert code == 1 and err.strip() == (f"interp: error: link: cannot open {name}: another program has "
+                                                 "it open (a sender, interp send or status, a terminal)"), err
+    finally:
+        holder.close()
+        os.close(master)
+        os.close(slave)
+
+
 def test_port_without_controller(capsys, program):
     """loop:// echoes the host's own frames: no controller answers; one line after 2 s."""
     code, _, err = run(capsys, "send", program, "--port", "loop://")

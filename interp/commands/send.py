@@ -55,10 +55,13 @@ def open_transport(args, machine: Machine):
         except ImportError:
             raise RuntimeError("pyserial is not installed (pip install pyserial)") from None
         try:
-            return serial.serial_for_url(args.port, baudrate=args.baud, timeout=0.01), args.baud
+            # exclusive: a second sender (or `interp status`) on the same port would mix its frames in
+            return serial.serial_for_url(args.port, baudrate=args.baud, timeout=0.01, exclusive=True), args.baud
         except (serial.SerialException, ValueError) as err:
             cause = err.__context__
             text = cause.strerror if isinstance(cause, OSError) and cause.strerror else str(err)
+            if isinstance(cause, BlockingIOError) or "exclusively lock" in str(err):
+                text = "another program has it open (a sender, interp send or status, a terminal)"
             raise LinkError(f"cannot open {args.port}: {text}") from None
     seed = 1 if getattr(args, "seed", None) is None else args.seed        # (send's --seed only)
     if getattr(args, "sim_model", False):
