@@ -96,11 +96,16 @@ def test_bad_machine_files(tmp_path, text, message):
     assert message in str(err.value) and "\n" not in str(err.value)
 
 
-def test_polarity_masks():
-    """input.invert and output.invert as the INPUT_INVERT and OUTPUT_INVERT bits (regs/controller.rdl)."""
-    assert load_machine().polarity() == {"INPUT_INVERT": 0, "OUTPUT_INVERT": 0}
-    m = load_machine(sets=['input.invert=["probe", "estop"]', 'output.invert=["dir_y", "enable", "dout3", "step_x"]'])
-    assert m.polarity() == {"INPUT_INVERT": 0b10001, "OUTPUT_INVERT": 1 << 4 | 1 << 6 | 1 << 15 | 1}
+def test_pin_settings():
+    """input.invert and output.invert as the INPUT_INVERT and OUTPUT_INVERT bits (regs/controller.rdl),
+    spindle.pwm_hz as SPINDLE_PERIOD clocks, which must fit its 16 bits."""
+    assert load_machine().pin_settings() == {"INPUT_INVERT": 0, "OUTPUT_INVERT": 0, "SPINDLE_PERIOD": 50000}
+    m = load_machine(sets=['input.invert=["probe", "estop"]', 'output.invert=["dir_y", "enable", "dout3", "step_x"]',
+                           "controller.clock_hz=15e6", "spindle.pwm_hz=20000"])
+    assert m.pin_settings() == {"INPUT_INVERT": 0b10001, "OUTPUT_INVERT": 1 << 4 | 1 << 6 | 1 << 15 | 1,
+                                "SPINDLE_PERIOD": 750}
+    with pytest.raises(MachineError, match=r"spindle.pwm_hz \(500 Hz\) is a period of 100000 clocks .* 763 \.\. 2.5e\+07 Hz"):
+        load_machine(sets=["spindle.pwm_hz=500"]).pin_settings()
 
 
 def test_overrides():

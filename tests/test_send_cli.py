@@ -134,6 +134,7 @@ def test_the_machine_files_polarity_is_written_once(capsys, program, tmp_path, m
     for _ in range(2):
         assert run(capsys, "send", program, "--sim-model", "--machine", str(machine))[0] == 0
     assert device.regs["INPUT_INVERT"] == 0x10 and device.regs["OUTPUT_INVERT"] == 0x50
+    assert device.regs["SPINDLE_PERIOD"] == 50000                      # spindle.pwm_hz 1000 at 50 MHz
     written = [name for name, _ in device.writes if name.endswith("_INVERT")]
     assert written == ["INPUT_INVERT", "OUTPUT_INVERT"]
     assert device.writes[:2] == [("INPUT_INVERT", 0x10), ("OUTPUT_INVERT", 0x50)]      # before anything else
@@ -148,16 +149,16 @@ def test_the_machine_files_polarity_is_written_once(capsys, program, tmp_path, m
     (19, 0, 0, 0b11111, False),          # an abort at speed is not an input
 ])
 def test_an_error_of_the_old_input_polarity_is_cleared(error, limits, before, after, cleared):
-    """apply_polarity clears an e-stop or limit error only when the polarity of every input
+    """apply_pin_settings clears an e-stop or limit error only when the polarity of every input
     behind it changed (a normally-open switch read active under the reset's polarity) and
     the input reads inactive now; any other error stays."""
-    from interp.link.driver import Driver, apply_polarity
+    from interp.link.driver import Driver, apply_pin_settings
 
     device = DeviceModel()
     device.error, device.limits, device.regs["INPUT_INVERT"] = error, limits, before
     driver = Driver(device, baud=115200)
     driver.connect()
-    apply_polarity(driver, {"INPUT_INVERT": after})
+    apply_pin_settings(driver, {"INPUT_INVERT": after})
     assert device.regs["INPUT_INVERT"] == after
     assert device.error == (0 if cleared else error)
 
@@ -165,7 +166,7 @@ def test_an_error_of_the_old_input_polarity_is_cleared(error, limits, before, af
 def test_output_polarity_is_written_with_the_drivers_disabled():
     """A changed step bit makes an edge on its pin: CONTROL.enable is off while OUTPUT_INVERT
     changes, then restored; an unchanged value is not written."""
-    from interp.link.driver import Driver, apply_polarity
+    from interp.link.driver import Driver, apply_pin_settings
     from interp.link import protocol as p
 
     device = DeviceModel()
@@ -173,9 +174,9 @@ def test_output_polarity_is_written_with_the_drivers_disabled():
     driver.connect()
     driver.write_register("CONTROL", p.CONTROL_ENABLE)
     device.writes.clear()
-    apply_polarity(driver, {"OUTPUT_INVERT": 0x7})
+    apply_pin_settings(driver, {"OUTPUT_INVERT": 0x7})
     assert device.writes == [("CONTROL", 0), ("OUTPUT_INVERT", 7), ("CONTROL", p.CONTROL_ENABLE)]
-    apply_polarity(driver, {"OUTPUT_INVERT": 0x7})
+    apply_pin_settings(driver, {"OUTPUT_INVERT": 0x7})
     assert len(device.writes) == 3
 
 
@@ -318,3 +319,15 @@ def test_empty_program(capsys, tmp_path):
     path.write_text("(nothing to do)\n")
     code, out, err = run(capsys, "send", str(path), "--sim-model")
     assert code == 0 and out.startswith("sent 0 records (0 bytes)")
+    assert "interp: warning: the program has no command to send" in err
+
+
+def test_a_line_of_mdi_that_sets_an_offset_is_no_empty_program(capsys, tmp_path):
+    """G10 L20 sends no record and still did something: no "no command to send" warning."""
+    machine = tmp_path / "m.toml"
+    machine.write_text('[gcode]\nparameter_file = "mill.var"\n')
+    path = tmp_path / "zero.nc"
+    path.write_text("G10 L20 P1 X1 Y2\n")                  # (the machine at 0: offsets -1, -2)
+    code, out, err = run(capsys, "send", str(path), "--sim-model", "--machine", str(machine))
+    assert code == 0 and out.startswith("sent 0 records (0 bytes)") and "no command to send" not in err, err
+    assert "saved the offsets" in err

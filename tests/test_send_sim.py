@@ -162,19 +162,20 @@ def test_input_pins(files):
 
 
 def test_polarity_on_the_rtl(files):
-    """apply_polarity through the link on the RTL: OUTPUT_INVERT takes the machine file's bits and
-    the pins follow them; an e-stop pin that reads active only under the new INPUT_INVERT (a real
+    """apply_pin_settings through the link on the RTL: OUTPUT_INVERT and SPINDLE_PERIOD take the machine
+    file's values (a name left out is not written); an e-stop pin that reads active only under the new INPUT_INVERT (a real
     e-stop) latches ERROR 16, which the write's clear cannot clear while it is active."""
     from interp.gcode.machine import load_machine
-    from interp.link.driver import Driver, apply_polarity
+    from interp.link.driver import Driver, apply_pin_settings
 
     with SimLink(machine=load_machine(str(files / "machine.toml"))) as link:
         driver = Driver(link, baud=link.baud)
         driver.connect()
-        apply_polarity(driver, {"OUTPUT_INVERT": 0x1FFFF})
+        apply_pin_settings(driver, {"OUTPUT_INVERT": 0x1FFFF})
         assert driver.read_register("OUTPUT_INVERT") == 0xFFFF and driver.read_register("ERROR") == 0
-        apply_polarity(driver, {"INPUT_INVERT": 1})         # the e-stop pin is low: active low, pressed
-        assert driver.read_register("OUTPUT_INVERT") == 0 and driver.read_register("ERROR") & 0xFF == 16
+        apply_pin_settings(driver, {"INPUT_INVERT": 1, "OUTPUT_INVERT": 0, "SPINDLE_PERIOD": 600})
+        assert driver.read_register("OUTPUT_INVERT") == 0 and driver.read_register("SPINDLE_PERIOD") == 600
+        assert driver.read_register("ERROR") & 0xFF == 16       # the e-stop pin is low: active low, pressed
         link.set_pin("estop", 1)
         driver.write_register("CONTROL", p.CONTROL_CLEAR)
         assert driver.read_register("ERROR") == 0 and driver.read_register("INPUTS") == 0

@@ -21,7 +21,7 @@ import sys
 from ..cores import UsageError
 from ..gcode.machine import AXES, Machine, load_machine
 from ..link import protocol as p
-from ..link.driver import (Driver, LinkError, MismatchError, apply_polarity, check_controller, check_idle,
+from ..link.driver import (Driver, LinkError, MismatchError, apply_pin_settings, check_controller, check_idle,
                            read_position)
 from . import send
 from .jog import relative_move, unlimited
@@ -152,7 +152,7 @@ def cmd_home(args) -> int:
         driver.connect()
         check_controller(driver, compile_build(), machine.clock_hz)
         check_idle(driver)
-        apply_polarity(driver, machine.polarity())
+        apply_pin_settings(driver, machine.pin_settings())
         start = driver.clock()
         for axis in axes:
             switch_mm, end_mm = home_axis(driver, machine, axis)

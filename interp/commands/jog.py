@@ -25,7 +25,7 @@ import time
 from ..cores import UsageError
 from ..gcode.machine import AXES, Machine, load_machine
 from ..link import protocol as p
-from ..link.driver import (Driver, LinkError, MismatchError, apply_polarity, check_controller, check_idle,
+from ..link.driver import (Driver, LinkError, MismatchError, apply_pin_settings, check_controller, check_idle,
                            configure, read_position, run_program)
 from ..link.records import encode_program
 from .gcode import compile_text
@@ -200,7 +200,7 @@ def cmd_jog(args) -> int:
         check_controller(driver, compile_build(), machine.clock_hz)
         check_idle(driver)
         if not args.sim:                                # (the simulator's pins are ideal)
-            apply_polarity(driver, machine.polarity())
+            apply_pin_settings(driver, machine.pin_settings())
             send.check_homed(driver, machine)
         send.warn_of_stop(driver, "interp jog")
         if keys_wanted:

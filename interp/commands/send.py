@@ -28,7 +28,7 @@ from ..gcode.parameter_file import check_lengths, check_writable, describe, writ
 from ..link import protocol as p
 from ..gcode.compile import compile_program
 from ..gcode.moves import ProbeResult
-from ..link.driver import (Driver, FeedOverride, LinkError, MachineError, MismatchError, apply_polarity,
+from ..link.driver import (Driver, FeedOverride, LinkError, MachineError, MismatchError, apply_pin_settings,
                            check_controller, check_idle, configure, read_position, run_program, signed32)
 from ..link.records import DEFAULT_BUILD, Build, encode_program
 from ..simulation.output import check_outputs
@@ -266,7 +266,7 @@ def cmd_send(args) -> int:
         check_controller(driver, build, machine.clock_hz)
         check_idle(driver)
         if not args.sim:                    # the simulator's pins are ideal; it has no switches to home to
-            apply_polarity(driver, machine.polarity())
+            apply_pin_settings(driver, machine.pin_settings())
             check_homed(driver, machine)
         # the program starts where the machine is: the controller's position counters
         # (machine coordinates, zero at its reset), as Grbl's and LinuxCNC's programs do;
@@ -415,7 +415,8 @@ class ProgramRun:
         self.show(compiled.warnings, "warning")
         build = compile_build()
         stream = encode_program(compiled.commands, build)
-        if not compiled.commands and last and not self.records:
+        if not compiled.commands and last and not self.records and not offsets_changed(self.machine, self.saved,
+                                                                                        program.saved):
             print("interp: warning: the program has no command to send", file=sys.stderr)
         if any(c.kind == CURVE for c in compiled.commands):
             check_controller(self.driver, build, self.machine.clock_hz, curves=True)
@@ -499,17 +500,21 @@ def check_homed(driver: Driver, machine: Machine) -> None:
                         "run interp home (homing.required)")
 
 
+def offsets_changed(machine: Machine, before: dict, after: dict) -> bool:
+    """The program changed the saved parameters (offsets, G92, G28 / G30 positions): a line of
+    MDI such as G10 L20 sends no command and still did something."""
+    from ..gcode.interpreter import interpret
+
+    return after != interpret("", g28=machine.g28, g30=machine.g30, saved=before).saved
+
+
 def save_parameters(args, machine: Machine, before: dict, after: dict) -> None:
     """A program that ran to its end leaves its offsets, G92 and G28 / G30 positions in the
     machine's parameter file for the next one (as LinuxCNC's var file and Grbl's settings keep
     them); the file is written only when they changed.  A simulated run (--sim) reads the file
     but leaves it as it is."""
-    from ..gcode.interpreter import interpret
-
     path = machine.parameter_file
-    if path is None or args.sim:
-        return
-    if after == interpret("", g28=machine.g28, g30=machine.g30, saved=before).saved:
+    if path is None or args.sim or not offsets_changed(machine, before, after):
         return
     # the G28 / G30 positions only where G28.1 / G30.1 moved them from the machine file's [home]
     homes = {5161 + a: machine.g28[a] for a in range(3)} | {5181 + a: machine.g30[a] for a in range(3)}

@@ -33,10 +33,11 @@ def cmd_status(args) -> int:
             if registers.ACCESS.get(name) == "wo":
                 continue
             lines.append(registers.describe(name, driver.read_register(address)))
-        # the machine file's pin polarity, which send, home and jog write when they connect
-        for name, value in machine.polarity().items():
+        # the machine file's pin settings, which send, home and jog write when they connect
+        for name, value in ({} if args.sim else machine.pin_settings()).items():
             if driver.read_register(name) != value:
-                lines.append(f"{name} differs from the machine file's ({value:#x}, {machine.source}): "
+                shown = f"{value:#x}" if name.endswith("INVERT") else f"{value}"
+                lines.append(f"{name} differs from the machine file's ({shown}, {machine.source}): "
                              "interp send, home and jog write it when they connect")
         # where a program sent now starts (interp send), at the machine file's steps/mm
         position = read_position(driver)

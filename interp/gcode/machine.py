@@ -66,7 +66,7 @@ SCHEMA: dict[str, dict[str, tuple]] = {
     },
     "spindle": {
         "max_s": ("float>", 24000.0, 0, 1e9, "rpm", "the S value of 100 % PWM duty"),
-        "pwm_hz": ("float>", 1000.0, 0, 1e9, "Hz", "PWM frequency (recorded for the spindle output)"),
+        "pwm_hz": ("float>", 1000.0, 0, 1e9, "Hz", "spindle PWM frequency (the controller's SPINDLE_PERIOD)"),
     },
     "gcode": {
         "parameter_file": ("text", "", None, None, "", "file of the settings that outlive a program (work offsets, G92, the coordinate system, G28 / G30 positions); empty: none"),
@@ -147,10 +147,23 @@ class Machine:
         """The axes `interp home` homes, in its order (0 = x)."""
         return [AXES.index(a) for a in self.homing["order"] if self.values[f"axis.{a}"]["home"] != "none"]
 
-    def polarity(self) -> dict[str, int]:
-        """The controller's INPUT_INVERT and OUTPUT_INVERT of input.invert and output.invert."""
+    def pin_settings(self) -> dict[str, int]:
+        """The controller's INPUT_INVERT and OUTPUT_INVERT (input.invert, output.invert) and
+        SPINDLE_PERIOD (spindle.pwm_hz, in clocks); MachineError when the period does not fit the
+        register (checked here, where a board is driven: `interp gcode` runs any clock)."""
+        period = self.spindle_period()
+        if not 2 <= period <= TIMING_MAX:
+            hz, clock = self.values["spindle"]["pwm_hz"], self.clock_hz
+            raise MachineError(f"{self.source}: spindle.pwm_hz ({hz:g} Hz) is a period of {period} clocks at "
+                               f"controller.clock_hz = {clock:g}; the controller's SPINDLE_PERIOD takes 2 .. "
+                               f"{TIMING_MAX}: {clock / TIMING_MAX:.4g} .. {clock / 2:.4g} Hz")
         return {"INPUT_INVERT": sum(1 << INPUT_NAMES.index(n) for n in self.values["input"]["invert"]),
-                "OUTPUT_INVERT": sum(1 << OUTPUT_NAMES.index(n) for n in self.values["output"]["invert"])}
+                "OUTPUT_INVERT": sum(1 << OUTPUT_NAMES.index(n) for n in self.values["output"]["invert"]),
+                "SPINDLE_PERIOD": self.spindle_period()}
+
+    def spindle_period(self) -> int:
+        """Clocks of one spindle PWM period (spindle.pwm_hz at the clock)."""
+        return max(1, round(self.clock_hz / self.values["spindle"]["pwm_hz"]))
 
     @property
     def max_s(self) -> float:
@@ -331,3 +344,4 @@ def _consistent(machine: Machine) -> None:
         if _cycles(machine.values["output"][key], clock) > TIMING_MAX:
             raise MachineError(f"{where}: output.{key} is more than {TIMING_MAX} clock cycles at "
                                f"controller.clock_hz = {clock:g}")
+

@@ -441,7 +441,7 @@ def check_controller(driver: Driver, build: Build = DEFAULT_BUILD, clock_hz: flo
         raise MismatchError(f"the controller's build differs: {', '.join(bad)}")
     if clock_hz is not None and v["CLOCK_HZ"] != round(clock_hz):
         raise MismatchError(f"the controller's clock is {v['CLOCK_HZ']} Hz, the machine file's clock_hz is "
-                            f"{clock_hz:g} Hz")
+                            f"{clock_hz:g} Hz: give --machine with the board's clock (boards/<board>/machine.toml)")
     if curves and not field(v["QUEUE_SIZE"], 24, 1):
         raise MismatchError("the program has curve commands and the controller is built without CURVES")
     return v
@@ -457,16 +457,17 @@ def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
             ("OVERRIDE", int(settings.get("override", 100)))]
 
 
-POLARITY_MASKS = {"INPUT_INVERT": 0x1F, "OUTPUT_INVERT": 0xFFFF}
+POLARITY_MASKS = {"INPUT_INVERT": 0x1F, "OUTPUT_INVERT": 0xFFFF, "SPINDLE_PERIOD": 0xFFFF}
 
 
 CONTROL_KEPT = p.CONTROL_HOLD | p.CONTROL_ENABLE | p.CONTROL_FILL | p.CONTROL_PROBE_STOP    # CONTROL's RW bits
 
 
-def apply_polarity(driver: Driver, polarity: dict[str, int]) -> None:
-    """Write INPUT_INVERT and OUTPUT_INVERT (the machine file's input.invert, output.invert)
-    where the controller's differ (after its reset: the build's INPUT_INVERT_RESET and
-    OUTPUT_INVERT_RESET, 0 by default).  Call it at rest (check_idle), before reading ERROR.
+def apply_pin_settings(driver: Driver, polarity: dict[str, int]) -> None:
+    """Write INPUT_INVERT, OUTPUT_INVERT and SPINDLE_PERIOD (the machine file's input.invert,
+    output.invert, spindle.pwm_hz) where the controller's differ (after its reset: the build's
+    INPUT_INVERT_RESET and OUTPUT_INVERT_RESET, 0 by default; 20 kHz).  A name left out of
+    `polarity` is not written.  Call it at rest (check_idle), before reading ERROR.
       * OUTPUT_INVERT is written with the drivers disabled (CONTROL.enable 0, then restored):
         a changed step bit makes an edge on its pin.
       * An e-stop error (16) latched under another e-stop polarity, or a limit error (17) whose
@@ -474,9 +475,10 @@ def apply_polarity(driver: Driver, polarity: dict[str, int]) -> None:
         normally-open switch reads active until then): it is cleared if those inputs read
         inactive now.  Any other error stays.
     LinkError if the controller does not take a value (a bitstream older than the register)."""
-    before = {name: driver.read_register(name) & mask for name, mask in POLARITY_MASKS.items()}
-    for name, mask in POLARITY_MASKS.items():
-        value = polarity.get(name, 0) & mask
+    masks = {name: mask for name, mask in POLARITY_MASKS.items() if name in polarity}
+    before = {name: driver.read_register(name) & mask for name, mask in masks.items()}
+    for name, mask in masks.items():
+        value = polarity[name] & mask
         if before[name] == value:
             continue
         control = driver.read_register("CONTROL") & CONTROL_KEPT
@@ -489,7 +491,7 @@ def apply_polarity(driver: Driver, polarity: dict[str, int]) -> None:
         if driver.read_register(name) & mask != value:
             raise LinkError(f"the controller did not take {name} = 0x{value:X} (a bitstream without it: "
                             "build and load the current one)")
-    changed = before["INPUT_INVERT"] ^ (polarity.get("INPUT_INVERT", 0) & POLARITY_MASKS["INPUT_INVERT"])
+    changed = before["INPUT_INVERT"] ^ (polarity["INPUT_INVERT"] & 0x1F) if "INPUT_INVERT" in polarity else 0
     if not changed:
         return
     error, inputs = driver.read_register("ERROR"), driver.read_register("INPUTS")
