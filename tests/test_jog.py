@@ -48,6 +48,18 @@ def test_one_move(capsys, device):
     assert device.position == [0, -50, 25]
 
 
+def test_the_work_position_with_a_parameter_file(capsys, device, tmp_path):
+    """With a parameter file the jog also prints the work position its offsets give (to set a
+    work origin by eye, as a sender shows WPos next to MPos)."""
+    machine = tmp_path / "m.toml"
+    machine.write_text('[gcode]\nparameter_file = "mill.var"\n')
+    (tmp_path / "mill.var").write_text("5221\t-10.0\n")               # G54 X offset -10 mm
+    code, out, err = run(capsys, "jog", "--sim-model", "X1", "--machine", str(machine))
+    assert code == 0, err
+    assert out.splitlines() == ["machine position X1.000 Y0.000 Z0.000 mm",
+                                f"work position X11.000 Y0.000 Z0.000 mm (G54 X-10 Y0 Z0 mm: {tmp_path / 'mill.var'})"]
+
+
 def test_beyond_the_travel_nothing_moves(capsys, device):
     """The travel of a homed axis (STATUS.position_set) holds; an axis not homed since the
     controller's reset jogs freely, as Grbl keeps soft limits only once homed."""

@@ -31,6 +31,7 @@ from ..link.records import encode_program
 from .gcode import compile_text
 from . import send
 from .send import Keyboard, add_link_options, check_link_args, compile_build, mm_text
+from .status import work_position
 
 DEFAULT_FEED = 1000.0                               # mm/min
 INCREMENTS = (0.01, 0.1, 1.0, 10.0, 100.0)          # mm, the [ and ] keys
@@ -106,6 +107,15 @@ def jog(driver: Driver, machine: Machine, limits: Machine, delta_mm, rate: float
     return outcome.status, "the jog was stopped" + (f" ({outcome.message})" if outcome.message else "")
 
 
+def show_position(driver: Driver, machine: Machine, said: str = "") -> None:
+    """The machine position (and what the jog said), then with a parameter file the work position."""
+    position = read_position(driver)
+    print(f"machine position {mm_text(machine, position)} mm" + (f": {said}" if said else ""))
+    work = work_position(machine, position)
+    if work:
+        print(work)
+
+
 def key_tokens(typed: str) -> list[str]:
     """Keys typed as tokens: an escape sequence (an arrow, a page key) is one."""
     return re.findall(r"\x1b\[[0-9;]*[A-Za-z~]|\x1bO[A-Za-z]|[\s\S]", typed)
@@ -171,7 +181,7 @@ def interactive(driver: Driver, machine: Machine, rate: float, keyboard, jog_key
             except UsageError as err:                   # beyond the travel: nothing moved
                 print(f"interp: {err}", file=sys.stderr)
                 break
-            print(f"machine position {mm_text(machine, read_position(driver))} mm" + (f": {said}" if said else ""))
+            show_position(driver, machine, said)
             if status == "error":
                 return 1
             break                                       # keys typed ahead of the jog are dropped
@@ -207,7 +217,7 @@ def cmd_jog(args) -> int:
             keyboard = Keyboard(True)
             return interactive(driver, machine, args.feed, keyboard)
         status, said = jog(driver, machine, travel(driver, machine), delta, args.feed)
-        print(f"machine position {mm_text(machine, read_position(driver))} mm")
+        show_position(driver, machine)
         if said:
             print(f"interp: error: {said}", file=sys.stderr)
             return 1

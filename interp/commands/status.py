@@ -17,6 +17,19 @@ from . import send
 from .send import add_link_options, check_link_args, mm_text
 
 
+def work_position(machine, position) -> str | None:
+    """"work position X.. Y.. Z.. mm (offsets: file)" of a machine position in steps, with the
+    parameter file's offsets; None without a parameter file."""
+    if machine.parameter_file is None:
+        return None
+    try:
+        program = gcode_command.interpret_program("", machine, position)
+    except UsageError as err:
+        return f"work position unknown: {err}"
+    work = " ".join(f"{axis}{value:.3f}" for axis, value in zip("XYZ", program.end_work))
+    return f"work position {work} mm ({describe(program.saved) or 'no offset'}: {machine.parameter_file})"
+
+
 def cmd_status(args) -> int:
     args.steps = args.line_noise = None
     check_link_args(args)
@@ -42,15 +55,9 @@ def cmd_status(args) -> int:
         # where a program sent now starts (interp send), at the machine file's steps/mm
         position = read_position(driver)
         lines.append(f"machine position {mm_text(machine, position)} mm")
-        if machine.parameter_file is not None:        # and in the work coordinates the file keeps
-            try:
-                program = gcode_command.interpret_program("", machine, position)
-            except UsageError as err:
-                lines.append(f"work position unknown: {err}")
-            else:
-                work = " ".join(f"{axis}{value:.3f}" for axis, value in zip("XYZ", program.end_work))
-                lines.append(f"work position {work} mm ({describe(program.saved) or 'no offset'}: "
-                             f"{machine.parameter_file})")
+        work = work_position(machine, position)     # and in the work coordinates the file keeps
+        if work:
+            lines.append(work)
     except LinkError as err:
         print(f"interp: error: link: {err}", file=sys.stderr)
         return 1
