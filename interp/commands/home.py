@@ -21,11 +21,10 @@ import sys
 from ..cores import UsageError
 from ..gcode.machine import AXES, Machine, load_machine
 from ..link import protocol as p
-from ..link.driver import (Driver, LinkError, MismatchError, apply_pin_settings, check_controller, check_idle,
-                           read_position)
+from ..link.driver import Driver, LinkError, MismatchError, read_position
 from . import send
 from .jog import relative_move, unlimited
-from .send import add_link_options, check_link_args, compile_build, mm_text
+from .send import add_link_options, check_link_args, mm_text
 
 SEEK_TRAVELS = 1.5          # the seek goes at most 1.5 travels (and a pull-off) towards the switch
 BOUNCES = 5                 # a pull-off tripped again by a bouncing switch is run again this often
@@ -149,10 +148,7 @@ def cmd_home(args) -> int:
     driver = None
     try:
         driver = Driver(transport, baud=baud)
-        driver.connect()
-        check_controller(driver, compile_build(), machine.clock_hz)
-        check_idle(driver)
-        apply_pin_settings(driver, machine.pin_settings())
+        send.make_ready(driver, machine, sim=False, homing_lock=False)
         start = driver.clock()
         for axis in axes:
             switch_mm, end_mm = home_axis(driver, machine, axis)

@@ -25,8 +25,7 @@ import time
 from ..cores import UsageError
 from ..gcode.machine import AXES, Machine, load_machine
 from ..link import protocol as p
-from ..link.driver import (Driver, LinkError, MismatchError, apply_pin_settings, check_controller, check_idle,
-                           configure, read_position, run_program)
+from ..link.driver import Driver, LinkError, MismatchError, configure, read_position, run_program
 from ..link.records import encode_program
 from .gcode import compile_text
 from . import send
@@ -206,12 +205,7 @@ def cmd_jog(args) -> int:
     driver = keyboard = None
     try:
         driver = Driver(transport, baud=baud)
-        driver.connect()
-        check_controller(driver, compile_build(), machine.clock_hz)
-        check_idle(driver)
-        if not args.sim:                                # (the simulator's pins are ideal)
-            apply_pin_settings(driver, machine.pin_settings())
-            send.check_homed(driver, machine)
+        send.make_ready(driver, machine, args.sim)
         send.warn_of_stop(driver, "interp jog")
         if keys_wanted:
             keyboard = Keyboard(True)

@@ -253,7 +253,6 @@ def cmd_send(args) -> int:
         check_for_sim(text, machine, saved)
     if machine.parameter_file is not None and not args.sim:
         check_writable(machine.parameter_file)      # before the machine moves
-    build = compile_build()
     opened = open_or_report(args, machine)
     if opened is None:
         return 1
@@ -262,12 +261,7 @@ def cmd_send(args) -> int:
     result = at_end = None
     try:
         driver = Driver(transport, baud=baud)
-        driver.connect()
-        check_controller(driver, build, machine.clock_hz)
-        check_idle(driver)
-        if not args.sim:                    # the simulator's pins are ideal; it has no switches to home to
-            apply_pin_settings(driver, machine.pin_settings())
-            check_homed(driver, machine)
+        make_ready(driver, machine, args.sim)   # (the simulator has no switches to home to)
         # the program starts where the machine is: the controller's position counters
         # (machine coordinates, zero at its reset), as Grbl's and LinuxCNC's programs do;
         # compiled from there (travel limits and arcs depend on the start)
@@ -482,6 +476,19 @@ def warn_of_stop(driver: Driver, who: str) -> None:
 
 class NotHomed(Exception):
     """homing.required and an axis not homed: one line, exit status 1."""
+
+
+def make_ready(driver: Driver, machine: Machine, sim: bool, homing_lock: bool = True) -> None:
+    """Connect as `interp send`, `home` and `jog` do: the build and clock checked, a controller
+    busy with a program refused, the machine file's pin settings written (not to the simulator:
+    its pins are ideal) and, with homing_lock, homing.required (NotHomed)."""
+    driver.connect()
+    check_controller(driver, compile_build(), machine.clock_hz)
+    check_idle(driver)
+    if not sim:
+        apply_pin_settings(driver, machine.pin_settings())
+        if homing_lock:
+            check_homed(driver, machine)
 
 
 def check_homed(driver: Driver, machine: Machine) -> None:

@@ -41,14 +41,12 @@ def cmd_status(args) -> int:
     try:
         driver = Driver(transport, baud=baud)
         driver.connect()
-        lines = []
-        for name, address in registers.REGISTERS.items():
-            if registers.ACCESS.get(name) == "wo":
-                continue
-            lines.append(registers.describe(name, driver.read_register(address)))
+        values = {name: driver.read_register(address) for name, address in registers.REGISTERS.items()
+                  if registers.ACCESS.get(name) != "wo"}
+        lines = [registers.describe(name, value) for name, value in values.items()]
         # the machine file's pin settings, which send, home and jog write when they connect
         for name, value in ({} if args.sim else machine.pin_settings()).items():
-            if driver.read_register(name) != value:
+            if values[name] != value:
                 shown = f"{value:#x}" if name.endswith("INVERT") else f"{value}"
                 lines.append(f"{name} differs from the machine file's ({shown}, {machine.source}): "
                              "interp send, home and jog write it when they connect")

@@ -488,4 +488,4 @@ class DeviceModel:
             self.position[axis] = new
             self.position_set |= 1 << axis
         elif name in self.regs:
-            self.regs[name] = value & {"INPUT_INVERT": 0x1F, "OUTPUT_INVERT": 0xFFFF}.get(name, 0xFFFFFFFF)
+            self.regs[name] = value & p.kept_bits(name) if name.endswith("_INVERT") else value

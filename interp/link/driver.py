@@ -457,17 +457,15 @@ def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
             ("OVERRIDE", int(settings.get("override", 100)))]
 
 
-POLARITY_MASKS = {"INPUT_INVERT": 0x1F, "OUTPUT_INVERT": 0xFFFF, "SPINDLE_PERIOD": 0xFFFF}
+PIN_SETTINGS = ("INPUT_INVERT", "OUTPUT_INVERT", "SPINDLE_PERIOD")
+CONTROL_KEPT = p.kept_bits("CONTROL")           # hold, enable, fill, probe_stop (not the strobes)
 
 
-CONTROL_KEPT = p.CONTROL_HOLD | p.CONTROL_ENABLE | p.CONTROL_FILL | p.CONTROL_PROBE_STOP    # CONTROL's RW bits
-
-
-def apply_pin_settings(driver: Driver, polarity: dict[str, int]) -> None:
+def apply_pin_settings(driver: Driver, settings: dict[str, int]) -> None:
     """Write INPUT_INVERT, OUTPUT_INVERT and SPINDLE_PERIOD (the machine file's input.invert,
     output.invert, spindle.pwm_hz) where the controller's differ (after its reset: the build's
     INPUT_INVERT_RESET and OUTPUT_INVERT_RESET, 0 by default; 20 kHz).  A name left out of
-    `polarity` is not written.  Call it at rest (check_idle), before reading ERROR.
+    `settings` is not written.  Call it at rest (check_idle), before reading ERROR.
       * OUTPUT_INVERT is written with the drivers disabled (CONTROL.enable 0, then restored):
         a changed step bit makes an edge on its pin.
       * An e-stop error (16) latched under another e-stop polarity, or a limit error (17) whose
@@ -475,10 +473,10 @@ def apply_pin_settings(driver: Driver, polarity: dict[str, int]) -> None:
         normally-open switch reads active until then): it is cleared if those inputs read
         inactive now.  Any other error stays.
     LinkError if the controller does not take a value (a bitstream older than the register)."""
-    masks = {name: mask for name, mask in POLARITY_MASKS.items() if name in polarity}
+    masks = {name: p.kept_bits(name) for name in PIN_SETTINGS if name in settings}
     before = {name: driver.read_register(name) & mask for name, mask in masks.items()}
     for name, mask in masks.items():
-        value = polarity[name] & mask
+        value = settings[name] & mask
         if before[name] == value:
             continue
         control = driver.read_register("CONTROL") & CONTROL_KEPT
@@ -491,7 +489,7 @@ def apply_pin_settings(driver: Driver, polarity: dict[str, int]) -> None:
         if driver.read_register(name) & mask != value:
             raise LinkError(f"the controller did not take {name} = 0x{value:X} (a bitstream without it: "
                             "build and load the current one)")
-    changed = before["INPUT_INVERT"] ^ (polarity["INPUT_INVERT"] & 0x1F) if "INPUT_INVERT" in polarity else 0
+    changed = before["INPUT_INVERT"] ^ (settings["INPUT_INVERT"] & masks["INPUT_INVERT"]) if "INPUT_INVERT" in masks else 0
     if not changed:
         return
     error, inputs = driver.read_register("ERROR"), driver.read_register("INPUTS")
@@ -580,6 +578,9 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     arm = p.CONTROL_PROBE_ARM | p.CONTROL_PROBE_STOP if probe else 0
     driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_CLEAR | p.CONTROL_ENABLE | p.CONTROL_FILL | arm)
     base = last_executed = driver.read_register("EXECUTED")
+
+    def executed_now() -> int:              # EXECUTED read now, counted from the run's start
+        return (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
     if override is not None and (override.set or probe):     # over the run's settings
         driver.write_register("OVERRIDE", 100 if probe else override.percent)
     fill_bytes = max(1, min(len(stream), driver.free - driver.lmax))
@@ -657,7 +658,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
         seconds = driver.clock() - start
         if snap.error or snap.state == p.ALARM:
             # motion has stopped: EXECUTED no longer moves (the round's value may be older)
-            snap.executed = (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
+            snap.executed = executed_now()
             if aborted and snap.error == p.ERROR_ABORT_AT_SPEED:     # our abort cut the steps at speed
                 return Outcome("aborted", snap.executed, seconds, message=stop_note or f"while moving: {AT_SPEED}")
             return Outcome("error", snap.executed, seconds, snap.error, field(v["ERROR"], 8, 3))
@@ -673,7 +674,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                 and not touched and after_release:  # (a round from before a release still shows its hold)
             paused = True                       # the program's own pause: the controller held
             # EXECUTED now, at rest (the round's value may be older): which pause it is
-            snap.executed = (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
+            snap.executed = executed_now()
             if on_pause is not None:
                 on_pause(snap)
         if paused and snap.state == p.HELD and pause_resume is not None and stopping is None:
@@ -695,7 +696,7 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                 and snap.executed < records and not aborted:
             # every record acknowledged, none waiting, the controller idle: all must have run (the
             # round read EXECUTED before STATUS, so read it again); fewer: they were lost
-            snap.executed = (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
+            snap.executed = executed_now()
             if snap.executed < records:
                 raise LinkError(f"{RESET_TEXT} (idle and empty, with records still to run)")
         if max_seconds is not None and seconds > max_seconds:

@@ -200,6 +200,14 @@ CONTROL_HOLD, CONTROL_ABORT, CONTROL_CLEAR, CONTROL_PROBE_ARM, CONTROL_ENABLE, C
     1 << _registers.FIELDS[f"CONTROL.{name}"][0]
     for name in ("hold", "abort", "clear", "probe_arm", "enable", "fill", "probe_stop"))
 STATUS_PROBE_VALID = 1 << _registers.FIELDS["STATUS.probe_valid"][0]
+
+
+def kept_bits(register: str) -> int:
+    """The bits of a register that hold what was written: its "rw" fields in the generated map."""
+    return sum(((1 << width) - 1) << lsb for key, (lsb, width, access) in _registers.FIELDS.items()
+               if key.split(".")[0] == register and access == "rw")
+
+
 STATUS_REFUSED = 1 << _registers.FIELDS["STATUS.refused"][0]
 # taken only while the controller is not busy (a write while busy: STATUS.refused)
 SPEED_SETTINGS = ("QUANTUM_LO", "QUANTUM_HI", "MOTION")
