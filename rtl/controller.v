@@ -201,14 +201,16 @@ module controller #(
     );
 
     // ---------------- inputs, positions, errors ----------------
-    wire [4:0]       inputs, input_invert;
+    wire [4:0]       inputs, input_invert, filter_mask;
+    wire [15:0]      filter_period;
     wire             estop_trip, probe_valid, probe_hit, probe_stop;
     wire [2:0]       limit_trip, steps;       // steps: the gated step pulses (logical)
     reg  [POS_W-1:0] pos_x, pos_y, pos_z;
     wire [POS_W-1:0] probe_x, probe_y, probe_z;
     input_guard #(.POS_W(POS_W)) u_guard (
         .clk(clk), .rst(rst), .estop(estop), .limit(limit), .probe(probe), .invert(input_invert),
-        .alarm(alarm), .probe_arm(probe_arm), .step_in(m_step), .step_out(steps),
+        .filter_period(filter_period), .filter_mask(filter_mask), .alarm(alarm),
+        .probe_arm(probe_arm), .step_in(m_step), .step_out(steps),
         .inputs(inputs), .estop_trip(estop_trip), .limit_trip(limit_trip),
         .pos_x(pos_x), .pos_y(pos_y), .pos_z(pos_z),
         .probe_valid(probe_valid), .probe_hit(probe_hit), .probe_x(probe_x), .probe_y(probe_y),
@@ -314,7 +316,8 @@ module controller #(
         .hold(hold), .enable(enabled), .fill(fill), .probe_stop(probe_stop), .abort_strobe(abort), .clear_strobe(clear), .arm_strobe(probe_arm),
         .override_percent(override_percent), .pulse_width(pulse_width), .dir_setup(dir_setup),
         .dir_hold(dir_hold), .quantum(quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
-        .input_invert(input_invert), .output_invert(output_invert), .spindle_period(spindle_period),
+        .input_invert(input_invert), .output_invert(output_invert),
+        .filter_period(filter_period), .filter_mask(filter_mask), .spindle_period(spindle_period),
         .position_write(position_write), .position_value(position_value),
         .data_write(data_write), .data_word(data_word), .data_lanes(data_lanes), .data_ready(data_ready)
     );

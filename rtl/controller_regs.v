@@ -89,6 +89,8 @@ module controller_regs #(
     output reg  [3:0]        jerk_shift,
     output reg  [4:0]        input_invert,
     output reg  [15:0]       output_invert,
+    output reg  [15:0]       filter_period,     // INPUT_FILTER: clocks a sample of input_filter, 0 = off
+    output reg  [4:0]        filter_mask,       // INPUT_FILTER: the inputs filtered
     output reg  [15:0]       spindle_period,
     output wire [2:0]        position_write, // strobes: set POS_X / POS_Y / POS_Z to position_value
     output wire [POS_W-1:0]  position_value,
@@ -173,45 +175,46 @@ module controller_regs #(
     wire [63:0] quantum_lo   = {quantum_wide[63:32], wb_dat_w};
     wire [63:0] quantum_hi   = {wb_dat_w, quantum_wide[31:0]};
 
-    // The read-back table: word n at byte address 4n, 0x00 .. 0x7C (a mux tree on
-    // wb_adr[6:2]; the generator keeps the map there); CMD_DATA, which is write-only,
-    // unknown addresses and those from 0x80 read 0.
-    reg [32*32-1:0] words;
+    // The read-back table: word n at byte address 4n, 0x00 .. 0xFC (a mux tree on
+    // wb_adr[7:2]; the generator keeps the map there); CMD_DATA, which is write-only,
+    // and unknown addresses read 0.
+    reg [64*32-1:0] words;
     always @* begin
-        words = {(32*32){1'b0}};
-        words[REG_ID[6:2] * 32 +: 32]             = ID;
-        words[REG_VERSION[6:2] * 32 +: 32]        = VERSION;
-        words[REG_BUILD0[6:2] * 32 +: 32]         = BUILD0;
-        words[REG_BUILD1[6:2] * 32 +: 32]         = BUILD1;
-        words[REG_CLOCK_HZ[6:2] * 32 +: 32]       = CLOCK;
-        words[REG_QUEUE_SIZE[6:2] * 32 +: 32]     = QUEUE_SIZE;
-        words[REG_STATUS[6:2] * 32 +: 32]         = {13'd0, position_set, records, refused, enable, probe_valid, stopped, busy, state};
-        words[REG_ERROR[6:2] * 32 +: 32]          = {21'd0, error_limits, error_code};
-        words[REG_QUEUE_FREE[6:2] * 32 +: 32]     = {free_records, free_bytes};
-        words[REG_POS_X[6:2] * 32 +: 32]          = extended(pos_x);
-        words[REG_POS_Y[6:2] * 32 +: 32]          = extended(pos_y);
-        words[REG_POS_Z[6:2] * 32 +: 32]          = extended(pos_z);
-        words[REG_PROBE_X[6:2] * 32 +: 32]        = extended(probe_x);
-        words[REG_PROBE_Y[6:2] * 32 +: 32]        = extended(probe_y);
-        words[REG_PROBE_Z[6:2] * 32 +: 32]        = extended(probe_z);
-        words[REG_INPUTS[6:2] * 32 +: 32]         = {27'd0, inputs};
-        words[REG_CONTROL[6:2] * 32 +: 32]        = {25'd0, probe_stop, fill, enable, 3'd0, hold};
-        words[REG_OVERRIDE[6:2] * 32 +: 32]       = {24'd0, override_percent};
-        words[REG_PULSE_WIDTH[6:2] * 32 +: 32]    = {{(32 - TW){1'b0}}, pulse_width};
-        words[REG_DIR_SETUP[6:2] * 32 +: 32]      = {{(32 - TW){1'b0}}, dir_setup};
-        words[REG_DIR_HOLD[6:2] * 32 +: 32]       = {{(32 - TW){1'b0}}, dir_hold};
-        words[REG_QUANTUM_LO[6:2] * 32 +: 32]     = quantum_wide[31:0];
-        words[REG_QUANTUM_HI[6:2] * 32 +: 32]     = quantum_wide[63:32];
-        words[REG_MOTION[6:2] * 32 +: 32]         = {24'd0, jerk_shift, block_shift};
-        words[REG_INPUT_INVERT[6:2] * 32 +: 32]   = {27'd0, input_invert};
-        words[REG_SPINDLE_PERIOD[6:2] * 32 +: 32] = {16'd0, spindle_period};
-        words[REG_OUTPUTS[6:2] * 32 +: 32]        = {duty, outputs};
-        words[REG_LINK_FRAMES[6:2] * 32 +: 32]    = {link_duplicates, link_frames};
-        words[REG_LINK_ERRORS[6:2] * 32 +: 32]    = {link_gaps, link_errors};
-        words[REG_EXECUTED[6:2] * 32 +: 32]       = executed;
-        words[REG_OUTPUT_INVERT[6:2] * 32 +: 32]  = {16'd0, output_invert};
+        words = {(64*32){1'b0}};
+        words[REG_ID[7:2] * 32 +: 32]             = ID;
+        words[REG_VERSION[7:2] * 32 +: 32]        = VERSION;
+        words[REG_BUILD0[7:2] * 32 +: 32]         = BUILD0;
+        words[REG_BUILD1[7:2] * 32 +: 32]         = BUILD1;
+        words[REG_CLOCK_HZ[7:2] * 32 +: 32]       = CLOCK;
+        words[REG_QUEUE_SIZE[7:2] * 32 +: 32]     = QUEUE_SIZE;
+        words[REG_STATUS[7:2] * 32 +: 32]         = {13'd0, position_set, records, refused, enable, probe_valid, stopped, busy, state};
+        words[REG_ERROR[7:2] * 32 +: 32]          = {21'd0, error_limits, error_code};
+        words[REG_QUEUE_FREE[7:2] * 32 +: 32]     = {free_records, free_bytes};
+        words[REG_POS_X[7:2] * 32 +: 32]          = extended(pos_x);
+        words[REG_POS_Y[7:2] * 32 +: 32]          = extended(pos_y);
+        words[REG_POS_Z[7:2] * 32 +: 32]          = extended(pos_z);
+        words[REG_PROBE_X[7:2] * 32 +: 32]        = extended(probe_x);
+        words[REG_PROBE_Y[7:2] * 32 +: 32]        = extended(probe_y);
+        words[REG_PROBE_Z[7:2] * 32 +: 32]        = extended(probe_z);
+        words[REG_INPUTS[7:2] * 32 +: 32]         = {27'd0, inputs};
+        words[REG_CONTROL[7:2] * 32 +: 32]        = {25'd0, probe_stop, fill, enable, 3'd0, hold};
+        words[REG_OVERRIDE[7:2] * 32 +: 32]       = {24'd0, override_percent};
+        words[REG_PULSE_WIDTH[7:2] * 32 +: 32]    = {{(32 - TW){1'b0}}, pulse_width};
+        words[REG_DIR_SETUP[7:2] * 32 +: 32]      = {{(32 - TW){1'b0}}, dir_setup};
+        words[REG_DIR_HOLD[7:2] * 32 +: 32]       = {{(32 - TW){1'b0}}, dir_hold};
+        words[REG_QUANTUM_LO[7:2] * 32 +: 32]     = quantum_wide[31:0];
+        words[REG_QUANTUM_HI[7:2] * 32 +: 32]     = quantum_wide[63:32];
+        words[REG_MOTION[7:2] * 32 +: 32]         = {24'd0, jerk_shift, block_shift};
+        words[REG_INPUT_INVERT[7:2] * 32 +: 32]   = {27'd0, input_invert};
+        words[REG_SPINDLE_PERIOD[7:2] * 32 +: 32] = {16'd0, spindle_period};
+        words[REG_OUTPUTS[7:2] * 32 +: 32]        = {duty, outputs};
+        words[REG_LINK_FRAMES[7:2] * 32 +: 32]    = {link_duplicates, link_frames};
+        words[REG_LINK_ERRORS[7:2] * 32 +: 32]    = {link_gaps, link_errors};
+        words[REG_EXECUTED[7:2] * 32 +: 32]       = executed;
+        words[REG_OUTPUT_INVERT[7:2] * 32 +: 32]  = {16'd0, output_invert};
+        words[REG_INPUT_FILTER[7:2] * 32 +: 32]   = {11'd0, filter_mask, filter_period};
     end
-    wire [31:0] value = address[7] ? 32'd0 : words[address[6:2] * 32 +: 32];
+    wire [31:0] value = words[address[7:2] * 32 +: 32];
 
     always @(posedge clk) begin
         if (rst) begin
@@ -238,6 +241,8 @@ module controller_regs #(
             jerk_shift       <= 4'd0;
             input_invert     <= INPUT_INVERT_RESET[4:0];
             output_invert    <= OUTPUT_INVERT_RESET[15:0];
+            filter_period    <= 16'd0;
+            filter_mask      <= 5'b11111;
             spindle_period   <= PERIOD_RESET[15:0];
             refused          <= 1'b0;
             position_set     <= 3'b000;
@@ -263,6 +268,7 @@ module controller_regs #(
                     REG_MOTION[7:0]:         {jerk_shift, block_shift} <= wb_dat_w[7:0];
                     REG_INPUT_INVERT[7:0]:   input_invert <= wb_dat_w[4:0];
                     REG_OUTPUT_INVERT[7:0]:  output_invert <= wb_dat_w[15:0];
+                    REG_INPUT_FILTER[7:0]:   {filter_mask, filter_period} <= wb_dat_w[20:0];
                     REG_SPINDLE_PERIOD[7:0]: spindle_period <= wb_dat_w[15:0];
                     default: ;
                 endcase

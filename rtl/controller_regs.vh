@@ -35,6 +35,7 @@ localparam [7:0] REG_LINK_ERRORS = 8'h70;  // RO Link errors
 localparam [7:0] REG_CMD_DATA = 8'h74;  // WO Command data
 localparam [7:0] REG_EXECUTED = 8'h78;  // RO Executed records
 localparam [7:0] REG_OUTPUT_INVERT = 8'h7C;  // RW Output polarity
+localparam [7:0] REG_INPUT_FILTER = 8'h80;  // RW Input filter
 // ID
 localparam integer ID_VALUE_LSB = 0;
 localparam integer ID_VALUE_WIDTH = 32;
@@ -231,4 +232,9 @@ localparam integer OUTPUT_INVERT_FLOOD_LSB = 11;
 localparam integer OUTPUT_INVERT_FLOOD_WIDTH = 1;
 localparam integer OUTPUT_INVERT_DIGITAL_LSB = 12;
 localparam integer OUTPUT_INVERT_DIGITAL_WIDTH = 4;
+// INPUT_FILTER
+localparam integer INPUT_FILTER_PERIOD_LSB = 0;
+localparam integer INPUT_FILTER_PERIOD_WIDTH = 16;
+localparam integer INPUT_FILTER_MASK_LSB = 16;
+localparam integer INPUT_FILTER_MASK_WIDTH = 5;
 /* verilator lint_on UNUSEDPARAM */

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 `default_nettype none
 // Machine inputs of the controller: e-stop, three limit switches and the probe, each
-// through a 2-flop synchronizer and then `invert` (bit set: the input is active low).
+// through a 2-flop synchronizer, the input filter (input_filter u_filter: off while
+// filter_period is 0) and then `invert` (bit set: the input is active low).
 // E-stop active, or a limit switch becoming active, gates the step outputs off in the
 // same cycle as the synchronized input shows it (`trip` asks the controller to latch its
 // error and abort the motion; the controller's `alarm` then keeps them gated).  The
@@ -19,6 +20,8 @@ module input_guard #(
     input  wire [2:0]       limit,          // x, y, z
     input  wire             probe,
     input  wire [4:0]       invert,         // estop, limit x/y/z, probe: 1 = active low
+    input  wire [15:0]      filter_period,  // input_filter: clocks a sample, 0 = no filter
+    input  wire [4:0]       filter_mask,    // estop, limit x/y/z, probe: 1 = filtered
     input  wire             alarm,          // an error is latched: keep the steps gated
     input  wire             probe_arm,      // strobe
     input  wire [2:0]       step_in,        // motion_top's step pulses
@@ -41,8 +44,14 @@ module input_guard #(
 
     reg  [4:0] meta, synced, previous;
     reg        armed;
+    wire [4:0] filtered;
 
-    assign inputs     = synced ^ invert;
+    input_filter #(.N(5), .PW(16)) u_filter (
+        .clk(clk), .rst(rst), .period(filter_period), .mask(filter_mask), .raw(synced),
+        .filtered(filtered)
+    );
+
+    assign inputs     = filtered ^ invert;
     wire [4:0] rising = inputs & ~previous;
     assign estop_trip = inputs[0];
     assign limit_trip = rising[3:1];

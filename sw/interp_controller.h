@@ -378,6 +378,16 @@ extern "C" {
 #define CONTROLLER__OUTPUT_INVERT__DIGITAL_bw 4
 #define CONTROLLER__OUTPUT_INVERT__DIGITAL_reset 0x0
 
+// reg - controller::INPUT_FILTER
+#define CONTROLLER__INPUT_FILTER__PERIOD_bm 0xffff
+#define CONTROLLER__INPUT_FILTER__PERIOD_bp 0
+#define CONTROLLER__INPUT_FILTER__PERIOD_bw 16
+#define CONTROLLER__INPUT_FILTER__PERIOD_reset 0x0
+#define CONTROLLER__INPUT_FILTER__MASK_bm 0x1f0000
+#define CONTROLLER__INPUT_FILTER__MASK_bp 16
+#define CONTROLLER__INPUT_FILTER__MASK_bw 5
+#define CONTROLLER__INPUT_FILTER__MASK_reset 0x1f
+
 // addrmap - controller
 typedef struct __attribute__ ((__packed__)) {
     uint32_t ID;
@@ -412,10 +422,11 @@ typedef struct __attribute__ ((__packed__)) {
     uint32_t CMD_DATA;
     uint32_t EXECUTED;
     uint32_t OUTPUT_INVERT;
+    uint32_t INPUT_FILTER;
 } controller_t;
 
 
-static_assert(sizeof(controller_t) == 0x80, "Packing error");
+static_assert(sizeof(controller_t) == 0x84, "Packing error");
 
 #ifdef __cplusplus
 }

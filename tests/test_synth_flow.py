@@ -61,6 +61,12 @@ def test_fusesoc_core_lists_dependencies_and_parameters():
     assert "parameters: [WIDTH, EXACT]" in text and "default: 32" in text
 
 
+def test_fusesoc_core_files_are_current(capsys):
+    """Every rtl/*.core is what `python -m interp.flows.fusesoc` writes from its module (a new
+    parameter or dependency is in the core file too)."""
+    assert fusesoc.main(["--check"]) == 0, capsys.readouterr().out
+
+
 def test_fusesoc_exports_every_declared_parameter():
     """A header comment holding ") (" must not cut the parameter list short."""
     for path in sorted(synth.RTL.glob("*.v")):

@@ -42,6 +42,7 @@ REG_LINK_ERRORS = 0x70
 REG_CMD_DATA = 0x74
 REG_EXECUTED = 0x78
 REG_OUTPUT_INVERT = 0x7C
+REG_INPUT_FILTER = 0x80
 
 REGISTERS = {
     "ID": REG_ID,
@@ -76,6 +77,7 @@ REGISTERS = {
     "CMD_DATA": REG_CMD_DATA,
     "EXECUTED": REG_EXECUTED,
     "OUTPUT_INVERT": REG_OUTPUT_INVERT,
+    "INPUT_FILTER": REG_INPUT_FILTER,
 }
 
 # register -> access of the register as a whole (ro, rw, wo)
@@ -112,6 +114,7 @@ ACCESS = {
     "CMD_DATA": "wo",
     "EXECUTED": "ro",
     "OUTPUT_INVERT": "rw",
+    "INPUT_FILTER": "rw",
 }
 
 FIELDS = {
@@ -197,6 +200,8 @@ FIELDS = {
     "OUTPUT_INVERT.mist": (10, 1, "rw"),
     "OUTPUT_INVERT.flood": (11, 1, "rw"),
     "OUTPUT_INVERT.digital": (12, 4, "rw"),
+    "INPUT_FILTER.period": (0, 16, "rw"),
+    "INPUT_FILTER.mask": (16, 5, "rw"),
 }
 
 RESETS = {
@@ -232,6 +237,7 @@ RESETS = {
     "CMD_DATA": 0x00000000,
     "EXECUTED": 0x00000000,
     "OUTPUT_INVERT": 0x00000000,
+    "INPUT_FILTER": 0x001F0000,
 }
 
 # fields whose value is a two's-complement number

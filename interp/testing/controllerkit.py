@@ -15,17 +15,14 @@ import cocotb
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 from cocotb.utils import get_sim_time
 
+from ..link.registers import REGISTERS
 from ..models.motion import Command
 
 BUILD_PARAMETERS = ("W", "FEED_W", "FRAC", "NW", "PF", "LEN_W", "ZW", "MW", "TW", "POS_W")
 SIGNED = ("x", "y", "z", "i", "j", "k", "l")
 
-# register byte addresses (regs/controller.rdl)
-REG = {name: 4 * n for n, name in enumerate(
-    ("ID", "VERSION", "BUILD0", "BUILD1", "CLOCK_HZ", "QUEUE_SIZE", "STATUS", "ERROR", "QUEUE_FREE",
-     "POS_X", "POS_Y", "POS_Z", "PROBE_X", "PROBE_Y", "PROBE_Z", "INPUTS", "CONTROL", "OVERRIDE",
-     "PULSE_WIDTH", "DIR_SETUP", "DIR_HOLD", "QUANTUM_LO", "QUANTUM_HI", "MOTION", "INPUT_INVERT",
-     "SPINDLE_PERIOD", "OUTPUTS", "LINK_FRAMES", "LINK_ERRORS", "CMD_DATA", "EXECUTED", "OUTPUT_INVERT"))}
+# register byte addresses (generated from regs/controller.rdl)
+REG = dict(REGISTERS)
 HOLD, ABORT, CLEAR, PROBE_ARM, ENABLE, FILL, PROBE_STOP = 1, 2, 4, 8, 16, 32, 64
 IDLE, RUN, HOLDING, HELD, ALARM = range(5)
 

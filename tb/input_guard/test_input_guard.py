@@ -12,7 +12,7 @@ from interp.testing.controllerkit import icarus_in_make_test
 from interp.testing.tbkit import TB, seeded_rng
 
 IDLE = {"estop": 0, "limit": 0, "probe": 0, "invert": 0, "alarm": 0, "probe_arm": 0, "step_in": 0,
-        "pos_x": 0, "pos_y": 0, "pos_z": 0}
+        "pos_x": 0, "pos_y": 0, "pos_z": 0, "filter_period": 0, "filter_mask": 0b11111}
 
 
 @cocotb.test()
@@ -77,6 +77,32 @@ async def probe_latch(dut):
     tb.drive({**IDLE, "probe_arm": 1})
     await FallingEdge(dut.clk)
     assert not int(dut.probe_valid.value), "probe_arm clears probe_valid"
+
+
+@cocotb.test()
+async def filtered_inputs(dut):
+    """The filter sits between the synchronizer and the polarity: with INPUT_FILTER's period
+    10, a limit glitch of 30 clocks never trips, a change of 40 trips (once); the e-stop,
+    left out of the mask, trips in the clock the synchronizer shows it."""
+    tb = TB(dut)
+    on = {**IDLE, "filter_period": 10, "filter_mask": 0b11110}
+    await tb.reset(on)
+
+    async def hold(inputs, clocks):
+        trips = estop = 0
+        for _ in range(clocks):
+            tb.drive({**on, **inputs, "step_in": 7})
+            await ReadOnly()
+            trips += int(dut.limit_trip.value) != 0
+            estop += int(dut.estop_trip.value)
+            await FallingEdge(dut.clk)
+        return trips, estop
+
+    assert await hold({"limit": 0b010}, 30) == (0, 0)
+    assert await hold({}, 60) == (0, 0)
+    assert await hold({"limit": 0b010}, 30) == (0, 0), "the trip comes 33 .. 42 clocks after the pin"
+    assert await hold({"limit": 0b010}, 30) == (1, 0)
+    assert await hold({"estop": 1}, 3) == (0, 1), "unfiltered: active in the synchronizer's clock"
 
 
 def test_input_guard(sim):
