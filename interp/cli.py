@@ -103,7 +103,12 @@ def build_parser() -> Parser:
 def main(argv: list[str] | None = None) -> int:
     load_all()
     try:
-        args = build_parser().parse_args(argv)
+        parser = build_parser()
+        args, rest = parser.parse_known_args(argv)
+        if rest and hasattr(args, "move") and not any(word.startswith("-") for word in rest):
+            args.move += rest               # interp jog X1 --feed 600 Y2: words after an option
+        elif rest:
+            parser.error(f"unrecognized arguments: {' '.join(rest)}")
         return args.func(args) or 0
     except UsageError as err:
         print(f"interp: error: {err}", file=sys.stderr)

@@ -98,14 +98,20 @@ def test_bad_machine_files(tmp_path, text, message):
 
 def test_pin_settings():
     """input.invert and output.invert as the INPUT_INVERT and OUTPUT_INVERT bits (regs/controller.rdl),
-    spindle.pwm_hz as SPINDLE_PERIOD clocks, which must fit its 16 bits."""
-    assert load_machine().pin_settings() == {"INPUT_INVERT": 0, "OUTPUT_INVERT": 0, "SPINDLE_PERIOD": 50000}
+    input.filter_us and input.unfiltered as INPUT_FILTER (a sample every filter_us / 4, the inputs
+    filtered in bits 20:16), spindle.pwm_hz as SPINDLE_PERIOD clocks; the periods must fit 16 bits."""
+    assert load_machine().pin_settings() == {"INPUT_INVERT": 0, "INPUT_FILTER": 0x1F << 16, "OUTPUT_INVERT": 0,
+                                             "SPINDLE_PERIOD": 50000}
     m = load_machine(sets=['input.invert=["probe", "estop"]', 'output.invert=["dir_y", "enable", "dout3", "step_x"]',
-                           "controller.clock_hz=15e6", "spindle.pwm_hz=20000"])
-    assert m.pin_settings() == {"INPUT_INVERT": 0b10001, "OUTPUT_INVERT": 1 << 4 | 1 << 6 | 1 << 15 | 1,
-                                "SPINDLE_PERIOD": 750}
+                           "controller.clock_hz=15e6", "spindle.pwm_hz=20000", "input.filter_us=1000",
+                           'input.unfiltered=["probe", "estop"]'])
+    assert m.pin_settings() == {"INPUT_INVERT": 0b10001, "INPUT_FILTER": 0b01110 << 16 | 3750,
+                                "OUTPUT_INVERT": 1 << 4 | 1 << 6 | 1 << 15 | 1, "SPINDLE_PERIOD": 750}
+    assert load_machine(sets=["input.filter_us=0.01"]).pin_settings()["INPUT_FILTER"] == 0x1F << 16 | 1
     with pytest.raises(MachineError, match=r"spindle.pwm_hz \(500 Hz\) is a period of 100000 clocks .* 763 \.\. 2.5e\+07 Hz"):
         load_machine(sets=["spindle.pwm_hz=500"]).pin_settings()
+    with pytest.raises(MachineError, match=r"input.filter_us \(6000 us\) is a sample period of 75000 clocks .* at most 5243 us"):
+        load_machine(sets=["input.filter_us=6000"]).pin_settings()
 
 
 def test_overrides():
@@ -596,6 +602,17 @@ def test_feed_caps_rapids_and_errors():
     assert c.feed == round(word(50, 100, 50e6)) and c.limit == math.floor(word(100, 100, 50e6))
     with pytest.raises(CompileError, match="line 7: feed 1e-08 mm/min is too slow"):
         compile_program(Program([Line((0, 0, 0), (1, 0, 0), 1e-8, 7)]), m)
+
+
+def test_a_step_rate_above_the_output_stage_is_warned_of():
+    """A move whose cruise steps an axis faster than clock / (pulse + 1) (output.pulse_ns) is
+    warned of with its line; at the default machine's rates nothing is."""
+    fast = load_machine(sets=["output.pulse_ns=200000", "controller.clock_hz=1e6"])  # 200 + 1 clocks: 4 975 steps/s
+    out = compile_program(Program([Line((0, 0, 0), (0, 30, 0), 3000, 4), Line((0, 30, 0), (30, 30, 0), 1000, 5)]), fast)
+    rate = [w for w in out.warnings if "output.pulse_ns allows" in w]
+    assert len(rate) == 1 and rate[0].startswith("line 4: 5000 steps/s on Y is above the 4975 ")  # 50 mm/s x 100
+    fine = compile_program(Program([Line((0, 0, 0), (0, 30, 0), 3000, 4)]), MACHINE)
+    assert not [w for w in fine.warnings if "output.pulse_ns" in w]
 
 
 def test_feed_with_unequal_steps_per_mm():

@@ -46,6 +46,8 @@ def test_one_move(capsys, device):
     code, out, err = run(capsys, "jog", "--sim-model", "Z.25X-1")          # from where the first ended
     assert code == 0 and out == "machine position X0.000 Y-0.500 Z0.250 mm\n"
     assert device.position == [0, -50, 25]
+    code, out, err = run(capsys, "jog", "X1", "--feed", "600", "Y0.5", "--sim-model", "z-.25")  # words and options mixed
+    assert code == 0 and out == "machine position X1.000 Y0.000 Z0.000 mm\n", err
 
 
 def test_the_work_position_with_a_parameter_file(capsys, device, tmp_path):
@@ -100,6 +102,7 @@ def test_a_stop_is_warned_of_and_homing_required_refuses(capsys, device, tmp_pat
     (["X1", "--feed", "nan"], "--feed nan"),
     ([], "give the move (e.g. X10 Y-2.5), or run it on a terminal"),
     (["X1", "--port", "loop://"], "give one of --port DEVICE or --sim"),
+    (["X1", "--bogus", "Y1"], "unrecognized arguments: --bogus"),
 ])
 def test_usage_errors(capsys, device, argv, word):
     code, out, err = run(capsys, "jog", "--sim-model", *argv)

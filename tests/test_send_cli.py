@@ -125,19 +125,22 @@ def test_a_run_after_an_alarm_warns_of_lost_steps(capsys, program, monkeypatch):
 
 
 def test_the_machine_files_polarity_is_written_once(capsys, program, tmp_path, monkeypatch):
-    """input.invert and output.invert reach INPUT_INVERT and OUTPUT_INVERT before anything runs,
-    and only where they differ: a second run writes neither."""
+    """input.invert, input.filter_us / unfiltered and output.invert reach INPUT_INVERT,
+    INPUT_FILTER and OUTPUT_INVERT before anything runs, and only where they differ: a second
+    run writes none of them."""
     device = DeviceModel()
     monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
     machine = tmp_path / "m.toml"
-    machine.write_text('[input]\ninvert = ["probe"]\n[output]\ninvert = ["dir_y", "enable"]\n')
+    machine.write_text('[input]\ninvert = ["probe"]\nfilter_us = 200\nunfiltered = ["probe"]\n'
+                       '[output]\ninvert = ["dir_y", "enable"]\n')
     for _ in range(2):
         assert run(capsys, "send", program, "--sim-model", "--machine", str(machine))[0] == 0
     assert device.regs["INPUT_INVERT"] == 0x10 and device.regs["OUTPUT_INVERT"] == 0x50
     assert device.regs["SPINDLE_PERIOD"] == 50000                      # spindle.pwm_hz 1000 at 50 MHz
-    written = [name for name, _ in device.writes if name.endswith("_INVERT")]
-    assert written == ["INPUT_INVERT", "OUTPUT_INVERT"]
-    assert device.writes[:2] == [("INPUT_INVERT", 0x10), ("OUTPUT_INVERT", 0x50)]      # before anything else
+    assert device.regs["INPUT_FILTER"] == 0x0F << 16 | 2500             # 50 us a sample at 50 MHz
+    written = [name for name, _ in device.writes if name.startswith(("INPUT_", "OUTPUT_"))]
+    assert written == ["INPUT_INVERT", "INPUT_FILTER", "OUTPUT_INVERT"]
+    assert device.writes[:3] == [("INPUT_INVERT", 0x10), ("INPUT_FILTER", 0x0F09C4), ("OUTPUT_INVERT", 0x50)]
 
 
 @pytest.mark.parametrize("error, limits, before, after, cleared", [

@@ -162,7 +162,7 @@ def test_input_pins(files):
 
 
 def test_polarity_on_the_rtl(files):
-    """apply_pin_settings through the link on the RTL: OUTPUT_INVERT and SPINDLE_PERIOD take the machine
+    """apply_pin_settings through the link on the RTL: OUTPUT_INVERT, INPUT_FILTER and SPINDLE_PERIOD take the machine
     file's values (a name left out is not written); an e-stop pin that reads active only under the new INPUT_INVERT (a real
     e-stop) latches ERROR 16, which the write's clear cannot clear while it is active."""
     from interp.gcode.machine import load_machine
@@ -173,8 +173,10 @@ def test_polarity_on_the_rtl(files):
         driver.connect()
         apply_pin_settings(driver, {"OUTPUT_INVERT": 0x1FFFF})
         assert driver.read_register("OUTPUT_INVERT") == 0xFFFF and driver.read_register("ERROR") == 0
-        apply_pin_settings(driver, {"INPUT_INVERT": 1, "OUTPUT_INVERT": 0, "SPINDLE_PERIOD": 600})
+        apply_pin_settings(driver, {"INPUT_INVERT": 1, "INPUT_FILTER": 0x0F << 16 | 40, "OUTPUT_INVERT": 0,
+                                    "SPINDLE_PERIOD": 600})
         assert driver.read_register("OUTPUT_INVERT") == 0 and driver.read_register("SPINDLE_PERIOD") == 600
+        assert driver.read_register("INPUT_FILTER") == 0x0F0028
         assert driver.read_register("ERROR") & 0xFF == 16       # the e-stop pin is low: active low, pressed
         link.set_pin("estop", 1)
         driver.write_register("CONTROL", p.CONTROL_CLEAR)

@@ -47,7 +47,7 @@ def cmd_status(args) -> int:
         # the machine file's pin settings, which send, home and jog write when they connect
         for name, value in ({} if args.sim else machine.pin_settings()).items():
             if values[name] != value:
-                shown = f"{value:#x}" if name.endswith("INVERT") else f"{value}"
+                shown = f"{value}" if name == "SPINDLE_PERIOD" else f"{value:#x}"
                 lines.append(f"{name} differs from the machine file's ({shown}, {machine.source}): "
                              "interp send, home and jog write it when they connect")
         # where a program sent now starts (interp send), at the machine file's steps/mm

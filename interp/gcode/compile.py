@@ -268,6 +268,23 @@ class Compiler:
         else:
             self._more[kind] = self._more.get(kind, 0) + 1
 
+    def check_step_rate(self, cmd, cruise_mm_s: float) -> None:
+        """Warn of a move whose cruise steps an axis faster than the output stage allows: a
+        pulse of output.pulse_ns and a clock low, at most clock / (pulse + 1) steps a second.
+        Its steps then fall behind the plan and come late (none is lost)."""
+        m = cmd.motion
+        pulse = self.machine.timing()["pulse_width"]
+        most = self.clock / (pulse + 1)
+        for axis, spm in enumerate(self.spm):
+            share = 1.0 if m.plane_axes and axis in m.plane_axes else max(abs(m.start_unit[axis]), abs(m.end_unit[axis]))
+            rate = cruise_mm_s * share * spm
+            if rate > most * (1 + 1e-9):
+                self.warn("step_rate", cmd.source, f"{rate:.0f} steps/s on {'XYZ'[axis]} is above the {most:.0f} "
+                          f"that output.pulse_ns allows ({pulse} clocks of pulse and one low at "
+                          f"{self.clock:g} Hz): its steps fall behind and come late; shorten the pulse, "
+                          f"raise the clock or lower the axis's max_rate_mm_min / the feed")
+                return
+
     def steps(self, point) -> list[int]:
         return [_round(p * s) for p, s in zip(point, self.spm)]
 
@@ -780,6 +797,7 @@ class Compiler:
                           f"mm/min: the speed generator holds whole quanta of {quantum / k * 60:.3g} mm/min "
                           f"(2^block_shift x the largest acceleration per clock at {clock:g} Hz): raise the "
                           f"clock or lower the accelerations")
+            self.check_step_rate(cmd, p.cruise_mm_s)
             cmd.limit = max(cmd.feed, min(FEED_MAX, math.floor(caps[n] * k)))
             cmd.exit = min(NW_MAX, math.floor(p.exit_mm_s * min(scale[n:n + 2]) / quantum))
             cmd.rate = max(1, min(1 << PF, math.floor(a * (1 << block_shift) * (1 << PF) / quantum)))

@@ -63,6 +63,8 @@ SCHEMA: dict[str, dict[str, tuple]] = {
     },
     "input": {
         "invert": ("names", (), INPUT_NAMES, None, "", "input pins that are active low (the controller's INPUT_INVERT)"),
+        "filter_us": ("float", 0.0, 0, 1e6, "us", "debounce: an input change counts once it has lasted this long (the controller's INPUT_FILTER; 0: no filter)"),
+        "unfiltered": ("names", (), INPUT_NAMES, None, "", "inputs the filter leaves out (they count at once), e.g. [\"probe\"]"),
     },
     "spindle": {
         "max_s": ("float>", 24000.0, 0, 1e9, "rpm", "the S value of 100 % PWM duty"),
@@ -148,18 +150,40 @@ class Machine:
         return [AXES.index(a) for a in self.homing["order"] if self.values[f"axis.{a}"]["home"] != "none"]
 
     def pin_settings(self) -> dict[str, int]:
-        """The controller's INPUT_INVERT and OUTPUT_INVERT (input.invert, output.invert) and
-        SPINDLE_PERIOD (spindle.pwm_hz, in clocks); MachineError when the period does not fit the
-        register (checked here, where a board is driven: `interp gcode` runs any clock)."""
+        """The controller's INPUT_INVERT and OUTPUT_INVERT (input.invert, output.invert),
+        INPUT_FILTER (input.filter_us, input.unfiltered) and SPINDLE_PERIOD (spindle.pwm_hz, in
+        clocks); MachineError when a period does not fit its register (checked here, where a
+        board is driven: `interp gcode` runs any clock)."""
+        return {"INPUT_INVERT": sum(1 << INPUT_NAMES.index(n) for n in self.values["input"]["invert"]),
+                "INPUT_FILTER": self.input_filter(),
+                "OUTPUT_INVERT": sum(1 << OUTPUT_NAMES.index(n) for n in self.values["output"]["invert"]),
+                "SPINDLE_PERIOD": self.checked_spindle_period()}
+
+    def input_filter(self) -> int:
+        """INPUT_FILTER: the filter samples every `period` clocks and takes a new level at the
+        4th sample in a row, so a change of 4 x period clocks always counts: period =
+        input.filter_us / 4 in clocks (0: no filter); bits 20:16 the inputs filtered."""
+        inputs = self.values["input"]
+        period = 0
+        if inputs["filter_us"] > 0:
+            period = max(1, round(inputs["filter_us"] * self.clock_hz / 4e6))
+            if period > TIMING_MAX:
+                longest = 4 * TIMING_MAX / self.clock_hz * 1e6
+                raise MachineError(f"{self.source}: input.filter_us ({inputs['filter_us']:g} us) is a sample "
+                                   f"period of {period} clocks at controller.clock_hz = {self.clock_hz:g}; "
+                                   f"INPUT_FILTER takes at most {TIMING_MAX}: at most {longest:.4g} us")
+        mask = 0x1F & ~sum(1 << INPUT_NAMES.index(n) for n in inputs["unfiltered"])
+        return mask << 16 | period
+
+    def checked_spindle_period(self) -> int:
+        """spindle_period(), or MachineError when it does not fit SPINDLE_PERIOD."""
         period = self.spindle_period()
         if not 2 <= period <= TIMING_MAX:
             hz, clock = self.values["spindle"]["pwm_hz"], self.clock_hz
             raise MachineError(f"{self.source}: spindle.pwm_hz ({hz:g} Hz) is a period of {period} clocks at "
                                f"controller.clock_hz = {clock:g}; the controller's SPINDLE_PERIOD takes 2 .. "
                                f"{TIMING_MAX}: {clock / TIMING_MAX:.4g} .. {clock / 2:.4g} Hz")
-        return {"INPUT_INVERT": sum(1 << INPUT_NAMES.index(n) for n in self.values["input"]["invert"]),
-                "OUTPUT_INVERT": sum(1 << OUTPUT_NAMES.index(n) for n in self.values["output"]["invert"]),
-                "SPINDLE_PERIOD": self.spindle_period()}
+        return period
 
     def spindle_period(self) -> int:
         """Clocks of one spindle PWM period (spindle.pwm_hz at the clock)."""

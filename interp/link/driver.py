@@ -457,14 +457,15 @@ def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
             ("OVERRIDE", int(settings.get("override", 100)))]
 
 
-PIN_SETTINGS = ("INPUT_INVERT", "OUTPUT_INVERT", "SPINDLE_PERIOD")
+PIN_SETTINGS = ("INPUT_INVERT", "INPUT_FILTER", "OUTPUT_INVERT", "SPINDLE_PERIOD")
 CONTROL_KEPT = p.kept_bits("CONTROL")           # hold, enable, fill, probe_stop (not the strobes)
 
 
 def apply_pin_settings(driver: Driver, settings: dict[str, int]) -> None:
-    """Write INPUT_INVERT, OUTPUT_INVERT and SPINDLE_PERIOD (the machine file's input.invert,
-    output.invert, spindle.pwm_hz) where the controller's differ (after its reset: the build's
-    INPUT_INVERT_RESET and OUTPUT_INVERT_RESET, 0 by default; 20 kHz).  A name left out of
+    """Write INPUT_INVERT, INPUT_FILTER, OUTPUT_INVERT and SPINDLE_PERIOD (the machine file's
+    input.invert, input.filter_us and input.unfiltered, output.invert, spindle.pwm_hz) where the
+    controller's differ (after its reset: the build's INPUT_INVERT_RESET and OUTPUT_INVERT_RESET,
+    0 by default; no filter; 20 kHz).  A name left out of
     `settings` is not written.  Call it at rest (check_idle), before reading ERROR.
       * OUTPUT_INVERT is written with the drivers disabled (CONTROL.enable 0, then restored):
         a changed step bit makes an edge on its pin.
