@@ -175,7 +175,7 @@ module controller #(
     wire [7:0]        override_percent;
     wire [2:0]        m_step, m_dir;
     wire [POS_W-1:0]  unused_pos_x, unused_pos_y, unused_pos_z;
-    wire [FEED_W-1:0] unused_speed;
+    wire [FEED_W-1:0] m_speed, m_cruise;        // the path speed and its move's cruise (power_scale)
     wire              stopped, still, m_busy, unused_done, m_error, event_valid;
     wire [3:0]        m_error_code;
     wire [QLW-1:0]    m_level;
@@ -195,7 +195,7 @@ module controller #(
         .step_x(m_step[0]), .step_y(m_step[1]), .step_z(m_step[2]),
         .dir_x(m_dir[0]), .dir_y(m_dir[1]), .dir_z(m_dir[2]),
         .pos_x(unused_pos_x), .pos_y(unused_pos_y), .pos_z(unused_pos_z),
-        .speed(unused_speed), .stopped(stopped), .still(still), .busy(m_busy), .done(unused_done),
+        .speed(m_speed), .cruise(m_cruise), .stopped(stopped), .still(still), .busy(m_busy), .done(unused_done),
         .error(m_error), .error_code(m_error_code),
         .event_valid(event_valid), .event_code(event_code), .event_value(event_value)
     );
@@ -261,13 +261,17 @@ module controller #(
     end
 
     // ---------------- outputs, registers ----------------
-    wire [15:0] duty, output_invert;
-    wire        pause, io_spindle_on, io_spindle_ccw, io_spindle_pwm, io_mist, io_flood;
+    wire        halted = stopped | (hold & fill);       // in hold: motion_top at rest, or kept at reset
+    wire [15:0] duty, scaled, output_invert;
+    power_scale #(.FEED_W(FEED_W)) u_power (
+        .clk(clk), .rst(rst), .duty(duty), .speed(m_speed), .feed(m_cruise), .scaled(scaled)
+    );
+    wire        pause, io_spindle_on, io_spindle_pin, io_spindle_ccw, io_spindle_pwm, io_mist, io_flood;
     wire [3:0]  io_dout;
     machine_io #(.W(W)) u_io (
         .clk(clk), .rst(rst), .event_valid(event_valid), .event_code(event_code),
-        .event_value(event_value), .off(flush), .period(spindle_period),
-        .spindle_on(io_spindle_on), .spindle_ccw(io_spindle_ccw), .duty(duty), .spindle_pwm(io_spindle_pwm),
+        .event_value(event_value), .off(flush), .held(halted), .scaled(scaled), .period(spindle_period),
+        .spindle_on(io_spindle_on), .spindle_pin(io_spindle_pin), .spindle_ccw(io_spindle_ccw), .duty(duty), .spindle_pwm(io_spindle_pwm),
         .mist(io_mist), .flood(io_flood), .dout(io_dout), .pause(pause)
     );
     assign hold_set = pause | (probe_hit & probe_stop);     // M0..; the probe's touch (G38.2)
@@ -288,13 +292,12 @@ module controller #(
 
     // busy: something to run (a partial record alone, bytes still to come, is not)
     wire        busy = m_busy | records != 16'd0 | ~data_ready;
-    wire        halted = stopped | (hold & fill);       // in hold: motion_top at rest, or kept at reset
     wire [2:0]  state = alarm ? 3'd4 : hold ? (halted ? 3'd3 : 3'd2) : busy ? 3'd1 : 3'd0;
     assign status_state = {5'd0, state};
     assign status_error = error_code;
     // the pins: the logical outputs XOR OUTPUT_INVERT (positions and OUTPUTS are logical)
     assign {dout, flood, mist, spindle_pwm, spindle_ccw, spindle_on, enable, dir, step} = output_invert
-        ^ {io_dout, io_flood, io_mist, io_spindle_pwm, io_spindle_ccw, io_spindle_on, enabled, m_dir, steps};
+        ^ {io_dout, io_flood, io_mist, io_spindle_pwm, io_spindle_ccw, io_spindle_pin, enabled, m_dir, steps};
     assign enable_state  = enabled;
     assign spindle_state = io_spindle_on;
 
@@ -322,6 +325,6 @@ module controller #(
         .data_write(data_write), .data_word(data_word), .data_lanes(data_lanes), .data_ready(data_ready)
     );
 
-    wire unused = &{1'b0, unused_pos_x, unused_pos_y, unused_pos_z, unused_speed, unused_done};
+    wire unused = &{1'b0, unused_pos_x, unused_pos_y, unused_pos_z, unused_done};
 endmodule
 `default_nettype wire

@@ -6,8 +6,11 @@
 // Event codes: 1 spindle clockwise (value = duty), 2 counter-clockwise (duty), 3 spindle
 // off, 4 spindle speed (duty), 5 mist on, 6 flood on, 7 coolant off, 8 output on
 // (value = output 0 .. 3), 9 output off, 10 pause, 12 program end (spindle and coolant
-// off); other codes, 11 tool change among them (the host's M6 sends it, then a pause),
-// are ignored.  A duty below 0 counts as 0, above 65535 as 65535.  `pause` strobes for
+// off), 13 laser mode (value 0 off, else on); other codes, 11 tool change among them (the
+// host's M6 sends it, then a pause), are ignored.  In laser mode the spindle pins (on and
+// PWM: the beam) are low while `held` (a feed hold at rest), as Grbl's laser mode; the
+// spindle_on register keeps the program's state; and M4 (spindle_ccw) is Grbl's dynamic
+// power: the PWM runs at `scaled` (power_scale: duty x speed / feed) instead of duty.  A duty below 0 counts as 0, above 65535 as 65535.  `pause` strobes for
 // code 10 (the controller holds).
 // `off` (abort, alarm) switches spindle and coolant off at once; the outputs keep.
 // PWM: a counter runs over `period` clocks (0 counts as 1); `pwm` is high while the
@@ -24,8 +27,11 @@ module machine_io #(
     input  wire [7:0]   event_code,
     input  wire [W-1:0] event_value,    // signed
     input  wire         off,            // spindle and coolant off (abort, alarm)
+    input  wire         held,           // a feed hold has stopped the machine
+    input  wire [15:0]  scaled,         // duty x speed / feed (power_scale), for M4 in laser mode
     input  wire [15:0]  period,         // PWM period, clocks
-    output reg          spindle_on,
+    output reg          spindle_on,     // the program's spindle state
+    output wire         spindle_pin,    // spindle_on, low while held in laser mode
     output reg          spindle_ccw,
     output reg  [15:0]  duty,           // 0 .. 65535
     output wire         spindle_pwm,
@@ -40,7 +46,8 @@ module machine_io #(
 
     localparam [7:0] SPINDLE_CW = 8'd1, SPINDLE_CCW = 8'd2, SPINDLE_OFF = 8'd3, SPINDLE_SPEED = 8'd4,
                      MIST_ON = 8'd5, FLOOD_ON = 8'd6, COOLANT_OFF = 8'd7, OUTPUT_ON = 8'd8,
-                     OUTPUT_OFF = 8'd9, PAUSE = 8'd10, PROGRAM_END = 8'd12;
+                     OUTPUT_OFF = 8'd9, PAUSE = 8'd10, PROGRAM_END = 8'd12, LASER = 8'd13;
+    reg         laser;              // laser mode
 
     // the value as a duty: clamped to 0 .. 65535
     wire        negative = event_value[W-1];
@@ -72,6 +79,7 @@ module machine_io #(
             mist        <= 1'b0;
             flood       <= 1'b0;
             dout        <= 4'd0;
+            laser       <= 1'b0;
         end else if (off) begin
             spindle_on <= 1'b0;
             mist       <= 1'b0;
@@ -88,6 +96,7 @@ module machine_io #(
                 OUTPUT_ON:     if (output_number) dout <= dout | select;
                 OUTPUT_OFF:    if (output_number) dout <= dout & ~select;
                 PROGRAM_END:   begin spindle_on <= 1'b0; mist <= 1'b0; flood <= 1'b0; end
+                LASER:         laser <= event_value != {W{1'b0}};
                 default:       ;
             endcase
         end
@@ -100,6 +109,7 @@ module machine_io #(
     reg  [31:0] multiplicand;       // period shifted
     reg  [4:0]  round;              // 17 .. 1 while the product is made, 0 idle
     wire [15:0] last = (period == 16'd0 ? 16'd1 : period) - 1'b1;
+    wire [15:0] power = laser & spindle_ccw ? scaled : duty;    // the PWM's duty
     wire        wrap = counter >= last;
 
     always @(posedge clk) begin
@@ -115,7 +125,7 @@ module machine_io #(
             if (round == 5'd0) begin
                 if (wrap) begin
                     product      <= 32'd0;
-                    multiplier   <= duty;
+                    multiplier   <= power;
                     multiplicand <= {16'd0, period};
                     round        <= 5'd17;
                 end
@@ -132,6 +142,7 @@ module machine_io #(
         end
     end
 
-    assign spindle_pwm = spindle_on & (duty == 16'hFFFF || counter < threshold);
+    assign spindle_pin = spindle_on & ~(laser & held);
+    assign spindle_pwm = spindle_pin & (power == 16'hFFFF || counter < threshold);
 endmodule
 `default_nettype wire

@@ -15,7 +15,8 @@
 //   output stage ............ step_dir u_out (pulse width, dir setup and hold)
 // The dispatcher (state) pops the geometry queue's head when idle and starts its core,
 // or runs a DWELL (kind 4) or EVENT (kind 5) once the speed is 0 and the drive has
-// stopped.  Commands (kinds 0 LINE, 1 ARC_CW, 2 ARC_CCW, 3 CURVE, 4, 5; fields signed
+// stopped; an inline EVENT (plane bit 0 set: a laser's power) runs as soon as it is the
+// head, without a stop, and takes no profile queue entry.  Commands (kinds 0 LINE, 1 ARC_CW, 2 ARC_CCW, 3 CURVE, 4, 5; fields signed
 // W bits relative to where the command starts) and their profiles (cmd_feed .. cmd_budget)
 // are documented in docs/cores/motion_top.md with the error codes: every check is made
 // at the push, so a refused command never enters a queue (`error` strobes the cycle
@@ -85,6 +86,7 @@ module motion_top #(
     output reg  [POS_W-1:0]  pos_y,
     output reg  [POS_W-1:0]  pos_z,
     output wire [FEED_W-1:0] speed,         // virtual path speed v, path units per clock
+    output wire [FEED_W-1:0] cruise,        // the feed of the move the speed is for
     output wire              stopped,       // hold has brought the speed to 0 (or nothing moves)
     output wire              still,         // no speed anywhere in the profile: no step comes
     output wire              busy,          // a command queued or running, or a step not yet out
@@ -130,6 +132,7 @@ module motion_top #(
     wire [PF:0]  rate_top = {1'b1, {PF{1'b0}}};
     wire p_move    = cmd_kind <= K_CURVE;
     wire p_arc     = cmd_kind == K_ARC_CW || cmd_kind == K_ARC_CCW;
+    wire p_inline  = cmd_kind == K_EVENT && cmd_plane[0];   // no stop: not in the profile queue
     wire bad_kind  = cmd_kind > K_EVENT || (CURVES == 0 && cmd_kind == K_CURVE);
     wire bad_feed  = p_move && cmd_feed == {FEED_W{1'b0}};
     wire bad_range = cmd_kind == K_LINE && (cmd_x == min_w || cmd_y == min_w || cmd_z == min_w);
@@ -161,9 +164,13 @@ module motion_top #(
     reg  [FEED_W-1:0] cost_q;
     reg  [W-1:0] dwell_q;
 
+    reg  inline_q;                          // an inline EVENT was popped at the last edge
     wire idle      = state == S_IDLE;
     wire is_arc    = h_kind == K_ARC_CW || h_kind == K_ARC_CCW;
-    wire dispatch  = idle & q_valid;        // every queued command was checked at its push
+    // every queued command was checked at its push; after an inline EVENT a clock passes
+    // before the next pop, so line_pair sees the next head a cycle ahead (below)
+    wire dispatch  = idle & q_valid & ~inline_q;
+    wire inline_go = dispatch && h_kind == K_EVENT && h_plane[0];
     assign q_pop   = dispatch;
     wire start_line  = dispatch && h_kind == K_LINE;
     wire start_arc   = dispatch && is_arc;
@@ -216,12 +223,12 @@ module motion_top #(
     wire [QLW-1:0] profile_level;
     path_profile #(.FEED_W(FEED_W), .FRAC(FRAC), .NW(NW), .PF(PF), .LEN_W(LEN_W), .ZW(ZW), .MW(MW),
                    .QDEPTH(QDEPTH), .QLW(QLW)) u_profile (
-        .clk(clk), .rst(flush | rest), .push(push), .push_barrier(~p_move), .push_feed(cmd_feed),
+        .clk(clk), .rst(flush | rest), .push(push & ~p_inline), .push_barrier(~p_move), .push_feed(cmd_feed),
         .push_limit(cmd_limit), .push_exit(cmd_exit), .push_rate(cmd_rate), .push_length(cmd_length),
         .push_budget(cmd_budget), .full(prof_full), .level(profile_level), .barrier_done(barrier_done),
         .speed_quantum(speed_quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
         .override(override), .hold(hold), .step_valid(out_valid), .step_axes(out_axes),
-        .step_cost(out_cost), .drive_ready(drive_ready), .fire(fire), .speed(speed), .moving(moving),
+        .step_cost(out_cost), .drive_ready(drive_ready), .fire(fire), .speed(speed), .cruise(cruise), .moving(moving),
         .stopped(ramp_stopped), .still(profile_still), .late(late)
     );
     assign stopped = ramp_stopped | (hold & ~busy);
@@ -253,6 +260,7 @@ module motion_top #(
             cost_q     <= {FEED_W{1'b0}};
             dwell_q    <= {W{1'b0}};
             event_valid <= 1'b0;
+            inline_q    <= 1'b0;
             event_code  <= 8'd0;
             event_value <= {W{1'b0}};
             pos_x      <= {POS_W{1'b0}};
@@ -276,7 +284,7 @@ module motion_top #(
                             dwell_q <= h_x;
                         end
                         K_EVENT: begin
-                            state       <= S_EVENT;
+                            state       <= h_plane[0] ? S_IDLE : S_EVENT;   // inline: at once
                             event_code  <= h_x[7:0];
                             event_value <= h_y;
                         end
@@ -296,7 +304,8 @@ module motion_top #(
                 default: state <= S_FAULT;      // until rst
             endcase
 
-            event_valid <= state == S_EVENT && event_go;
+            event_valid <= (state == S_EVENT && event_go) || inline_go;
+            inline_q    <= inline_go;
             step_q <= drv_step;
             pos_x  <= moved(pos_x, drv_step[0] & ~step_q[0], drv_dir[0]);
             pos_y  <= moved(pos_y, drv_step[1] & ~step_q[1], drv_dir[1]);

@@ -67,6 +67,7 @@ module path_profile #(
     output wire              fire,          // the waiting step leaves now
     // status
     output wire [FEED_W-1:0] speed,         // virtual speed v, path units per clock
+    output wire [FEED_W-1:0] cruise,        // the feed of the segment the ramp runs (the laser's power_scale)
     output wire              moving,        // the ramp runs or the filter still sums speed
     output wire              stopped,       // hold has brought the speed to 0, and the filter's to 0
     output wire              still,         // no speed in the ramp or the filter: no step comes
@@ -111,7 +112,7 @@ module path_profile #(
         .next_exit(h_exit), .next_rate(h_rate), .next_length(h_length), .next_budget(h_budget),
         .next_pop(next_pop), .barrier_done(barrier_done),
         .speed_quantum(speed_quantum), .block_shift(block_shift), .override(override), .hold(hold),
-        .speed(speed), .up(up), .down(down), .block(block), .moving(ramp_moving), .stopped(ramp_stopped),
+        .speed(speed), .cruise(cruise), .up(up), .down(down), .block(block), .moving(ramp_moving), .stopped(ramp_stopped),
         .late(late), .segment(segment)
     );
 

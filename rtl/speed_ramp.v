@@ -57,6 +57,7 @@ module speed_ramp #(
     /* verilator lint_on SYMRSVDWORD */
     input  wire              hold,           // decelerate to 0 and stay
     output reg  [FEED_W-1:0] speed,          // v = n * A, the travel of this clock
+    output wire [FEED_W-1:0] cruise,         // the feed of the segment in progress (or the last one)
     output reg               up,             // n rose at the last edge
     output reg               down,           // n fell at the last edge
     output wire              block,          // this clock ends a block
@@ -118,6 +119,7 @@ module speed_ramp #(
     wire [QW-1:0] f_sq    = succ ? f_sq_cur : {{(QW-2){1'b0}}, 2'd2};
     wire        exit_zero = ~succ | (exit_cur == {NW{1'b0}});
     assign moving  = (n != {NW{1'b0}}) | seg;
+    assign cruise  = feed;
     assign segment = seg;
     assign stopped = hold_q & (n == {NW{1'b0}});
 

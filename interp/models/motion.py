@@ -388,6 +388,12 @@ def bad_profile(cmd: Command, pf: int) -> bool:
         not 1 <= cmd.rate <= 1 << pf or cmd.length <= 0 or cmd.limit < cmd.feed)
 
 
+def inline(cmd: Command) -> bool:
+    """An inline EVENT (plane bit 0): it runs when the dispatcher reaches it, without a stop,
+    and takes no entry of the profile queue (a laser's power along a path)."""
+    return cmd.kind == EVENT and bool(cmd.plane & 1)
+
+
 def command_steps(cmd: Command, width: int = 16, pf: int | None = None) -> tuple[list[tuple[int, int, int]], int]:
     """(steps, error code) of one command by the step-level models of its core; with `pf`
     the profile is checked too (motion_top's push checks, in their order)."""
@@ -572,7 +578,7 @@ class MotionTop(CycleModel):
         self.lead_q = self.lead_neg_q = self.cost_q = self.dwell_q = 0
         self.pos = [0, 0, 0]
         self.step_q = self.busy_q = self.done = self.error = self.error_code = self.sync_overflow_q = 0
-        self.event_valid = self.event_code = self.event_value = 0
+        self.event_valid = self.event_code = self.event_value = self.inline_q = 0
         self._speed = self._stopped = self._busy = 0
         self._still = 1
 
@@ -687,7 +693,7 @@ class MotionTop(CycleModel):
         bad = self.push_error(i)
         full = self.cmd_full
         push = int(valid and not fault and not bad and not full)
-        dispatch = idle and bool(self.queue.valid)
+        dispatch = idle and bool(self.queue.valid) and not self.inline_q     # a clock after an inline event
         start_line = int(dispatch and kind == LINE)
         start_arc = int(dispatch and is_arc)
         start_curve = int(dispatch and kind == CURVE)
@@ -735,7 +741,8 @@ class MotionTop(CycleModel):
         late = self.profile.ramp.late          # the ramp's register, before the edge
         busy = self.busy_with(pnets["moving"])
         drv_step, drv_dir = out.step, out.dir
-        event_strobe = int(self.state == S_EVENT and event_go)
+        inline = kind == EVENT and h["plane"] & 1           # an inline event: at once, no stop
+        event_strobe = int((self.state == S_EVENT and event_go) or (dispatch and inline))
 
         # ---- the edge ----
         if fault:                                      # flush: held in reset
@@ -756,7 +763,9 @@ class MotionTop(CycleModel):
             sync.clock({"in_step": core_step, "in_dir": core_dir, "in_data": self.cost_q, "tick": fire})
             rest = not busy and not valid            # the speed block held in reset at rest
             self.profile.clock({"rst": int(rest), "jerk_shift": i.get("jerk_shift", 0),
-                                "push": push, "push_barrier": int((i.get("cmd_kind", 0) & 7) > CURVE),
+                                "push": int(push and not ((i.get("cmd_kind", 0) & 7) == EVENT
+                                                          and i.get("cmd_plane", 0) & 1)),
+                                "push_barrier": int((i.get("cmd_kind", 0) & 7) > CURVE),
                                 **{f"push_{f}": i.get(f"cmd_{f}", 0) for f in
                                    ("feed", "limit", "exit", "rate", "length", "budget")}}, pnets)
         out.clock({"pulse_width": i["pulse_width"], "setup": i["setup"], "hold": i["hold_time"],
@@ -773,7 +782,8 @@ class MotionTop(CycleModel):
                 elif kind == DWELL:
                     self.state, self.dwell_q = S_DRAIN, h["x"] & ((1 << w) - 1)
                 elif kind == EVENT:
-                    self.state, self.event_code, self.event_value = S_EVENT, h["x"] & 0xFF, h["y"]
+                    self.state = S_IDLE if inline else S_EVENT
+                    self.event_code, self.event_value = h["x"] & 0xFF, h["y"]
                 else:
                     self.state = S_ARC
         elif self.state in (S_LINE, S_ARC, S_CURVE):
@@ -799,6 +809,7 @@ class MotionTop(CycleModel):
                 self.pos[k] = _signed(self.pos[k] + (-1 if drv_dir >> k & 1 else 1), self.pos_w)
         self.step_q = drv_step
         self.event_valid = event_strobe
+        self.inline_q = int(dispatch and inline)
         self.busy_q, self.done = busy, int(self.busy_q and not busy)
         code = (E_CORE if core_error or (valid and fault) else bad if valid and bad
                 else E_QUEUE if valid and full else E_SYNC if sync_overflow and not self.sync_overflow_q

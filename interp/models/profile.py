@@ -24,7 +24,7 @@ from typing import Mapping
 
 from .base import CycleModel
 from .speed_ramp import BLOCK_SHIFT_MIN
-from .motion import (ARC_CCW, ARC_CW, CURVE, LINE, Command, SyncFifo, command_steps,
+from .motion import (ARC_CCW, ARC_CW, CURVE, LINE, Command, SyncFifo, command_steps, inline,
                      interval_costs)
 
 
@@ -204,7 +204,7 @@ def profile_for(commands, *, quantum: int, accel: float, frac: int, pf: int = 12
     for pos in range(len(moves) - 1, -1, -1):
         k = moves[pos]
         c = out[k]
-        following = out[k + 1] if k + 1 < len(out) else None
+        following = next((f for f in out[k + 1:] if not inline(f)), None)     # inline events: no stop
         junction = 0.0
         if following is not None and following.kind in MOVES and following.length > 0:
             d0, d1 = direction(c, True), direction(following, False)

@@ -680,6 +680,56 @@ async def gcode_program(dut):
 
 
 @cocotb.test()
+async def laser_program(dut):
+    """The G-code build in laser mode: with M4 the PWM's power follows the speed (power_scale:
+    low while the move accelerates, the full S at its cruise, half for S500), and no stop at
+    the S change; with M3 a feed hold that has stopped the machine turns the beam off, the
+    release turns it on again."""
+    from interp.commands.gcode import compile_text
+    from interp.gcode.machine import load_machine
+
+    tb = await ControllerBench(dut).start()
+    await tb.write("SPINDLE_PERIOD", 100)
+    machine = load_machine(sets=["spindle.laser=true", "spindle.max_s=1000"], clock_hz=int(dut.CLK_HZ.value))
+    encode = __import__("interp.testing.controllerkit", fromlist=["encode"]).encode
+
+    async def run(text, during=None):
+        _, compiled = compile_text(text, machine, costs="true", start_steps=tuple(await tb.position()))
+        for name, value in settings_writes(machine.timing(), compiled.settings):
+            await tb.write(name, value)
+        sender = cocotb.start_soon(tb.send(b"".join(encode(c, tb.build) for c in compiled.commands)))
+        powers = []
+        while not sender.done() or await tb.state() != IDLE or await tb.read("STATUS") & 8:
+            if await tb.read("OUTPUTS") & 1:
+                powers.append(await pwm_high(tb, 200) / 200)     # the PWM pin's duty over two periods
+            if during:
+                await during()
+        assert await tb.read("ERROR") == 0 and await tb.position() == list(compiled.end_steps)
+        return powers
+
+    powers = await run("G21 G90\nM4 S1000\nG1 X3 F600\nG1 X4 S500\nM5\nM2\n")
+    assert max(powers) >= 0.98, f"the cruise's power {max(powers)}"
+    assert any(0 < p < 0.5 for p in powers[:len(powers) // 4]), f"no lower power while accelerating: {powers}"
+    assert any(0.4 <= p <= 0.5 for p in powers[-len(powers) // 5:]), f"S500 not at half power: {powers}"
+
+    held = {"seen": False}
+
+    async def hold_once():
+        if not held["seen"] and await tb.position() != [400, 0, 0] and await tb.state() == RUN:
+            await tb.write("CONTROL", 1)                   # a feed hold mid-move
+            while await tb.state() != HELD:
+                await tb.clocks(20)
+            assert await pwm_high(tb, 200) == 0, "the beam is on while held"
+            held["seen"] = True
+            await tb.write("CONTROL", 0)
+            await tb.clocks(400)
+            assert await pwm_high(tb, 200) > 0, "the beam stays off after the release"
+
+    await run("G21 G90\nM3 S800\nG1 X0 F600\nM5\nM2\n", hold_once)           # from X4
+    assert held["seen"]
+
+
+@cocotb.test()
 async def settings_wait_for_idle(dut):
     """QUANTUM_LO / HI and MOTION are taken only while not busy, and CONTROL.fill rises only
     then (it would reset motion_top): written mid-move they keep their values, the move's steps come at the same cycles (from its first step on) as
@@ -780,4 +830,4 @@ def test_controller_cli_build(sim):
     """The G-code build (W 32, FRAC 48, ..., CURVES 1, a 4 KiB queue)."""
     icarus_in_make_test(sim)
     run_cocotb(toplevel="controller", test_module="test_controller", sim=sim, parameters=CLI,
-               name="controller_cli", testcase=["gcode_program", "registers", "bad_records"])
+               name="controller_cli", testcase=["gcode_program", "laser_program", "registers", "bad_records"])

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """machine_io: every event code against a model of the outputs (spindle on / ccw / duty,
-mist, flood, dout, pause), seeded random event sequences with values out of range; `off`;
+mist, flood, dout, pause, laser mode and the spindle pin it gates while `held`), seeded
+random event sequences with values out of range; `off`;
 the PWM duty measured over whole periods for several (duty, period) pairs, periods below
 the multiplier's 17 clocks and 0 included: high for exactly floor(duty * period / 65536)
 clocks of each period (duty 65535: always)."""
@@ -11,12 +12,12 @@ from interp.simulation.runner import run_cocotb
 from interp.testing.controllerkit import icarus_in_make_test
 from interp.testing.tbkit import TB, seeded_rng
 
-IDLE = {"event_valid": 0, "event_code": 0, "event_value": 0, "off": 0, "period": 100}
+IDLE = {"event_valid": 0, "event_code": 0, "event_value": 0, "off": 0, "period": 100, "held": 0, "scaled": 0}
 
 
 class Outputs:
     def __init__(self):
-        self.on = self.ccw = self.mist = self.flood = 0
+        self.on = self.ccw = self.mist = self.flood = self.laser = 0
         self.duty = self.dout = 0
 
     def event(self, code, value):
@@ -35,17 +36,20 @@ class Outputs:
                 self.on = 0
         elif code in (8, 9) and 0 <= value <= 3:
             self.dout = self.dout | 1 << value if code == 8 else self.dout & ~(1 << value)
+        elif code == 13:
+            self.laser = int(value != 0)
 
     def off(self):
         self.on = self.mist = self.flood = 0
 
     def read(self, dut):
         return {"on": int(dut.spindle_on.value), "ccw": int(dut.spindle_ccw.value), "duty": int(dut.duty.value),
-                "mist": int(dut.mist.value), "flood": int(dut.flood.value), "dout": int(dut.dout.value)}
+                "mist": int(dut.mist.value), "flood": int(dut.flood.value), "dout": int(dut.dout.value),
+                "pin": int(dut.spindle_pin.value)}
 
-    def want(self):
+    def want(self, held):
         return {"on": self.on, "ccw": self.ccw, "duty": self.duty, "mist": self.mist, "flood": self.flood,
-                "dout": self.dout}
+                "dout": self.dout, "pin": int(self.on and not (self.laser and held))}
 
 
 @cocotb.test()
@@ -69,10 +73,11 @@ async def events(dut):
         else:
             model.event(code, value)
         assert pause == int(code == 10), f"event {n}: pause {pause} for code {code}"
-        tb.drive(IDLE)
+        held = int(rng.random() < 0.3)
+        tb.drive({**IDLE, "held": held})
         await FallingEdge(dut.clk)
-        assert model.read(dut) == model.want(), f"event {n} ({code}, {value}, off {off}): " \
-            f"{model.read(dut)}, want {model.want()}"
+        assert model.read(dut) == model.want(held), f"event {n} ({code}, {value}, off {off}, held {held}): " \
+            f"{model.read(dut)}, want {model.want(held)}"
 
 
 @cocotb.test()
@@ -100,12 +105,53 @@ async def pwm_duty(dut):
             high.append(count)
         want = length if duty == 65535 else duty * length >> 16
         assert high == [want] * 3, f"duty {duty}, period {period}: high {high}, want {want}"
+    for mode, held in ((1, 1), (0, 1), (1, 0)):     # laser mode: the beam is off while held
+        tb.drive({**IDLE, "event_valid": 1, "event_code": 13, "event_value": mode})
+        await FallingEdge(dut.clk)
+        tb.drive({**IDLE, "held": held})
+        high = 0
+        for _ in range(300):
+            await FallingEdge(dut.clk)
+            high += int(dut.spindle_pwm.value)
+        assert (high == 0) == bool(mode and held), f"laser {mode}, held {held}: PWM high {high} of 300"
     tb.drive({**IDLE, "event_valid": 1, "event_code": 3})
     await FallingEdge(dut.clk)
     tb.drive(IDLE)
     for _ in range(300):
         await FallingEdge(dut.clk)
         assert not int(dut.spindle_pwm.value), "PWM while the spindle is off"
+
+
+async def high_per_period(dut, tb, inputs, length):
+    """Clocks the PWM is high in each of 3 whole periods, once the threshold has settled."""
+    tb.drive(inputs)
+    for _ in range(3 * length + 40):
+        await FallingEdge(dut.clk)
+    while int(dut.counter.value) != 0:
+        await FallingEdge(dut.clk)
+    high = []
+    for _ in range(3):
+        count = 0
+        for _ in range(length):
+            count += int(dut.spindle_pwm.value)
+            await FallingEdge(dut.clk)
+        high.append(count)
+    return high
+
+
+@cocotb.test()
+async def laser_dynamic_power(dut):
+    """Laser mode with M4: the PWM runs at `scaled` (power_scale's duty x speed / feed); with
+    M3, or M4 without laser mode, at the duty."""
+    tb = TB(dut)
+    await tb.reset(IDLE)
+    period, duty, scaled = 200, 30000, 16384               # (a duty that fits W = 16)
+    for laser, code, want in ((1, 2, scaled), (1, 1, duty), (0, 2, duty)):
+        for event in ((13, laser), (code, duty)):
+            tb.drive({**IDLE, "event_valid": 1, "event_code": event[0], "event_value": event[1], "period": period})
+            await FallingEdge(dut.clk)
+        high = await high_per_period(dut, tb, {**IDLE, "period": period, "scaled": scaled}, period)
+        assert high == [want * period >> 16] * 3, f"laser {laser}, M{code + 2}: high {high}"
 
 
 def test_machine_io(sim):

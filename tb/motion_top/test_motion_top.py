@@ -13,19 +13,22 @@ command (0 lost, 0 duplicated; arcs in all three planes, helices; also under ran
 feed hold / resume and override patterns and with commands arriving late), the
 position counters must equal the programmed end point, the error strobes must name
 exactly the bad commands (checked at the push), and the event strobes must come in
-order, each after every earlier step is out, its pulse over and the speed 0.  The
+order, each after every earlier step is out, its pulse over and the speed 0 (an inline
+event, which does not stop, within SDEPTH + 1 steps of its place).  The
 virtual speed never changes by more than a quantum per block, and no step starts after
 `stopped` (a hold at rest, the S-curve filter empty too).  Bench commands get
 their profiles from interp.models.profile.profile_for.  Built at the benches' build
 (interp.simulation.motion_build) and at the G-code build (W = 32, FRAC = 48, ...).
 """
+from dataclasses import replace
+
 import cocotb
 from cocotb.triggers import FallingEdge
 
 from interp.models.arc import arc_error, arc_steps
 from interp.models.motion import (ARC_CCW, ARC_CW, CURVE, DWELL, E_CORE, E_FEED, E_KIND, E_PLANE, E_PROFILE,
                                   E_QUEUE, E_RANGE, EVENT, LINE, Command, MotionTop, TimingMonitor,
-                                  command_steps, queue_steps)
+                                  command_steps, inline, queue_steps)
 from interp.models.profile import profile_for
 from interp.models.speed_ramp import BLOCK_SHIFT_MIN
 from interp.simulation import motion_build
@@ -96,9 +99,7 @@ class MotionTB(TB):
             if sample["error"]:
                 errors.append(sample["error_code"])
             if sample["event_valid"]:
-                assert step == 0, f"{context}: event while a pulse is high"
-                assert sample["speed"] == 0, f"{context}: event while the speed is {sample['speed']}"
-                events.append((len(mon.pulses), sample["event_code"], sample["event_value"]))
+                events.append((len(mon.pulses), sample["event_code"], sample["event_value"], sample["speed"], step))
             rising = step & ~last["step"]
             assert not (last["stopped"] and rising), f"{context}: cycle {mon.cycle}: a step after `stopped`"
             last["step"], last["stopped"] = step, sample["stopped"]
@@ -147,13 +148,21 @@ class MotionTB(TB):
         assert [m + o for m, o in zip(mon.position, self.origin)] == end
         self.origin = end
         assert 6 not in errors, f"{context}: step buffer overflow"
-        # each event after exactly the steps of the commands before it, in order
+        # each event after exactly the steps of the commands before it, in order, at speed 0
+        # with no pulse high; an inline one when the core has made them: at most SDEPTH steps
+        # of them still to come out (the synchronization buffer) and one in the output stage
         want_events, before = [], 0
         for cmd in pushed:
             if cmd.kind == EVENT:
-                want_events.append((before, cmd.x & 0xFF, cmd.y))
+                want_events.append((before, cmd.x & 0xFF, cmd.y, inline(cmd)))
             before += len(command_steps(cmd, self.width, self.pf)[0])
-        assert events == want_events, f"{context}: events {events}, want {want_events}"
+        assert [e[1:3] for e in events] == [w[1:3] for w in want_events], \
+            f"{context}: events {events}, want {want_events}"
+        for (pulses, _, _, speed, step), (before, _, _, at_once) in zip(events, want_events):
+            if at_once:
+                assert before - self.p["SDEPTH"] - 1 <= pulses <= before, f"{context}: inline event after {pulses} of {before} steps"
+            else:
+                assert (pulses, speed, step) == (before, 0, 0), f"{context}: event after {pulses} steps, speed {speed}, pulse {step}"
         return errors, want_errors, mon, mon.cycle
 
     def fit(self, cmd):
@@ -359,6 +368,22 @@ async def events_after_the_drive_stops(dut):
 
 
 @cocotb.test()
+async def inline_events_do_not_stop(dut):
+    """An inline EVENT (plane bit 0, a laser's power) between two collinear lines: the path
+    keeps its speed through it (the barrier form stops), the strobe comes when the first
+    line's core is done, within SDEPTH + 1 steps of the join; with a hold it still comes."""
+    tb = await MotionTB(dut).start()
+    lines = [Command(LINE, ONE // 2, 40, 0, 0), Command(EVENT, 0, 4, 777, plane=1), Command(LINE, ONE // 2, 40, 0, 0),
+             Command(EVENT, 0, 4, 0, plane=1), Command(EVENT, 0, 3, 0, plane=1), Command(LINE, ONE // 2, 40, 0, 0)]
+    _, _, mon, cycles = await tb.run(lines, context="inline")
+    barrier = [replace(c, plane=0) for c in lines]
+    _, _, _, stopping = await tb.run(barrier, context="barrier")
+    assert cycles < stopping, f"inline {cycles} cycles, barrier {stopping}"
+    assert len(mon.pulses) == 120
+    _, _, _, _ = await tb.run(lines, hold=lambda c: 300 <= c < 900, context="inline, held")
+
+
+@cocotb.test()
 async def random_mix(dut):
     """Seeded random queues of lines, arcs in all planes, helices, dwells, events, bad commands."""
     rng = seeded_rng(dut, "random_mix")
@@ -372,7 +397,8 @@ async def random_mix(dut):
             elif r < 0.65:
                 cmds.append(random_helix(rng))
             elif r < 0.75:
-                cmds.append(Command(EVENT, rng.choice([0, TOP]), rng.randint(0, 1023), rng.randint(-999, 999)))
+                cmds.append(Command(EVENT, rng.choice([0, TOP]), rng.randint(0, 1023), rng.randint(-999, 999),
+                                    plane=rng.randrange(4)))
             elif r < 0.82:
                 cmds.append(Command(DWELL, 0, rng.randint(0, 12)))
             elif r < 0.9:
