@@ -1050,3 +1050,46 @@ def test_a_program_compiled_from_the_machines_position():
     compile_text("G21 G91\nG1 X12.5 F600\n", machine)                   # within the 20 mm from 0 ...
     with pytest.raises(CompileError, match="X 20.51 mm is beyond the X travel"):
         compile_text("G21 G91\nG1 X12.5 F600\n", machine, start_steps=start)  # ... not from 8.01
+
+
+LASER = """G21 G90
+M3 S500
+G0 X1
+G1 X2 F600 S250
+G1 X3 S1000
+G0 X5
+G1 X6
+M4 S100
+G1 X7
+M5
+G0 X8
+"""
+
+
+def test_laser_mode():
+    """spindle.laser (Grbl's $32): laser mode on first and off last; an S along the path is an
+    inline spindle_speed (plane 1: no stop, the next move plans through it); the beam is off
+    during a G0 (power 0 inline before it, the power back before the next feed move); M3 / M4 /
+    M5 stay barriers (M4: the controller scales the power with the speed).  Without laser mode
+    every S is a barrier and the steps are the same."""
+    from interp.commands.gcode import compile_text
+
+    code = {v: k for k, v in EVENT_CODES.items()}
+    _, laser = compile_text(LASER, load_machine(sets=["spindle.laser=true", "spindle.max_s=1000"]))
+    events = [(code[c.x], c.y, c.plane) for c in laser.commands if c.kind == EVENT]
+    duty = lambda s: round(s / 1000 * 65535)
+    assert events == [("laser_mode", 1, 1), ("spindle_cw", duty(500), 0),
+                      ("spindle_speed", 0, 1),                                  # G0 X1: dark
+                      ("spindle_speed", duty(250), 1),                          # S250 before G1 X2 (still dark)...
+                      ("spindle_speed", duty(1000), 1),                         # S1000
+                      ("spindle_speed", 0, 1), ("spindle_speed", duty(1000), 1),  # G0 X5, then G1 X6
+                      ("spindle_ccw", duty(100), 0), ("spindle_off", 0, 0), ("laser_mode", 0, 1)]
+    moves = [c for c in laser.commands if c.motion is not None]
+    assert [c.motion.stop_before for c in moves] == [True, False, False, False, False, True, True]
+    assert [e[0] for e in laser.events] == [e[0] for e in events]
+    assert laser.warnings == []
+    _, spindle = compile_text(LASER, load_machine(sets=["spindle.max_s=1000"]))
+    assert all(c.plane == 0 for c in spindle.commands if c.kind == EVENT)
+    assert [c.motion.stop_before for c in spindle.commands if c.motion is not None] == [True, True, True, False,
+                                                                                          False, True, True]
+    assert laser.end_steps == spindle.end_steps and laser.machine_time_s < spindle.machine_time_s

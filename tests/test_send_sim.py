@@ -277,6 +277,37 @@ def test_send_sim_equals_gcode(files, gcode_steps, capsys):
     assert steps.read_text() == gcode_steps
 
 
+LASER = """G21 G90
+M3 S200
+G1 X1 Y0.5 F3000
+G1 X1.5 S800
+G1 X2 S400
+G0 X0.5 Y0
+G1 X1 S600
+M5
+M2
+"""
+
+
+def test_laser_mode_on_the_rtl(files, capsys):
+    """Laser mode (spindle.laser): the S changes run inline, without a stop, and the G0 with the
+    beam off; through the link into the board's RTL the steps CSV equals `interp gcode`'s and
+    the run takes less time than without laser mode (which stops at every S)."""
+    laser = files / "laser.toml"
+    laser.write_text(MACHINE + "[spindle]\nlaser = true\nmax_s = 1000\n")
+    program = files / "laser.nc"
+    program.write_text(LASER)
+    runs = {}
+    for name, machine in (("laser", laser), ("spindle", files / "machine.toml")):
+        reference, steps = files / f"{name}_gcode.csv", files / f"{name}_send.csv"
+        assert main(["gcode", str(program), "--machine", str(machine), "--steps", str(reference)]) == 0
+        assert main(["send", str(program), "--sim", "--steps", str(steps), "--machine", str(machine)]) == 0
+        assert steps.read_text() == reference.read_text(), name
+        runs[name] = int(steps.read_text().splitlines()[-1].split(",")[0])     # the last step's cycle
+    capsys.readouterr()
+    assert runs["laser"] < runs["spindle"], runs
+
+
 def test_program_pause_is_released(files, capsys):
     """M0 and M6 make the controller hold by itself; without a terminal the driver releases each
     pause after --pause-seconds (here 0.01 s of machine time) and the program ends where it should."""

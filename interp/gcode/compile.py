@@ -60,7 +60,7 @@ from dataclasses import dataclass, field
 
 from ..cores import UsageError
 from ..models.lecture import within_half_step
-from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command, command_steps, interval_costs
+from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command, command_steps, inline, interval_costs
 from ..models.speed_ramp import BLOCK_SHIFT_MIN
 from .machine import AXES, Machine
 from .moves import EVENTS, PLANES, Arc, Dwell, Event, Line, Program
@@ -98,7 +98,7 @@ WARNINGS_PER_KIND = 20                       # then one "... and N more" line pe
 # (spindle_cw, spindle_ccw, spindle_speed): a PWM duty 0 .. 65535 = S / max_s.
 EVENT_CODES = {"spindle_cw": 1, "spindle_ccw": 2, "spindle_off": 3, "spindle_speed": 4, "mist_on": 5,
                "flood_on": 6, "coolant_off": 7, "output_on": 8, "output_off": 9, "pause": 10,
-               "tool_change": 11, "program_end": 12}
+               "tool_change": 11, "program_end": 12, "laser_mode": 13}
 EVENT_NAMES = {code: name for name, code in EVENT_CODES.items()}
 SPINDLE_DUTY = ("spindle_cw", "spindle_ccw", "spindle_speed")
 assert set(EVENT_CODES) == set(EVENTS)
@@ -254,6 +254,10 @@ class Compiler:
         self.out = Compiled(profile=self.profile_name, costs=costs)
         self.stop_next = True           # an exact stop before the next move
         self.first = True               # no command of the programmed move made yet (emit_move)
+        # laser mode (spindle.laser): the beam's power (duty), whether M3 / M4 has it on, and
+        # whether a G0 has darkened it (power 0 until the next feed move)
+        self.laser = bool(machine.values["spindle"]["laser"])
+        self.power, self.beam_on, self.dark = 0, False, False
         self.modes: list = []           # the program's path-control modes (line, mode, P, Q)
         self._warnings: dict[str, list[str]] = {}
         self._more: dict[str, int] = {}
@@ -305,9 +309,28 @@ class Compiler:
 
     def emit(self, cmd: Cmd) -> None:
         self.room(1, cmd.source)
-        if cmd.motion is None:                      # a dwell or an event: a barrier, a stop after it
+        if cmd.motion is None and not inline(cmd):  # a dwell or an event: a barrier, a stop after it
             self.stop_next = True
         self.out.commands.append(cmd)
+
+    def inline_power(self, value: int, line: int, shown: float) -> None:
+        """Laser mode: the beam's power (a spindle_speed event of duty `value`, S `shown`) set
+        along the path, inline: no stop (plane bit 0, motion_top's inline EVENT)."""
+        self.emit(Cmd(EVENT, 0, EVENT_CODES["spindle_speed"], value, plane=1, source=line))
+        self.out.events.append(("spindle_speed", shown, line))
+
+    def laser_mode(self, on: int, line: int) -> None:
+        self.emit(Cmd(EVENT, 0, EVENT_CODES["laser_mode"], on, plane=1, source=line))
+        self.out.events.append(("laser_mode", on, line))
+
+    def laser_rapid(self, rapid: bool, line: int) -> None:
+        """Laser mode: the beam off during a G0 (its power 0 inline before it), back to the
+        programmed power before the next feed move, as Grbl's laser mode."""
+        if not self.laser or not self.beam_on or self.power == 0 or rapid == self.dark:
+            return
+        self.settle()                               # (an arc's correction: before the change)
+        self.dark = rapid
+        self.inline_power(0 if rapid else self.power, line, 0 if rapid else self.power / PWM_FULL * self.machine.max_s)
 
     def emit_move(self, cmd: Cmd, feed_mm_s: float, start_mm, end_mm, steps: float, events: int,
                   length_mm: float, radius_mm: float | None = None, plane_axes=None, piece: bool = False) -> None:
@@ -611,8 +634,20 @@ class Compiler:
                 raise CompileError(f"line {m.line}: {m.name} value {m.value:g} does not fit the event "
                                    f"value (32 bits)")
             value = _round(m.value)
-        self.emit(Cmd(EVENT, 0, EVENT_CODES[m.name], value, source=m.line))
-        self.out.events.append((m.name, m.value, m.line))
+        if self.laser and m.name in SPINDLE_DUTY:
+            self.power = value
+        if self.laser and m.name == "spindle_speed":
+            if not self.dark:                       # along the path, no stop; during a G0 it waits
+                self.inline_power(value, m.line, m.value)
+        else:
+            shown = m.value
+            if self.laser and m.name in ("spindle_cw", "spindle_ccw") and self.dark:
+                value = shown = 0                   # M3 between G0s: the beam stays off until a feed move
+            self.emit(Cmd(EVENT, 0, EVENT_CODES[m.name], value, source=m.line))
+            self.out.events.append((m.name, shown, m.line))
+        if self.laser and m.name in ("spindle_cw", "spindle_ccw", "spindle_off", "program_end"):
+            self.beam_on = m.name in ("spindle_cw", "spindle_ccw")
+            self.dark = self.dark and self.beam_on
         if m.name == "pause":
             self.pause(self.pause_cycles, m.line)
 
@@ -650,7 +685,7 @@ class Compiler:
         are exactly feasible for the continuous trapezoid; the generator steps n by whole
         quanta and needs about 3n more, and its first tick in a command may keep n unchecked
         (2n more), so the tightest exits come down by a few quanta."""
-        commands = self.out.commands
+        commands = [c for c in self.out.commands if not inline(c)]    # (inline events: no stop)
         following = {id(c): commands[n + 1] for n, c in enumerate(commands[:-1])}
         for cmd in reversed(moves):
             nxt = following.get(id(cmd))
@@ -820,11 +855,15 @@ class Compiler:
         t = 0.0
         commands = self.out.commands
         self.out.command_time = []
+        after, following_of = None, [None] * len(commands)     # the next command that is not inline
+        for n in range(len(commands) - 1, -1, -1):
+            following_of[n] = after
+            after = after if inline(commands[n]) else commands[n]
         for n, cmd in enumerate(commands):
             if cmd.motion is not None:
                 # at the speed the hardware holds, whole quanta (the warning above)
                 t += plan_of[id(cmd)].time_s * slower[id(cmd)]
-                following = commands[n + 1] if n + 1 < len(commands) else None
+                following = following_of[n]
                 if following is None or following.motion is None or following.motion.stop_before:
                     t += window
             elif cmd.kind == DWELL:
@@ -834,14 +873,18 @@ class Compiler:
 
     def run(self, program: Program) -> Compiled:
         self.modes = sorted(program.path_modes, key=lambda mode: mode[0])
+        if self.laser:
+            self.laser_mode(1, program.moves[0].line if program.moves else 0)
         for m in program.moves:
             self.first = True
             if isinstance(m, Line):
                 self.out.moves += 1
+                self.laser_rapid(m.feed is None, m.line)
                 self.segment(m.start, m.end, m.feed, m.line)
             elif isinstance(m, Arc):
                 self.out.moves += 1
                 self.out.arcs += 1
+                self.laser_rapid(False, m.line)
                 self.arc(m)
             elif isinstance(m, Dwell):
                 self.dwell(m)
@@ -850,6 +893,8 @@ class Compiler:
             else:
                 raise TypeError(f"not a move: {m!r}")
         self.settle()
+        if self.laser:
+            self.laser_mode(0, self.out.commands[-1].source)
         self.out.end_steps = tuple(self.here)
         self.profile()
         for kind, seen in self._warnings.items():

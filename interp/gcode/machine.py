@@ -69,6 +69,7 @@ SCHEMA: dict[str, dict[str, tuple]] = {
     "spindle": {
         "max_s": ("float>", 24000.0, 0, 1e9, "rpm", "the S value of 100 % PWM duty"),
         "pwm_hz": ("float>", 1000.0, 0, 1e9, "Hz", "spindle PWM frequency (the controller's SPINDLE_PERIOD)"),
+        "laser": ("bool", False, None, None, "", "laser mode, as Grbl's $32: S changes along G1 / G2 / G3 without a stop, the beam off during G0 and while a feed hold has stopped the machine"),
     },
     "gcode": {
         "parameter_file": ("text", "", None, None, "", "file of the settings that outlive a program (work offsets, G92, the coordinate system, G28 / G30 positions); empty: none"),

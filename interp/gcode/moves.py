@@ -68,6 +68,7 @@ EVENTS = {
     "pause": "0 (M0), 1 (M1), 6 (M6 tool change), 60 (M60)",
     "tool_change": "T (the tool selected)",        # M6, before its pause
     "program_end": "2 (M2) or 30 (M30)",
+    "laser_mode": "1 on, 0 off (sent by the compiler in laser mode, not programmed)",
 }
 
 
