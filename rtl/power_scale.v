@@ -6,12 +6,18 @@
 //
 //     scaled = duty * ratio / 65536,   ratio = floor(min(speed, feed) * 65536 / feed)
 //
-// (ratio 65535 at or above the feed, 0 while feed is 0).  A free-running sequence of 34
-// clocks takes duty, speed and feed (round 0), divides (restoring, a quotient bit a clock,
-// rounds 1 .. 16), multiplies (shift and add, rounds 17 .. 32) and sets `scaled` (round
-// 33): it follows the inputs within 68 clocks.
+// (ratio 65535 at or above the feed, 0 while feed is 0).  Bit-serial, to stay small at
+// the controller's wide speed words: one full adder walks the RW = FEED_W + 2 bits of a
+// partial remainder held in a shift register, lowest bit first.
+//   load pass ........ the remainder R = speed; speed >= feed and feed != 0 found on the way
+//   16 divide passes . non-restoring division: R = 2R - feed if R >= 0, else 2R + feed;
+//                      the quotient bit is 1 when the new R is >= 0
+//   16 multiply rounds acc = (acc + duty bit * ratio) / 2, lowest duty bit first
+//   done ............. scaled = acc; duty, speed and feed taken for the next sequence
+// A sequence is ROUNDS = 17 x RW + 17 clocks (902 at FEED_W 50): `scaled` is new every
+// ROUNDS clocks, from the inputs of the clock that ended the sequence before.
 module power_scale #(
-    parameter integer FEED_W = 16   // width of speed and feed (>= 1)
+    parameter integer FEED_W = 16   // width of speed and feed (1 .. 200)
 ) (
     input  wire              clk,
     input  wire              rst,
@@ -21,58 +27,96 @@ module power_scale #(
     output reg  [15:0]       scaled
 );
     initial begin
-        if (FEED_W < 1) $error("%m: FEED_W must be at least 1");
+        if (FEED_W < 1 || FEED_W > 200) $error("%m: FEED_W must be 1 .. 200");
     end
 
-    localparam [5:0] MULTIPLY = 6'd17, LAST = 6'd33;   // 1 .. 16 divide, 17 .. 32 multiply
+    localparam integer RW = FEED_W + 2;           // the partial remainder, signed: |2R| < 2^RW / 2
+    localparam [31:0] TOP_WIDE  = RW - 1;
+    localparam [31:0] FEED_WIDE = FEED_W;
+    localparam [7:0]  TOP   = TOP_WIDE[7:0];      // the last bit of a pass
+    localparam [7:0]  WORD  = FEED_WIDE[7:0];     // bits of speed and feed
+    localparam [4:0]  PASSES = 5'd17;             // the load pass and 16 divide passes
 
-    reg  [5:0]        round;        // 0: take the inputs; 33: the result
-    reg  [FEED_W-1:0] remainder;    // < divisor
-    reg  [FEED_W-1:0] divisor;
-    reg               zero, whole;  // feed 0: ratio 0; speed >= feed: ratio 65535
-    reg  [15:0]       ratio;        // quotient bits, shifted in highest first
-    reg  [15:0]       power;        // duty's bits still to add, lowest first
-    reg  [31:0]       addend;       // the ratio, shifted
-    reg  [31:0]       product;
-    wire [FEED_W:0]   doubled = {remainder, 1'b0};
-    wire [FEED_W+1:0] less    = {1'b0, doubled} - {2'b00, divisor};
-    wire              fits    = ~less[FEED_W+1];                       // doubled >= divisor
-    wire [15:0]       factor  = zero ? 16'd0 : whole ? 16'hFFFF : ratio;
-    wire              first   = round == MULTIPLY;
-    wire [31:0]       base    = first ? 32'd0 : product;               // the product so far
-    wire [31:0]       term    = first ? {16'd0, factor} : addend;      // factor << (round - 17)
+    reg  [FEED_W-1:0] speed_q, feed_q;
+    reg  [15:0]       duty_q;
+    reg  [RW-1:0]     remainder;    // R, lowest bit at [0]; a pass shifts it through once
+    reg  [7:0]        bit_index;    // 0 .. TOP within a pass
+    reg  [4:0]        pass;         // 0 load, 1 .. 16 divide, 17 multiply
+    reg  [4:0]        multiply;     // the multiply round, 0 .. 16 (16: done)
+    reg               previous;     // R's bit below the one leaving now: 2R's bit
+    reg               carry;
+    reg               negative;     // R < 0 (from the pass before)
+    reg               at_least;     // speed >= feed, lowest bits first
+    reg               nonzero;      // feed != 0
+    reg  [15:0]       ratio;        // quotient bits, highest first
+    reg  [15:0]       acc;
+
+    wire in_word      = bit_index < WORD;
+    wire [FEED_W-1:0] speed_at = speed_q >> bit_index;     // the bit of this clock at [0]
+    wire [FEED_W-1:0] feed_at  = feed_q >> bit_index;
+    wire speed_bit   = in_word & speed_at[0];
+    wire feed_bit    = in_word & feed_at[0];
+    wire first       = bit_index == 8'd0;
+    wire last        = bit_index == TOP;
+    wire subtract    = ~negative;
+    wire a           = first ? 1'b0 : previous;          // 2R
+    wire b           = feed_bit ^ subtract;               // -feed: its complement, carry in 1
+    wire c           = first ? subtract : carry;
+    wire sum         = a ^ b ^ c;
+    wire [15:0] factor = ~nonzero ? 16'd0 : at_least ? 16'hFFFF : ratio;
+    wire [16:0] added  = {1'b0, acc} + (duty_q[multiply[3:0]] ? {1'b0, factor} : 17'd0);
 
     always @(posedge clk) begin
         if (rst) begin
-            round     <= 6'd0;
-            remainder <= {FEED_W{1'b0}};
-            divisor   <= {FEED_W{1'b0}};
-            zero      <= 1'b1;
-            whole     <= 1'b0;
+            speed_q   <= {FEED_W{1'b0}};
+            feed_q    <= {FEED_W{1'b0}};
+            duty_q    <= 16'd0;
+            remainder <= {RW{1'b0}};
+            bit_index <= 8'd0;
+            pass      <= 5'd0;
+            multiply  <= 5'd0;
+            previous  <= 1'b0;
+            carry     <= 1'b0;
+            negative  <= 1'b0;
+            at_least  <= 1'b1;
+            nonzero   <= 1'b0;
             ratio     <= 16'd0;
-            power     <= 16'd0;
-            addend    <= 32'd0;
-            product   <= 32'd0;
+            acc       <= 16'd0;
             scaled    <= 16'd0;
-        end else begin
-            round <= round == LAST ? 6'd0 : round + 6'd1;
-            if (round == 6'd0) begin
-                zero      <= feed == {FEED_W{1'b0}};
-                whole     <= speed >= feed;
-                remainder <= speed >= feed ? {FEED_W{1'b0}} : speed;
-                divisor   <= feed;
-                power     <= duty;
-            end else if (round < MULTIPLY) begin
-                ratio     <= {ratio[14:0], fits};
-                remainder <= fits ? less[FEED_W-1:0] : doubled[FEED_W-1:0];
-            end else if (round < LAST) begin
-                product <= power[0] ? base + term : base;
-                addend  <= term << 1;
-                power  <= power >> 1;
+        end else if (pass != PASSES) begin
+            bit_index <= last ? 8'd0 : bit_index + 8'd1;
+            previous  <= remainder[0];
+            if (last)
+                pass <= pass + 5'd1;
+            if (pass == 5'd0) begin
+                remainder <= {speed_bit, remainder[RW-1:1]};
+                at_least  <= (speed_bit & ~feed_bit) | (~(speed_bit ^ feed_bit) & at_least);
+                nonzero   <= nonzero | feed_bit;
             end else begin
-                scaled <= product[31:16];
+                remainder <= {sum, remainder[RW-1:1]};
+                carry     <= (a & b) | (a & c) | (b & c);
+                if (last) begin
+                    negative <= sum;
+                    ratio    <= {ratio[14:0], ~sum};
+                end
             end
+        end else if (multiply != 5'd16) begin
+            acc      <= added[16:1];
+            multiply <= multiply + 5'd1;
+        end else begin
+            scaled    <= acc;
+            speed_q   <= speed;
+            feed_q    <= feed;
+            duty_q    <= duty;
+            pass      <= 5'd0;
+            multiply  <= 5'd0;
+            negative  <= 1'b0;
+            at_least  <= 1'b1;
+            nonzero   <= 1'b0;
+            acc       <= 16'd0;
         end
     end
+
+    wire unused = &{1'b0, speed_at, feed_at, added[0]};    // (bit 0 of the first two is used)
 endmodule
 `default_nettype wire
