@@ -80,6 +80,24 @@ async def events(dut):
             f"{model.read(dut)}, want {model.want(held)}"
 
 
+async def high_per_period(dut, tb, inputs, length):
+    """Clocks the PWM is high in each of 3 whole periods, once the threshold has settled (within
+    two periods, or 34 clocks)."""
+    tb.drive(inputs)
+    for _ in range(3 * length + 40):
+        await FallingEdge(dut.clk)
+    while int(dut.counter.value) != 0:
+        await FallingEdge(dut.clk)
+    high = []
+    for _ in range(3):
+        count = 0
+        for _ in range(length):
+            count += int(dut.spindle_pwm.value)
+            await FallingEdge(dut.clk)
+        high.append(count)
+    return high
+
+
 @cocotb.test()
 async def pwm_duty(dut):
     tb = TB(dut)
@@ -90,19 +108,8 @@ async def pwm_duty(dut):
             continue                                    # does not fit a narrow event value
         tb.drive({**IDLE, "event_valid": 1, "event_code": 1, "event_value": duty, "period": period})
         await FallingEdge(dut.clk)
-        tb.drive({**IDLE, "period": period})
         length = max(period, 1)
-        for _ in range(3 * length + 40):               # the threshold settles within two periods (or 34 clocks)
-            await FallingEdge(dut.clk)
-        while int(dut.counter.value) != 0:
-            await FallingEdge(dut.clk)
-        high = []
-        for _ in range(3):
-            count = 0
-            for _ in range(length):
-                count += int(dut.spindle_pwm.value)
-                await FallingEdge(dut.clk)
-            high.append(count)
+        high = await high_per_period(dut, tb, {**IDLE, "period": period}, length)
         want = length if duty == 65535 else duty * length >> 16
         assert high == [want] * 3, f"duty {duty}, period {period}: high {high}, want {want}"
     for mode, held in ((1, 1), (0, 1), (1, 0)):     # laser mode: the beam is off while held
@@ -120,23 +127,6 @@ async def pwm_duty(dut):
     for _ in range(300):
         await FallingEdge(dut.clk)
         assert not int(dut.spindle_pwm.value), "PWM while the spindle is off"
-
-
-async def high_per_period(dut, tb, inputs, length):
-    """Clocks the PWM is high in each of 3 whole periods, once the threshold has settled."""
-    tb.drive(inputs)
-    for _ in range(3 * length + 40):
-        await FallingEdge(dut.clk)
-    while int(dut.counter.value) != 0:
-        await FallingEdge(dut.clk)
-    high = []
-    for _ in range(3):
-        count = 0
-        for _ in range(length):
-            count += int(dut.spindle_pwm.value)
-            await FallingEdge(dut.clk)
-        high.append(count)
-    return high
 
 
 @cocotb.test()
