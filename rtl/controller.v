@@ -175,7 +175,9 @@ module controller #(
     wire [7:0]        override_percent;
     wire [2:0]        m_step, m_dir;
     wire [POS_W-1:0]  unused_pos_x, unused_pos_y, unused_pos_z;
-    wire [FEED_W-1:0] m_speed, m_cruise;        // the path speed and its move's cruise (power_scale)
+    wire [FEED_W-1:0] unused_speed, m_cruise;   // the move's cruise (power_scale)
+    wire [FEED_W+MW-1:0] m_step_speed;          // 2^m_speed_shift x the speed of the steps
+    wire [3:0]        m_speed_shift;
     wire              stopped, still, m_busy, unused_done, m_error, event_valid;
     wire [3:0]        m_error_code;
     wire [QLW-1:0]    m_level;
@@ -195,7 +197,8 @@ module controller #(
         .step_x(m_step[0]), .step_y(m_step[1]), .step_z(m_step[2]),
         .dir_x(m_dir[0]), .dir_y(m_dir[1]), .dir_z(m_dir[2]),
         .pos_x(unused_pos_x), .pos_y(unused_pos_y), .pos_z(unused_pos_z),
-        .speed(m_speed), .cruise(m_cruise), .stopped(stopped), .still(still), .busy(m_busy), .done(unused_done),
+        .speed(unused_speed), .cruise(m_cruise), .step_speed(m_step_speed), .speed_shift(m_speed_shift),
+        .stopped(stopped), .still(still), .busy(m_busy), .done(unused_done),
         .error(m_error), .error_code(m_error_code),
         .event_valid(event_valid), .event_code(event_code), .event_value(event_value)
     );
@@ -263,8 +266,9 @@ module controller #(
     // ---------------- outputs, registers ----------------
     wire        halted = stopped | (hold & fill);       // in hold: motion_top at rest, or kept at reset
     wire [15:0] duty, scaled, output_invert;
-    power_scale #(.FEED_W(FEED_W)) u_power (
-        .clk(clk), .rst(rst), .duty(duty), .speed(m_speed), .feed(m_cruise), .scaled(scaled)
+    power_scale #(.FEED_W(FEED_W), .SPEED_W(FEED_W + MW)) u_power (
+        .clk(clk), .rst(rst), .duty(duty), .speed(m_step_speed), .shift(m_speed_shift), .feed(m_cruise),
+        .scaled(scaled)
     );
     wire        pause, io_spindle_on, io_spindle_pin, io_spindle_ccw, io_spindle_pwm, io_mist, io_flood;
     wire [3:0]  io_dout;
@@ -325,6 +329,6 @@ module controller #(
         .data_write(data_write), .data_word(data_word), .data_lanes(data_lanes), .data_ready(data_ready)
     );
 
-    wire unused = &{1'b0, unused_pos_x, unused_pos_y, unused_pos_z, unused_done};
+    wire unused = &{1'b0, unused_pos_x, unused_pos_y, unused_pos_z, unused_speed, unused_done};
 endmodule
 `default_nettype wire

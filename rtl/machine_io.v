@@ -12,7 +12,8 @@
 // spindle_on register keeps the program's state; and M4 (spindle_ccw) is Grbl's dynamic
 // power: the PWM runs at `scaled` (power_scale: duty x speed / feed) instead of duty.  A duty below 0 counts as 0, above 65535 as 65535.  `pause` strobes for
 // code 10 (the controller holds).
-// `off` (abort, alarm) switches spindle and coolant off at once; the outputs keep.
+// `off` (abort, alarm) switches spindle and coolant off at once and ends laser mode; the
+// outputs keep.
 // PWM: a counter runs over `period` clocks (0 counts as 1); `pwm` is high while the
 // counter is below duty * period / 65536 (duty 65535: always high), and low while the
 // spindle is off.  That threshold is a product made by shift and add over 17 clocks from
@@ -84,6 +85,7 @@ module machine_io #(
             spindle_on <= 1'b0;
             mist       <= 1'b0;
             flood      <= 1'b0;
+            laser      <= 1'b0;         // an aborted laser job leaves no laser mode behind
         end else if (event_valid) begin
             case (event_code)
                 SPINDLE_CW:    begin spindle_on <= 1'b1; spindle_ccw <= 1'b0; duty <= clamped; end

@@ -87,6 +87,8 @@ module motion_top #(
     output reg  [POS_W-1:0]  pos_z,
     output wire [FEED_W-1:0] speed,         // virtual path speed v, path units per clock
     output wire [FEED_W-1:0] cruise,        // the feed of the move the speed is for
+    output wire [FEED_W+MW-1:0] step_speed, // 2^speed_shift x the speed of the steps (the S-curve filter's sum)
+    output wire [3:0]        speed_shift,
     output wire              stopped,       // hold has brought the speed to 0 (or nothing moves)
     output wire              still,         // no speed anywhere in the profile: no step comes
     output wire              busy,          // a command queued or running, or a step not yet out
@@ -228,7 +230,8 @@ module motion_top #(
         .push_budget(cmd_budget), .full(prof_full), .level(profile_level), .barrier_done(barrier_done),
         .speed_quantum(speed_quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
         .override(override), .hold(hold), .step_valid(out_valid), .step_axes(out_axes),
-        .step_cost(out_cost), .drive_ready(drive_ready), .fire(fire), .speed(speed), .cruise(cruise), .moving(moving),
+        .step_cost(out_cost), .drive_ready(drive_ready), .fire(fire), .speed(speed), .cruise(cruise), .step_speed(step_speed),
+        .speed_shift(speed_shift), .moving(moving),
         .stopped(ramp_stopped), .still(profile_still), .late(late)
     );
     assign stopped = ramp_stopped | (hold & ~busy);

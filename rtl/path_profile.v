@@ -68,6 +68,8 @@ module path_profile #(
     // status
     output wire [FEED_W-1:0] speed,         // virtual speed v, path units per clock
     output wire [FEED_W-1:0] cruise,        // the feed of the segment the ramp runs (the laser's power_scale)
+    output wire [FEED_W+MW-1:0] step_speed, // the S-curve filter's sum: 2^speed_shift x the speed of the steps
+    output wire [3:0]        speed_shift,   // the filter's shift in use
     output wire              moving,        // the ramp runs or the filter still sums speed
     output wire              stopped,       // hold has brought the speed to 0, and the filter's to 0
     output wire              still,         // no speed in the ramp or the filter: no step comes
@@ -135,6 +137,8 @@ module path_profile #(
 
     wire [SUM_W-1:0] sum;
     wire [3:0]       shift;
+    assign step_speed  = sum;
+    assign speed_shift = shift;
     wire             empty;
     jerk_filter #(.FEED_W(FEED_W), .MW(MW), .SUM_W(SUM_W)) u_jerk (
         .clk(clk), .rst(rst), .speed(speed_f), .up(rise), .down(fall), .block(block_q),

@@ -110,7 +110,7 @@ def test_pin_settings():
     assert load_machine(sets=["input.filter_us=0.01"]).pin_settings()["INPUT_FILTER"] == 0x1F << 16 | 1
     with pytest.raises(MachineError, match=r"spindle.pwm_hz \(500 Hz\) is a period of 100000 clocks .* 763 \.\. 2.5e\+07 Hz"):
         load_machine(sets=["spindle.pwm_hz=500"]).pin_settings()
-    with pytest.raises(MachineError, match=r"input.filter_us \(6000 us\) is a sample period of 75000 clocks .* at most 5243 us"):
+    with pytest.raises(MachineError, match=r"input.filter_us \(6000 us\) is a sample period of 75000 clocks .* at most 5242.8 us"):
         load_machine(sets=["input.filter_us=6000"]).pin_settings()
 
 
@@ -1093,3 +1093,18 @@ def test_laser_mode():
     assert [c.motion.stop_before for c in spindle.commands if c.motion is not None] == [True, True, True, False,
                                                                                           False, True, True]
     assert laser.end_steps == spindle.end_steps and laser.machine_time_s < spindle.machine_time_s
+
+
+def test_laser_mode_dark_rapids_and_the_end():
+    """Laser mode: an S given during a G0 run waits for the next feed move whatever the power
+    before (no beam at rest through a dwell); a program that ends with the beam on gets a
+    spindle off before laser mode ends (the beam is not left on at rest)."""
+    from interp.commands.gcode import compile_text
+
+    code = {v: k for k, v in EVENT_CODES.items()}
+    machine = load_machine(sets=["spindle.laser=true", "spindle.max_s=1000"])
+    _, out = compile_text("G21 G90\nM3 S0\nG1 X1 F600\nG0 X2\nS1000\nG4 P0.1\nG1 X3\n", machine)
+    kinds = [(code[c.x], c.y, c.plane) if c.kind == EVENT else ("dwell" if c.kind == DWELL else "move")
+             for c in out.commands]
+    assert kinds == [("laser_mode", 1, 1), ("spindle_cw", 0, 0), "move", "move", "dwell",
+                     ("spindle_speed", 65535, 1), "move", ("spindle_off", 0, 0), ("laser_mode", 0, 1)]

@@ -143,6 +143,21 @@ def test_the_machine_files_polarity_is_written_once(capsys, program, tmp_path, m
     assert device.writes[:3] == [("INPUT_INVERT", 0x10), ("INPUT_FILTER", 0x0F09C4), ("OUTPUT_INVERT", 0x50)]
 
 
+def test_an_input_filter_that_is_off_is_not_written_to_an_older_bitstream():
+    """INPUT_FILTER with period 0 counts as equal whatever its mask: a bitstream from before
+    the register (which reads 0 there) is not written and raises no error."""
+    from interp.link.driver import Driver, apply_pin_settings
+
+    device = DeviceModel()
+    device.regs["INPUT_FILTER"] = 0                                    # what an older bitstream reads
+    driver = Driver(device, baud=115200)
+    driver.connect()
+    apply_pin_settings(driver, {"INPUT_FILTER": 0x1F << 16})
+    assert [name for name, _ in device.writes] == []
+    apply_pin_settings(driver, {"INPUT_FILTER": 0x1F << 16 | 25})
+    assert device.writes == [("INPUT_FILTER", 0x1F0019)]
+
+
 @pytest.mark.parametrize("error, limits, before, after, cleared", [
     (16, 0, 0, 0b00001, True),           # the e-stop's polarity changed, it reads inactive now
     (16, 0, 0b00001, 0b00001, False),    # no change: a real e-stop

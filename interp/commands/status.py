@@ -11,7 +11,7 @@ from ..cores import UsageError
 from ..gcode.machine import load_machine
 from ..link import registers
 from ..gcode.parameter_file import describe
-from ..link.driver import Driver, LinkError, read_position
+from ..link.driver import Driver, LinkError, read_position, same_pin_setting
 from . import gcode as gcode_command          # (its interpret_program looked up at each call)
 from . import send
 from .send import add_link_options, check_link_args, mm_text
@@ -46,7 +46,7 @@ def cmd_status(args) -> int:
         lines = [registers.describe(name, value) for name, value in values.items()]
         # the machine file's pin settings, which send, home and jog write when they connect
         for name, value in ({} if args.sim else machine.pin_settings()).items():
-            if values[name] != value:
+            if not same_pin_setting(name, values[name], value):
                 shown = f"{value}" if name == "SPINDLE_PERIOD" else f"{value:#x}"
                 lines.append(f"{name} differs from the machine file's ({shown}, {machine.source}): "
                              "interp send, home and jog write it when they connect")

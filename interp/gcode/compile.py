@@ -255,7 +255,7 @@ class Compiler:
         self.stop_next = True           # an exact stop before the next move
         self.first = True               # no command of the programmed move made yet (emit_move)
         # laser mode (spindle.laser): the beam's power (duty), whether M3 / M4 has it on, and
-        # whether a G0 has darkened it (power 0 until the next feed move)
+        # whether the path is in a G0 (the beam dark: power 0 until the next feed move)
         self.laser = bool(machine.values["spindle"]["laser"])
         self.power, self.beam_on, self.dark = 0, False, False
         self.modes: list = []           # the program's path-control modes (line, mode, P, Q)
@@ -326,11 +326,13 @@ class Compiler:
     def laser_rapid(self, rapid: bool, line: int) -> None:
         """Laser mode: the beam off during a G0 (its power 0 inline before it), back to the
         programmed power before the next feed move, as Grbl's laser mode."""
-        if not self.laser or not self.beam_on or self.power == 0 or rapid == self.dark:
+        if not self.laser or rapid == self.dark:
             return
-        self.settle()                               # (an arc's correction: before the change)
-        self.dark = rapid
-        self.inline_power(0 if rapid else self.power, line, 0 if rapid else self.power / PWM_FULL * self.machine.max_s)
+        self.dark = rapid                           # (whatever the power: an S during the G0 waits)
+        if self.beam_on and self.power:
+            self.settle()                           # (an arc's correction: before the change)
+            self.inline_power(0 if rapid else self.power, line,
+                              0 if rapid else self.power / PWM_FULL * self.machine.max_s)
 
     def emit_move(self, cmd: Cmd, feed_mm_s: float, start_mm, end_mm, steps: float, events: int,
                   length_mm: float, radius_mm: float | None = None, plane_axes=None, piece: bool = False) -> None:
@@ -637,7 +639,7 @@ class Compiler:
         if self.laser and m.name in SPINDLE_DUTY:
             self.power = value
         if self.laser and m.name == "spindle_speed":
-            if not self.dark:                       # along the path, no stop; during a G0 it waits
+            if self.beam_on and not self.dark:      # along the path, no stop; during a G0 it waits
                 self.inline_power(value, m.line, m.value)
         else:
             shown = m.value
@@ -647,7 +649,6 @@ class Compiler:
             self.out.events.append((m.name, shown, m.line))
         if self.laser and m.name in ("spindle_cw", "spindle_ccw", "spindle_off", "program_end"):
             self.beam_on = m.name in ("spindle_cw", "spindle_ccw")
-            self.dark = self.dark and self.beam_on
         if m.name == "pause":
             self.pause(self.pause_cycles, m.line)
 
@@ -894,7 +895,12 @@ class Compiler:
                 raise TypeError(f"not a move: {m!r}")
         self.settle()
         if self.laser:
-            self.laser_mode(0, self.out.commands[-1].source)
+            end = self.out.commands[-1].source
+            if self.beam_on:                        # no beam left on at rest when laser mode ends
+                self.emit(Cmd(EVENT, 0, EVENT_CODES["spindle_off"], 0, source=end))
+                self.out.events.append(("spindle_off", 0, end))
+                self.beam_on = False
+            self.laser_mode(0, end)
         self.out.end_steps = tuple(self.here)
         self.profile()
         for kind, seen in self._warnings.items():

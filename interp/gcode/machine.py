@@ -169,10 +169,10 @@ class Machine:
         if inputs["filter_us"] > 0:
             period = max(1, round(inputs["filter_us"] * self.clock_hz / 4e6))
             if period > TIMING_MAX:
-                longest = 4 * TIMING_MAX / self.clock_hz * 1e6
+                longest = math.floor(4 * TIMING_MAX / self.clock_hz * 1e7) / 10     # (rounded down)
                 raise MachineError(f"{self.source}: input.filter_us ({inputs['filter_us']:g} us) is a sample "
                                    f"period of {period} clocks at controller.clock_hz = {self.clock_hz:g}; "
-                                   f"INPUT_FILTER takes at most {TIMING_MAX}: at most {longest:.4g} us")
+                                   f"INPUT_FILTER takes at most {TIMING_MAX}: at most {longest:g} us")
         mask = 0x1F & ~sum(1 << INPUT_NAMES.index(n) for n in inputs["unfiltered"])
         return mask << 16 | period
 

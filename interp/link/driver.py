@@ -461,6 +461,15 @@ PIN_SETTINGS = ("INPUT_INVERT", "INPUT_FILTER", "OUTPUT_INVERT", "SPINDLE_PERIOD
 CONTROL_KEPT = p.kept_bits("CONTROL")           # hold, enable, fill, probe_stop (not the strobes)
 
 
+def same_pin_setting(name: str, have: int, want: int) -> bool:
+    """Whether the controller's value of a pin setting register is the machine file's: an
+    INPUT_FILTER with period 0 is off whatever its mask (a bitstream from before the
+    register reads 0 there)."""
+    if name == "INPUT_FILTER" and not have & 0xFFFF and not want & 0xFFFF:
+        return True
+    return have == want
+
+
 def apply_pin_settings(driver: Driver, settings: dict[str, int]) -> None:
     """Write INPUT_INVERT, INPUT_FILTER, OUTPUT_INVERT and SPINDLE_PERIOD (the machine file's
     input.invert, input.filter_us and input.unfiltered, output.invert, spindle.pwm_hz) where the
@@ -478,7 +487,7 @@ def apply_pin_settings(driver: Driver, settings: dict[str, int]) -> None:
     before = {name: driver.read_register(name) & mask for name, mask in masks.items()}
     for name, mask in masks.items():
         value = settings[name] & mask
-        if before[name] == value:
+        if same_pin_setting(name, before[name], value):
             continue
         control = driver.read_register("CONTROL") & CONTROL_KEPT
         off = name == "OUTPUT_INVERT" and control & p.CONTROL_ENABLE

@@ -40,7 +40,7 @@ class Outputs:
             self.laser = int(value != 0)
 
     def off(self):
-        self.on = self.mist = self.flood = 0
+        self.on = self.mist = self.flood = self.laser = 0
 
     def read(self, dut):
         return {"on": int(dut.spindle_on.value), "ccw": int(dut.spindle_ccw.value), "duty": int(dut.duty.value),
