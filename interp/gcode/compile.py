@@ -60,7 +60,7 @@ from dataclasses import dataclass, field
 
 from ..cores import UsageError
 from ..models.lecture import within_half_step
-from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command, command_steps, inline, interval_costs
+from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command, command_steps, inline, interval_costs, next_not_inline
 from ..models.speed_ramp import BLOCK_SHIFT_MIN
 from .machine import AXES, Machine
 from .moves import EVENTS, PLANES, Arc, Dwell, Event, Line, Program
@@ -313,15 +313,17 @@ class Compiler:
             self.stop_next = True
         self.out.commands.append(cmd)
 
+    def emit_event(self, name: str, value: int, shown: float, line: int, inline_event: bool = False) -> None:
+        """An EVENT command (value on event_value) and its entry in the events list (`shown`: the
+        programmed value it stands for); inline_event: plane bit 0, motion_top runs it without
+        a stop (a laser's power along its path)."""
+        self.emit(Cmd(EVENT, 0, EVENT_CODES[name], value, plane=int(inline_event), source=line))
+        self.out.events.append((name, shown, line))
+
     def inline_power(self, value: int, line: int, shown: float) -> None:
         """Laser mode: the beam's power (a spindle_speed event of duty `value`, S `shown`) set
-        along the path, inline: no stop (plane bit 0, motion_top's inline EVENT)."""
-        self.emit(Cmd(EVENT, 0, EVENT_CODES["spindle_speed"], value, plane=1, source=line))
-        self.out.events.append(("spindle_speed", shown, line))
-
-    def laser_mode(self, on: int, line: int) -> None:
-        self.emit(Cmd(EVENT, 0, EVENT_CODES["laser_mode"], on, plane=1, source=line))
-        self.out.events.append(("laser_mode", on, line))
+        along the path, inline: no stop."""
+        self.emit_event("spindle_speed", value, shown, line, inline_event=True)
 
     def laser_rapid(self, rapid: bool, line: int) -> None:
         """Laser mode: the beam off during a G0 (its power 0 inline before it), back to the
@@ -645,8 +647,7 @@ class Compiler:
             shown = m.value
             if self.laser and m.name in ("spindle_cw", "spindle_ccw") and self.dark:
                 value = shown = 0                   # M3 between G0s: the beam stays off until a feed move
-            self.emit(Cmd(EVENT, 0, EVENT_CODES[m.name], value, source=m.line))
-            self.out.events.append((m.name, shown, m.line))
+            self.emit_event(m.name, value, shown, m.line)
         if self.laser and m.name in ("spindle_cw", "spindle_ccw", "spindle_off", "program_end"):
             self.beam_on = m.name in ("spindle_cw", "spindle_ccw")
         if m.name == "pause":
@@ -686,8 +687,8 @@ class Compiler:
         are exactly feasible for the continuous trapezoid; the generator steps n by whole
         quanta and needs about 3n more, and its first tick in a command may keep n unchecked
         (2n more), so the tightest exits come down by a few quanta."""
-        commands = [c for c in self.out.commands if not inline(c)]    # (inline events: no stop)
-        following = {id(c): commands[n + 1] for n, c in enumerate(commands[:-1])}
+        commands = self.out.commands
+        following = {id(c): after for c, after in zip(commands, next_not_inline(commands))}  # (inline: no stop)
         for cmd in reversed(moves):
             nxt = following.get(id(cmd))
             if nxt is None or nxt.motion is None or nxt.motion.stop_before:
@@ -856,10 +857,7 @@ class Compiler:
         t = 0.0
         commands = self.out.commands
         self.out.command_time = []
-        after, following_of = None, [None] * len(commands)     # the next command that is not inline
-        for n in range(len(commands) - 1, -1, -1):
-            following_of[n] = after
-            after = after if inline(commands[n]) else commands[n]
+        following_of = next_not_inline(commands)
         for n, cmd in enumerate(commands):
             if cmd.motion is not None:
                 # at the speed the hardware holds, whole quanta (the warning above)
@@ -875,7 +873,7 @@ class Compiler:
     def run(self, program: Program) -> Compiled:
         self.modes = sorted(program.path_modes, key=lambda mode: mode[0])
         if self.laser:
-            self.laser_mode(1, program.moves[0].line if program.moves else 0)
+            self.emit_event("laser_mode", 1, 1, program.moves[0].line if program.moves else 0, inline_event=True)
         for m in program.moves:
             self.first = True
             if isinstance(m, Line):
@@ -897,10 +895,9 @@ class Compiler:
         if self.laser:
             end = self.out.commands[-1].source
             if self.beam_on:                        # no beam left on at rest when laser mode ends
-                self.emit(Cmd(EVENT, 0, EVENT_CODES["spindle_off"], 0, source=end))
-                self.out.events.append(("spindle_off", 0, end))
+                self.emit_event("spindle_off", 0, 0, end)
                 self.beam_on = False
-            self.laser_mode(0, end)
+            self.emit_event("laser_mode", 0, 0, end, inline_event=True)
         self.out.end_steps = tuple(self.here)
         self.profile()
         for kind, seen in self._warnings.items():

@@ -155,9 +155,9 @@ class Machine:
         INPUT_FILTER (input.filter_us, input.unfiltered) and SPINDLE_PERIOD (spindle.pwm_hz, in
         clocks); MachineError when a period does not fit its register (checked here, where a
         board is driven: `interp gcode` runs any clock)."""
-        return {"INPUT_INVERT": sum(1 << INPUT_NAMES.index(n) for n in self.values["input"]["invert"]),
+        return {"INPUT_INVERT": pin_bits(self.values["input"]["invert"], INPUT_NAMES),
                 "INPUT_FILTER": self.input_filter(),
-                "OUTPUT_INVERT": sum(1 << OUTPUT_NAMES.index(n) for n in self.values["output"]["invert"]),
+                "OUTPUT_INVERT": pin_bits(self.values["output"]["invert"], OUTPUT_NAMES),
                 "SPINDLE_PERIOD": self.checked_spindle_period()}
 
     def input_filter(self) -> int:
@@ -173,7 +173,7 @@ class Machine:
                 raise MachineError(f"{self.source}: input.filter_us ({inputs['filter_us']:g} us) is a sample "
                                    f"period of {period} clocks at controller.clock_hz = {self.clock_hz:g}; "
                                    f"INPUT_FILTER takes at most {TIMING_MAX}: at most {longest:g} us")
-        mask = 0x1F & ~sum(1 << INPUT_NAMES.index(n) for n in inputs["unfiltered"])
+        mask = 0x1F & ~pin_bits(inputs["unfiltered"], INPUT_NAMES)
         return mask << 16 | period
 
     def checked_spindle_period(self) -> int:
@@ -201,6 +201,11 @@ class Machine:
             out[name] = _cycles(self.values["output"][key], self.clock_hz)
         out["pulse_width"] = max(out["pulse_width"], 1)
         return out
+
+
+def pin_bits(names, table: tuple[str, ...]) -> int:
+    """The register bits of pin names (bit n: table[n])."""
+    return sum(1 << table.index(name) for name in names)
 
 
 def _cycles(ns: float, clock_hz: float) -> int:

@@ -488,5 +488,4 @@ class DeviceModel:
             self.position[axis] = new
             self.position_set |= 1 << axis
         elif name in self.regs:
-            self.regs[name] = value & p.kept_bits(name) if name.endswith("_INVERT") or name == "INPUT_FILTER" \
-                else value
+            self.regs[name] = value & p.kept_bits(name) if name in p.PIN_SETTINGS else value

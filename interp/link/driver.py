@@ -457,7 +457,7 @@ def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
             ("OVERRIDE", int(settings.get("override", 100)))]
 
 
-PIN_SETTINGS = ("INPUT_INVERT", "INPUT_FILTER", "OUTPUT_INVERT", "SPINDLE_PERIOD")
+PIN_SETTINGS = p.PIN_SETTINGS
 CONTROL_KEPT = p.kept_bits("CONTROL")           # hold, enable, fill, probe_stop (not the strobes)
 
 

@@ -202,6 +202,11 @@ CONTROL_HOLD, CONTROL_ABORT, CONTROL_CLEAR, CONTROL_PROBE_ARM, CONTROL_ENABLE, C
 STATUS_PROBE_VALID = 1 << _registers.FIELDS["STATUS.probe_valid"][0]
 
 
+# the pin setting registers (the machine file's polarity, input filter, spindle PWM period):
+# their widths do not depend on the build
+PIN_SETTINGS = ("INPUT_INVERT", "INPUT_FILTER", "OUTPUT_INVERT", "SPINDLE_PERIOD")
+
+
 def kept_bits(register: str) -> int:
     """The bits of a register that hold what was written: its "rw" fields in the generated map."""
     return sum(((1 << width) - 1) << lsb for key, (lsb, width, access) in _registers.FIELDS.items()

@@ -394,6 +394,16 @@ def inline(cmd: Command) -> bool:
     return cmd.kind == EVENT and bool(cmd.plane & 1)
 
 
+def next_not_inline(commands) -> list:
+    """For each command, the next one after it that is not an inline event (None at the end):
+    what a move runs into, as the speed generator sees it."""
+    after, out = None, [None] * len(commands)
+    for n in range(len(commands) - 1, -1, -1):
+        out[n] = after
+        after = after if inline(commands[n]) else commands[n]
+    return out
+
+
 def command_steps(cmd: Command, width: int = 16, pf: int | None = None) -> tuple[list[tuple[int, int, int]], int]:
     """(steps, error code) of one command by the step-level models of its core; with `pf`
     the profile is checked too (motion_top's push checks, in their order)."""

@@ -24,7 +24,7 @@ from typing import Mapping
 
 from .base import CycleModel
 from .speed_ramp import BLOCK_SHIFT_MIN
-from .motion import (ARC_CCW, ARC_CW, CURVE, LINE, Command, SyncFifo, command_steps, inline,
+from .motion import (ARC_CCW, ARC_CW, CURVE, LINE, Command, SyncFifo, command_steps, next_not_inline,
                      interval_costs)
 
 
@@ -200,15 +200,12 @@ def profile_for(commands, *, quantum: int, accel: float, frac: int, pf: int = 12
         out.append(c)
     # exit speeds: junction speed, then backwards so each segment can brake to the next's exit
     moves = [k for k, c in enumerate(out) if c.kind in MOVES and c.length > 0]
-    after, following_of = None, [None] * len(out)       # the next command that is not inline
-    for k in range(len(out) - 1, -1, -1):
-        following_of[k] = after
-        after = after if inline(out[k]) else out[k]
+    following_of = next_not_inline(out)                 # (inline events: no stop)
     v_next_entry = 0.0                  # the largest speed the rest can start from
     for pos in range(len(moves) - 1, -1, -1):
         k = moves[pos]
         c = out[k]
-        following = following_of[k]                     # (inline events: no stop)
+        following = following_of[k]
         junction = 0.0
         if following is not None and following.kind in MOVES and following.length > 0:
             d0, d1 = direction(c, True), direction(following, False)
