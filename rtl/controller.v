@@ -266,6 +266,7 @@ module controller #(
     // ---------------- outputs, registers ----------------
     wire        halted = stopped | (hold & fill);       // in hold: motion_top at rest, or kept at reset
     wire [15:0] duty, scaled, output_invert;
+    wire [9:0]  spindle_scale;          // SPINDLE_OVERRIDE
     power_scale #(.FEED_W(FEED_W), .SPEED_W(FEED_W + MW)) u_power (
         .clk(clk), .rst(rst), .duty(duty), .speed(m_step_speed), .shift(m_speed_shift), .feed(m_cruise),
         .scaled(scaled)
@@ -275,6 +276,7 @@ module controller #(
     machine_io #(.W(W)) u_io (
         .clk(clk), .rst(rst), .event_valid(event_valid), .event_code(event_code),
         .event_value(event_value), .off(flush), .held(halted), .scaled(scaled), .period(spindle_period),
+        .scale(spindle_scale),
         .spindle_on(io_spindle_on), .spindle_pin(io_spindle_pin), .spindle_ccw(io_spindle_ccw), .duty(duty), .spindle_pwm(io_spindle_pwm),
         .mist(io_mist), .flood(io_flood), .dout(io_dout), .pause(pause)
     );
@@ -324,7 +326,7 @@ module controller #(
         .override_percent(override_percent), .pulse_width(pulse_width), .dir_setup(dir_setup),
         .dir_hold(dir_hold), .quantum(quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
         .input_invert(input_invert), .output_invert(output_invert),
-        .filter_period(filter_period), .filter_mask(filter_mask), .spindle_period(spindle_period),
+        .filter_period(filter_period), .filter_mask(filter_mask), .spindle_period(spindle_period), .spindle_scale(spindle_scale),
         .position_write(position_write), .position_value(position_value),
         .data_write(data_write), .data_word(data_word), .data_lanes(data_lanes), .data_ready(data_ready)
     );

@@ -92,6 +92,7 @@ module controller_regs #(
     output reg  [15:0]       filter_period,     // INPUT_FILTER: clocks a sample of input_filter, 0 = off
     output reg  [4:0]        filter_mask,       // INPUT_FILTER: the inputs filtered
     output reg  [15:0]       spindle_period,
+    output reg  [9:0]        spindle_scale,     // SPINDLE_OVERRIDE: the PWM's duty x scale / 256
     output wire [2:0]        position_write, // strobes: set POS_X / POS_Y / POS_Z to position_value
     output wire [POS_W-1:0]  position_value,
     output wire              data_write,    // strobe: data_word's selected bytes for the queue
@@ -213,6 +214,7 @@ module controller_regs #(
         words[REG_EXECUTED[7:2] * 32 +: 32]       = executed;
         words[REG_OUTPUT_INVERT[7:2] * 32 +: 32]  = {16'd0, output_invert};
         words[REG_INPUT_FILTER[7:2] * 32 +: 32]   = {11'd0, filter_mask, filter_period};
+        words[REG_SPINDLE_OVERRIDE[7:2] * 32 +: 32] = {22'd0, spindle_scale};
     end
     wire [31:0] value = words[address[7:2] * 32 +: 32];
 
@@ -244,6 +246,7 @@ module controller_regs #(
             filter_period    <= 16'd0;
             filter_mask      <= 5'b11111;
             spindle_period   <= PERIOD_RESET[15:0];
+            spindle_scale    <= 10'd256;
             refused          <= 1'b0;
             position_set     <= 3'b000;
         end else begin
@@ -270,6 +273,7 @@ module controller_regs #(
                     REG_OUTPUT_INVERT[7:0]:  output_invert <= wb_dat_w[15:0];
                     REG_INPUT_FILTER[7:0]:   {filter_mask, filter_period} <= wb_dat_w[20:0];
                     REG_SPINDLE_PERIOD[7:0]: spindle_period <= wb_dat_w[15:0];
+                    REG_SPINDLE_OVERRIDE[7:0]: spindle_scale <= wb_dat_w[9:0];
                     default: ;
                 endcase
             end

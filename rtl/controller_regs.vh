@@ -36,6 +36,7 @@ localparam [7:0] REG_CMD_DATA = 8'h74;  // WO Command data
 localparam [7:0] REG_EXECUTED = 8'h78;  // RO Executed records
 localparam [7:0] REG_OUTPUT_INVERT = 8'h7C;  // RW Output polarity
 localparam [7:0] REG_INPUT_FILTER = 8'h80;  // RW Input filter
+localparam [7:0] REG_SPINDLE_OVERRIDE = 8'h84;  // RW Spindle override
 // ID
 localparam integer ID_VALUE_LSB = 0;
 localparam integer ID_VALUE_WIDTH = 32;
@@ -237,4 +238,7 @@ localparam integer INPUT_FILTER_PERIOD_LSB = 0;
 localparam integer INPUT_FILTER_PERIOD_WIDTH = 16;
 localparam integer INPUT_FILTER_MASK_LSB = 16;
 localparam integer INPUT_FILTER_MASK_WIDTH = 5;
+// SPINDLE_OVERRIDE
+localparam integer SPINDLE_OVERRIDE_SCALE_LSB = 0;
+localparam integer SPINDLE_OVERRIDE_SCALE_WIDTH = 10;
 /* verilator lint_on UNUSEDPARAM */

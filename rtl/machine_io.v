@@ -15,10 +15,11 @@
 // `off` (abort, alarm) switches spindle and coolant off at once and ends laser mode; the
 // outputs keep.
 // PWM: a counter runs over `period` clocks (0 counts as 1); `pwm` is high while the
-// counter is below duty * period / 65536 (duty 65535: always high), and low while the
-// spindle is off.  That threshold is a product made by shift and add over 17 clocks from
-// the start of a period (a new duty or period takes effect within two periods, or 34
-// clocks if the period is shorter than 17).
+// counter is below level * period / 65536, where level = duty x scale / 256 (the spindle
+// override, 256 = 100 %; above 65535 it counts as 65535, always high), and low while the
+// spindle is off.  One adder makes both products by shift and add, from the start of a
+// period: level over 10 clocks, then the threshold over 16, 29 clocks in all (a new duty,
+// scale or period takes effect within two periods and 58 clocks).
 module machine_io #(
     parameter integer W = 32        // width of the event value, signed (>= 4)
 ) (
@@ -31,6 +32,7 @@ module machine_io #(
     input  wire         held,           // a feed hold has stopped the machine
     input  wire [15:0]  scaled,         // duty x speed / feed (power_scale), for M4 in laser mode
     input  wire [15:0]  period,         // PWM period, clocks
+    input  wire [9:0]   scale,          // spindle override: the PWM's duty x scale / 256
     output reg          spindle_on,     // the program's spindle state
     output wire         spindle_pin,    // spindle_on, low while held in laser mode
     output reg          spindle_ccw,
@@ -105,14 +107,19 @@ module machine_io #(
     end
 
     // ---------------- PWM ----------------
+    // round 28 .. 19: product = power x scale; 18: the level (product / 256, at most 65535)
+    // becomes the multiplier; 17 .. 2: product = level x period; 1: the threshold
     reg  [15:0] counter, threshold;
-    reg  [31:0] product;            // duty * period, made by shift and add
-    reg  [15:0] multiplier;         // duty bits still to add (lowest first)
-    reg  [31:0] multiplicand;       // period shifted
-    reg  [4:0]  round;              // 17 .. 1 while the product is made, 0 idle
+    reg  [31:0] product;            // the product being made
+    reg  [15:0] multiplier;         // its multiplier's bits still to add (lowest first)
+    reg  [31:0] multiplicand;       // its multiplicand, shifted
+    reg  [4:0]  round;              // 28 .. 1 while the products are made, 0 idle
+    reg         full_next, full;    // the level is 65535: always high (full: of the threshold)
     wire [15:0] last = (period == 16'd0 ? 16'd1 : period) - 1'b1;
     wire [15:0] power = laser & spindle_ccw ? scaled : duty;    // the PWM's duty
     wire        wrap = counter >= last;
+    wire        over = product[31:24] != 8'd0;                  // power x scale / 256 > 65535
+    wire [15:0] level = over ? 16'hFFFF : product[23:8];
 
     always @(posedge clk) begin
         if (rst) begin
@@ -122,17 +129,26 @@ module machine_io #(
             multiplier   <= 16'd0;
             multiplicand <= 32'd0;
             round        <= 5'd0;
+            full_next    <= 1'b0;
+            full         <= 1'b0;
         end else begin
             counter <= wrap ? 16'd0 : counter + 1'b1;
             if (round == 5'd0) begin
                 if (wrap) begin
                     product      <= 32'd0;
-                    multiplier   <= power;
-                    multiplicand <= {16'd0, period};
-                    round        <= 5'd17;
+                    multiplier   <= {6'd0, scale};
+                    multiplicand <= {16'd0, power};
+                    round        <= 5'd28;
                 end
+            end else if (round == 5'd18) begin
+                product      <= 32'd0;
+                multiplier   <= level;
+                multiplicand <= {16'd0, period};
+                full_next    <= level == 16'hFFFF;
+                round        <= 5'd17;
             end else if (round == 5'd1) begin
                 threshold <= product[31:16];
+                full      <= full_next;
                 round     <= 5'd0;
             end else begin
                 if (multiplier[0])
@@ -145,6 +161,6 @@ module machine_io #(
     end
 
     assign spindle_pin = spindle_on & ~(laser & held);
-    assign spindle_pwm = spindle_pin & (power == 16'hFFFF || counter < threshold);
+    assign spindle_pwm = spindle_pin & (full || counter < threshold);
 endmodule
 `default_nettype wire

@@ -23,7 +23,8 @@
 // after, `error_code` held: 1 kind, 2 feed, 3 range, 5 queue full, 7 plane, 8 profile);
 // at run time 4 a core refused its command (FAULT until rst: queues flushed, speed block
 // stopped), 6 step buffer overflow (a monitor), 9 `late` (a segment ended above its
-// target speed).  A DWELL or EVENT waits while `hold` is high.  `hold` decelerates the path to speed 0 (`stopped`, once the S-curve
+// target speed), 10 the step pacer overran (steps asked faster than the output stage
+// makes them for so long that its phase saturated: distance lost; FAULT until rst).  A DWELL or EVENT waits while `hold` is high.  `hold` decelerates the path to speed 0 (`stopped`, once the S-curve
 // filter is empty too) and resumes on release; no step is lost.  `still`: no speed in the
 // ramp or the filter, so no step comes (a stop now loses nothing).  pos_x/y/z count the pulses at the drive (rising edges of
 // step_*).
@@ -119,7 +120,7 @@ module motion_top #(
                      K_EVENT = 3'd5;
     localparam [3:0] E_KIND = 4'd1, E_FEED = 4'd2, E_RANGE = 4'd3, E_CORE = 4'd4,
                      E_QUEUE = 4'd5, E_SYNC = 4'd6, E_PLANE = 4'd7, E_PROFILE = 4'd8,
-                     E_LATE = 4'd9;
+                     E_LATE = 4'd9, E_OVERRUN = 4'd10;
     localparam [2:0] S_IDLE = 3'd0, S_LINE = 3'd1, S_ARC = 3'd2, S_CURVE = 3'd3,
                      S_DRAIN = 3'd4, S_DWELL = 3'd5, S_EVENT = 3'd6, S_FAULT = 3'd7;
     localparam integer CMD_W = 5 + FEED_W + 7 * W;
@@ -202,7 +203,7 @@ module motion_top #(
     // ---------------- synchronization buffer, speed, output ----------------
     wire [2:0]        out_step, out_dir;
     wire [FEED_W-1:0] out_cost;
-    wire              out_valid, stop, sync_overflow, drive_ready, fire, moving, late, ramp_stopped, profile_still;
+    wire              out_valid, stop, sync_overflow, drive_ready, fire, moving, late, overrun, ramp_stopped, profile_still;
     wire [SLW-1:0]    sync_level;
     step_sync #(.AXES(3), .DEPTH(SDEPTH), .LATENCY(2), .DATA_W(FEED_W), .LW(SLW)) u_sync (
         .clk(clk), .rst(flush), .in_step(core_step), .in_dir(core_dir), .in_data(cost_q),
@@ -232,7 +233,7 @@ module motion_top #(
         .override(override), .hold(hold), .step_valid(out_valid), .step_axes(out_axes),
         .step_cost(out_cost), .drive_ready(drive_ready), .fire(fire), .speed(speed), .cruise(cruise), .step_speed(step_speed),
         .speed_shift(speed_shift), .moving(moving),
-        .stopped(ramp_stopped), .still(profile_still), .late(late)
+        .stopped(ramp_stopped), .still(profile_still), .late(late), .overrun(overrun)
     );
     assign stopped = ramp_stopped | (hold & ~busy);
     assign still   = profile_still & drive_ready;     // (and no pulse or direction timing under way)
@@ -306,6 +307,7 @@ module motion_top #(
                 end
                 default: state <= S_FAULT;      // until rst
             endcase
+            if (overrun & ~fault) state <= S_FAULT;    // distance lost: stop (until rst)
 
             event_valid <= (state == S_EVENT && event_go) || inline_go;
             inline_q    <= inline_go;
@@ -328,6 +330,7 @@ module motion_top #(
             else if (cmd_valid & bad_profile)           error_code <= E_PROFILE;
             else if (cmd_valid & cmd_full)              error_code <= E_QUEUE;
             else if (sync_overflow & ~sync_overflow_q)  error_code <= E_SYNC;
+            else if (overrun & ~fault)                  error_code <= E_OVERRUN;
             else if (late)                              error_code <= E_LATE;
             else                                        error <= 1'b0;
         end

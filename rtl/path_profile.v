@@ -73,7 +73,8 @@ module path_profile #(
     output wire              moving,        // the ramp runs or the filter still sums speed
     output wire              stopped,       // hold has brought the speed to 0, and the filter's to 0
     output wire              still,         // no speed in the ramp or the filter: no step comes
-    output wire              late           // strobe: the ramp reached a stop or exit above its speed
+    output wire              late,          // strobe: the ramp reached a stop or exit above its speed
+    output wire              overrun        // the pacer's phase saturated: distance lost (sticky until rst)
 );
     initial begin
         if (FEED_W < 2) $error("%m: FEED_W must be at least 2");
@@ -145,7 +146,7 @@ module path_profile #(
         .speed_quantum(speed_quantum), .jerk_shift(jerk_shift), .sum(sum), .shift(shift), .empty(empty)
     );
 
-    wire                             due, overrun;
+    wire                             due;
     wire [PHASE_W-1:0]               phase;
     step_pacer #(.FEED_W(FEED_W), .FRAC(FRAC), .MW(MW), .SUM_W(SUM_W), .GUARD(GUARD), .PHASE_W(PHASE_W)) u_pacer (
         .clk(clk), .rst(rst), .sum(sum), .jerk_shift(shift), .step_valid(step_valid),
@@ -158,6 +159,6 @@ module path_profile #(
     // the machine still, only once the filter has no speed either
     assign still   = speed == {FEED_W{1'b0}} && empty;
     assign stopped = ramp_stopped & empty;
-    wire unused = &{1'b0, unused_overflow, due, overrun, phase, up, down, segment};   // motion_top refuses a push when either queue is full
+    wire unused = &{1'b0, unused_overflow, due, phase, up, down, segment};   // motion_top refuses a push when either queue is full
 endmodule
 `default_nettype wire

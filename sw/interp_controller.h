@@ -388,6 +388,12 @@ extern "C" {
 #define CONTROLLER__INPUT_FILTER__MASK_bw 5
 #define CONTROLLER__INPUT_FILTER__MASK_reset 0x1f
 
+// reg - controller::SPINDLE_OVERRIDE
+#define CONTROLLER__SPINDLE_OVERRIDE__SCALE_bm 0x3ff
+#define CONTROLLER__SPINDLE_OVERRIDE__SCALE_bp 0
+#define CONTROLLER__SPINDLE_OVERRIDE__SCALE_bw 10
+#define CONTROLLER__SPINDLE_OVERRIDE__SCALE_reset 0x100
+
 // addrmap - controller
 typedef struct __attribute__ ((__packed__)) {
     uint32_t ID;
@@ -423,10 +429,11 @@ typedef struct __attribute__ ((__packed__)) {
     uint32_t EXECUTED;
     uint32_t OUTPUT_INVERT;
     uint32_t INPUT_FILTER;
+    uint32_t SPINDLE_OVERRIDE;
 } controller_t;
 
 
-static_assert(sizeof(controller_t) == 0x84, "Packing error");
+static_assert(sizeof(controller_t) == 0x88, "Packing error");
 
 #ifdef __cplusplus
 }

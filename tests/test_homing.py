@@ -124,8 +124,8 @@ def test_a_switch_that_stays_active_after_the_pull_off(capsys, machine_file, mon
 
 
 @pytest.mark.parametrize("argv, word", [
-    (["--sim"], "--sim has no limit switches"),
-    ([], "interp home: give --port DEVICE"),
+    ([], "interp home: give --port DEVICE or --sim"),
+    (["--sim", "--sim-model"], "give one of --port DEVICE or --sim (got --sim and --sim-model)"),
     (["--sim-model", "--seed", "3"], "unrecognized arguments: --seed"),
     (["--sim-model", "--axes", "q"], "--axes q: give axes of XYZ"),
     (["--sim-model", "--axes", "zz"], "--axes zz: an axis given twice"),

@@ -15,8 +15,8 @@ from hypothesis import strategies as st
 from interp.link import driver as driver_module
 from interp.link import protocol as p
 from interp.link.devicemodel import DeviceModel
-from interp.link.driver import (Driver, FeedOverride, LinkError, MismatchError, check_controller, configure,
-                               run_program)
+from interp.link.driver import (Driver, FeedOverride, LinkError, MismatchError, SpindleOverride, check_controller,
+                               configure, run_program, spindle_scale)
 from interp.link.records import Build, RecordReader, encode, encode_program
 
 SEED = int(os.environ.get("SEED", random.randrange(1 << 30)))
@@ -56,7 +56,7 @@ def test_every_record_once_in_order(noise, count):
     # the settings arrived (each write executed exactly once, in order)
     assert [w for w in model.writes if w[0] != "CONTROL"] == [
         ("PULSE_WIDTH", 30), ("DIR_SETUP", 40), ("DIR_HOLD", 50), ("QUANTUM_LO", 5), ("QUANTUM_HI", 7),
-        ("MOTION", 3 | 2 << 4), ("OVERRIDE", 120)]
+        ("MOTION", 3 | 2 << 4), ("OVERRIDE", 120), ("SPINDLE_OVERRIDE", 256)]
     if noise:
         assert model.errors > 0 and driver.recoveries > 0           # the noise did hit, and was recovered
 
@@ -227,6 +227,29 @@ def test_feed_override_keys():
     assert [v for name, v in model.writes if name == "OVERRIDE"] == [120]
     assert [FeedOverride(p_).after(k) for p_, k in ((195, "+"), (200, ">"), (15, "-"), (10, "<"), (37, "0"),
                                                     (150, "3"), (20, "x"))] == [200, 200, 10, 10, 100, 30, 20]
+
+
+def test_spindle_override_keys():
+    """']' '[' by 10 %, '}' '{' by 1 %, '\\' 100 % write SPINDLE_OVERRIDE (256 = 100 %) while the
+    program runs, within 10 .. 200 %; the run's settings write 100 % first; the percent is kept
+    for the next run of the same program and written at its start; the feed override keys
+    leave it alone, and its keys leave OVERRIDE alone."""
+    cmds = commands(40)
+    model = DeviceModel(records_per_second=100)
+    spindle = SpindleOverride()
+    script = iter([""] * 100 + ["]", "]", "}"] + [""] * 20 + ["[", "+"] + ["[" * 30, "{", "\\", "\\", "}"])
+    _, outcome = run(model, cmds, keys=lambda: next(script, ""), override=FeedOverride(), spindle=spindle)
+    scales = [v for name, v in model.writes if name == "SPINDLE_OVERRIDE"]
+    assert outcome.status == "done" and executed_fields(model, cmds) == cmds
+    assert scales == [spindle_scale(p_) for p_ in [100, 110, 120, 121, 111, *range(101, 9, -10), 10, 100, 101]], scales
+    assert [v for name, v in model.writes if name == "OVERRIDE"] == [120, 110]     # the settings', '+'
+    assert spindle.percent == 101 and model.regs["SPINDLE_OVERRIDE"] == 259
+    model = DeviceModel(records_per_second=100)
+    run(model, cmds, spindle=spindle)
+    assert [v for name, v in model.writes if name == "SPINDLE_OVERRIDE"] == [256, 259]    # settings, then the keys'
+    assert [spindle_scale(p_) for p_ in (10, 100, 150, 200)] == [26, 256, 384, 512]
+    assert [SpindleOverride(p_).after(k) for p_, k in ((195, "]"), (15, "["), (10, "{"), (37, "\\"),
+                                                       (50, "+"))] == [200, 10, 10, 100, 50]
 
 
 def test_resume_key_mid_round_is_no_pause():

@@ -268,6 +268,21 @@ def test_homing_on_the_rtl(files, tmp_path):
     assert result["position"] == [-17, 0, 0]                   # the switch, then a pull-off of 20 steps
 
 
+def test_home_sim(files, tmp_path, capsys):
+    """`interp home --sim`: the simulated machine powers up two pull-offs (0.4 mm, 40 steps)
+    from X's switch, at its home end (min); the cycle through the board's RTL sets X at its
+    travel end, -1 mm, the switch a pull-off beyond, and leaves Y and Z alone."""
+    path = tmp_path / "home.toml"
+    path.write_text(MACHINE + '[axis.x]\nmin_mm = -1\nmax_mm = 1\nhome = "min"\n'
+                    "[homing]\nseek_mm_min = 600\nlocate_mm_min = 60\npull_off_mm = 0.2\n")
+    assert main(["home", "--sim", "--machine", str(path)]) == 0
+    out, err = capsys.readouterr()
+    lines = out.splitlines()
+    assert lines[0] == "homed X: switch at -1.200 mm, now at -1.000 mm", out
+    assert lines[1].startswith("machine position X-1.000 Y0.000 Z0.000 mm ("), out
+    assert "the simulated machine powers up 0.400 mm from each limit switch" in err, err
+
+
 def test_send_sim_equals_gcode(files, gcode_steps, capsys):
     steps = files / "send.csv"
     assert main(["send", str(files / "tiny.nc"), "--sim", "--steps", str(steps),

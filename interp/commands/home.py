@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """`interp home`: the homing cycle, as Grbl's $H runs it (docs/host-driver.md, "Homing").
 
-  interp home --port DEVICE [--baud B] [--machine FILE.toml] [--axes XYZ]
+  interp home (--port DEVICE [--baud B] | --sim) [--machine FILE.toml] [--axes XYZ]
 
 Each axis with a home end in the machine file (`axis.X.home = "min"` or "max"), in
 `homing.order`: a seek towards its limit switch at `homing.seek_mm_min` (the switch
@@ -12,7 +12,8 @@ pull-off beyond it.  An axis resting on its switch pulls off first; a switch tha
 bounces while it lets go is ridden over.  The moves are compiled as `interp gcode` compiles a G91 G1
 move, without the travel limits (the position is not known yet).  Exit status: 0 homed,
 1 a switch not found, still active after a pull-off, another error or a link error, 2
-usage (no axis to home).
+usage (no axis to home).  --sim homes the simulated controller (as `interp send --sim`),
+whose machine powers up SIM_PULL_OFFS pull-offs from each home switch.
 """
 from __future__ import annotations
 
@@ -28,6 +29,7 @@ from .send import add_link_options, check_link_args, mm_text
 
 SEEK_TRAVELS = 1.5          # the seek goes at most 1.5 travels (and a pull-off) towards the switch
 BOUNCES = 5                 # a pull-off tripped again by a bouncing switch is run again this often
+SIM_PULL_OFFS = 2           # --sim: the simulated machine powers up this many pull-offs from each switch
 
 
 class HomingError(Exception):
@@ -132,12 +134,21 @@ def axes_to_home(args, machine: Machine) -> list[int]:
     return axes
 
 
+def place_sim_switches(link, machine: Machine, axes: list[int]) -> float:
+    """--sim: a limit switch for each axis at its home end, SIM_PULL_OFFS pull-offs from where
+    the simulated machine powers up (it follows the pulses counted at the step pins); the
+    distance in mm."""
+    distance = SIM_PULL_OFFS * machine.homing["pull_off_mm"]
+    for axis in axes:
+        side = machine.values[f"axis.{AXES[axis]}"]["home"]
+        link.set_switch(axis, side, round((-1 if side == "min" else 1) * distance * machine.steps_per_mm[axis]))
+    return distance
+
+
 def cmd_home(args) -> int:
     args.steps = args.line_noise = None
-    if args.sim:
-        raise UsageError("interp home: --sim has no limit switches to home to; use --port")
-    if not (args.port or args.sim_model):
-        raise UsageError("interp home: give --port DEVICE")
+    if not (args.port or args.sim or args.sim_model):
+        raise UsageError("interp home: give --port DEVICE or --sim")
     check_link_args(args)
     machine = load_machine(args.machine, [], None)
     axes = axes_to_home(args, machine)
@@ -147,8 +158,12 @@ def cmd_home(args) -> int:
     transport, baud = opened
     driver = None
     try:
+        if args.sim:
+            distance = place_sim_switches(transport, machine, axes)
+            print(f"interp home: --sim: the simulated machine powers up {distance:.3f} mm from each limit switch",
+                  file=sys.stderr)
         driver = Driver(transport, baud=baud)
-        send.make_ready(driver, machine, sim=False, homing_lock=False)
+        send.make_ready(driver, machine, sim=bool(args.sim), homing_lock=False)
         start = driver.clock()
         for axis in axes:
             switch_mm, end_mm = home_axis(driver, machine, axis)
@@ -172,6 +187,7 @@ def cmd_home(args) -> int:
 
 def add_parser(sub) -> None:
     p_ = sub.add_parser("home", help="the homing cycle: each axis to its limit switch, which sets its position")
-    add_link_options(p_, "refused: the simulated controller has no limit switches")
+    add_link_options(p_, "the Verilator model of the controller instead of a port, with a limit switch "
+                         f"{SIM_PULL_OFFS} pull-offs from where each axis powers up")
     p_.add_argument("--axes", metavar="XYZ", help="home only these axes (default: every axis with a home end)")
     p_.set_defaults(func=cmd_home)

@@ -12,7 +12,7 @@ encoded into records (interp.link.records) and streamed by the driver (interp.li
 Verilator model of rtl/uart_controller.v (interp.link.simlink).  Keys while it runs
 (stdin a terminal): '!' feed hold, '~' resume, Ctrl-X abort (after a feed hold has brought
 the machine to rest; twice: at once), feed override '+' '-' (10 %), '>' '<' (1 %), '1' .. '9'
-(10 .. 90 %), '0' (100 %).  Exit status: 0 done,
+(10 .. 90 %), '0' (100 %), spindle override ']' '[' (10 %), '}' '{' (1 %), '\\' (100 %).  Exit status: 0 done,
 1 machine or link error (or an abort), 2 usage or G-code error.
 """
 from __future__ import annotations
@@ -28,8 +28,9 @@ from ..gcode.parameter_file import check_lengths, check_writable, describe, writ
 from ..link import protocol as p
 from ..gcode.compile import compile_program
 from ..gcode.moves import ProbeResult
-from ..link.driver import (Driver, FeedOverride, LinkError, MachineError, MismatchError, apply_pin_settings,
-                           check_controller, check_idle, configure, read_position, run_program, signed32)
+from ..link.driver import (Driver, FeedOverride, LinkError, MachineError, MismatchError, SpindleOverride,
+                           apply_pin_settings, check_controller, check_idle, configure, read_position, run_program,
+                           signed32)
 from ..link.records import DEFAULT_BUILD, Build, encode_program
 from ..simulation.output import check_outputs
 from . import gcode as gcode_command          # (its interpret_program looked up at each call)
@@ -37,7 +38,8 @@ from .gcode import read_program, saved_parameters
 
 DEFAULT_BAUD = 115200
 CURVE = 3
-KEYS_HELP = "keys: ! hold, ~ resume, Ctrl-X abort (twice: at once), feed override + - > < 1..9 0"
+KEYS_HELP = ("keys: ! hold, ~ resume, Ctrl-X abort (twice: at once), feed override + - > < 1..9 0, "
+             "spindle override ] [ } { \\")
 
 
 def compile_build() -> Build:
@@ -192,6 +194,7 @@ class Progress:
             return
         mm = mm_text(self.machine, snap.position)
         feed = f", feed {snap.override} %" if snap.override != 100 else ""
+        feed += f", spindle {snap.spindle} %" if snap.spindle != 100 else ""
         self.bar.set_postfix_str(f"line {line_of(self.compiled, snap.executed)} {mm} mm, queue {snap.queue_records}, "
                                  f"{p.STATE_NAMES.get(snap.state, '?')}{feed}", refresh=False)
         self.bar.update(min(snap.executed, self.bar.total) - self.bar.n)
@@ -358,6 +361,7 @@ class ProgramRun:
         self.failure = ""                       # a probe's error: one line
         self.probe_stop = tuple(start)          # steps: where the last probe move stopped
         self.override = None                    # the keys' feed override (FeedOverride), for every piece
+        self.spindle = SpindleOverride()        # ... and spindle override
 
     def close(self) -> None:
         if self.progress is not None:
@@ -435,7 +439,7 @@ class ProgramRun:
         if self.override is None:               # from the settings' percent
             self.override = FeedOverride(compiled.settings.get("override", 100))
         self.outcome = run_program(self.driver, stream, len(compiled.commands), progress=self.progress,
-                                   keys=self.keyboard, on_pause=on_pause, probe=probe, override=self.override,
+                                   keys=self.keyboard, on_pause=on_pause, probe=probe, override=self.override, spindle=self.spindle,
                                    pause_resume=None if self.interactive else self.args.pause_seconds)
         self.records += len(compiled.commands)
         self.bytes += len(stream)

@@ -275,7 +275,8 @@ class Compiler:
     def check_step_rate(self, cmd, cruise_mm_s: float) -> None:
         """Warn of a move whose cruise steps an axis faster than the output stage allows: a
         pulse of output.pulse_ns and a clock low, at most clock / (pulse + 1) steps a second.
-        Its steps then fall behind the plan and come late (none is lost)."""
+        Its steps then fall behind the plan and come late; a backlog the step pacer cannot hold
+        stops the controller with error 10 (none is lost silently)."""
         m = cmd.motion
         pulse = self.machine.timing()["pulse_width"]
         most = self.clock / (pulse + 1)
@@ -285,7 +286,8 @@ class Compiler:
             if rate > most * (1 + 1e-9):
                 self.warn("step_rate", cmd.source, f"{rate:.0f} steps/s on {'XYZ'[axis]} is above the {most:.0f} "
                           f"that output.pulse_ns allows ({pulse} clocks of pulse and one low at "
-                          f"{self.clock:g} Hz): its steps fall behind and come late; shorten the pulse, "
+                          f"{self.clock:g} Hz): its steps fall behind and come late (a long such move stops with "
+                          f"error 10); shorten the pulse, "
                           f"raise the clock or lower the axis's max_rate_mm_min / the feed")
                 return
 

@@ -93,7 +93,8 @@ class DeviceModel:
         self.fill = False
         self.regs = {"OVERRIDE": 100, "PULSE_WIDTH": 25, "DIR_SETUP": 25, "DIR_HOLD": 25, "QUANTUM_LO": 1,
                      "QUANTUM_HI": 0, "MOTION": 0, "INPUT_INVERT": 0, "SPINDLE_PERIOD": clock_hz // 20000,
-                     "OUTPUT_INVERT": 0, "INPUT_FILTER": 0x1F << 16}   # (its inputs are ideal: no filter delay)
+                     "OUTPUT_INVERT": 0, "INPUT_FILTER": 0x1F << 16,
+                     "SPINDLE_OVERRIDE": 256}   # (its inputs are ideal: no filter delay)
         self.writes: list[tuple[str, int]] = []     # register writes executed, in order
         self.write_states: list[int] = []           # ... and the state each found
 

@@ -17,6 +17,7 @@ with the same sequence number.
 from __future__ import annotations
 
 import time
+from typing import ClassVar
 from collections import deque
 from dataclasses import dataclass, field
 
@@ -68,6 +69,7 @@ class Snapshot:
     position: list = field(default_factory=lambda: [0, 0, 0])
     error: int = 0
     override: int = 100         # the feed override in force, percent
+    spindle: int = 100          # the spindle override in force, percent
 
 
 # Feed override keys: '+' (or '=', the same key unshifted) and '-' by 10 %, '>' '<' by 1 %
@@ -75,6 +77,10 @@ class Snapshot:
 OVERRIDE_STEPS = {"+": 10, "=": 10, "-": -10, ">": 1, "<": -1}
 OVERRIDE_SETS = {str(n): 10 * n for n in range(1, 10)} | {"0": 100}
 OVERRIDE_MIN, OVERRIDE_MAX = 10, 200
+# Spindle override keys (Grbl's spindle override, 10 .. 200 % as well): ']' '[' by 10 %,
+# '}' '{' by 1 %, '\' 100 %
+SPINDLE_STEPS = {"]": 10, "[": -10, "}": 1, "{": -1}
+SPINDLE_SETS = {"\\": 100}
 
 
 @dataclass
@@ -84,12 +90,31 @@ class FeedOverride:
 
     percent: int = 100
     set: bool = False           # a key has set it (until then the run's settings hold)
+    STEPS: ClassVar[dict] = OVERRIDE_STEPS
+    SETS: ClassVar[dict] = OVERRIDE_SETS
+
+    def takes(self, key: str) -> bool:
+        return key in self.STEPS or key in self.SETS
 
     def after(self, key: str) -> int:
-        """The percent after `key` (OVERRIDE_STEPS, OVERRIDE_SETS), within 10 .. 200."""
-        if key in OVERRIDE_SETS:
-            return OVERRIDE_SETS[key]
-        return min(OVERRIDE_MAX, max(OVERRIDE_MIN, self.percent + OVERRIDE_STEPS.get(key, 0)))
+        """The percent after `key` (STEPS, SETS), within 10 .. 200."""
+        if key in self.SETS:
+            return self.SETS[key]
+        return min(OVERRIDE_MAX, max(OVERRIDE_MIN, self.percent + self.STEPS.get(key, 0)))
+
+
+@dataclass
+class SpindleOverride(FeedOverride):
+    """The spindle override the keys set, in percent of the programmed spindle speed or laser
+    power (SPINDLE_OVERRIDE, as spindle_scale); kept across the runs of one program."""
+
+    STEPS: ClassVar[dict] = SPINDLE_STEPS
+    SETS: ClassVar[dict] = SPINDLE_SETS
+
+
+def spindle_scale(percent: float) -> int:
+    """SPINDLE_OVERRIDE's scale for a percent: 256 is 100 %."""
+    return round(percent * 256 / 100)
 
 
 class Driver:
@@ -449,12 +474,12 @@ def check_controller(driver: Driver, build: Build = DEFAULT_BUILD, clock_hz: flo
 
 def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
     """The register writes of the machine settings `interp gcode` runs with (step timing,
-    speed quantum, profile shifts, override), in order: for a driver, a bench or firmware."""
+    speed quantum, profile shifts, feed override; the spindle override at 100 %), in order: for a driver, a bench or firmware."""
     quantum = int(settings.get("speed_quantum", 1))
     return [("PULSE_WIDTH", int(timing["pulse_width"])), ("DIR_SETUP", int(timing["setup"])),
             ("DIR_HOLD", int(timing["hold"])), ("QUANTUM_LO", quantum & 0xFFFFFFFF), ("QUANTUM_HI", quantum >> 32),
             ("MOTION", int(settings.get("block_shift", BLOCK_SHIFT_MIN)) | int(settings.get("jerk_shift", 0)) << 4),
-            ("OVERRIDE", int(settings.get("override", 100)))]
+            ("OVERRIDE", int(settings.get("override", 100))), ("SPINDLE_OVERRIDE", spindle_scale(100))]
 
 
 PIN_SETTINGS = p.PIN_SETTINGS
@@ -562,12 +587,15 @@ class Outcome:
 
 def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, keys=None,
                 max_seconds: float | None = None, pause_resume: float | None = 0.0,
-                on_pause=None, probe: bool = False, override: FeedOverride | None = None) -> Outcome:
+                on_pause=None, probe: bool = False, override: FeedOverride | None = None,
+                spindle: SpindleOverride | None = None) -> Outcome:
     """Stream the records and follow the run to its end: all records executed and the
     controller not busy.  progress(Snapshot) after every poll round; keys() -> the keys
     typed since the last call ('!' hold, '~' resume, Ctrl-X stop; with `override`, the
     feed override keys of OVERRIDE_STEPS and OVERRIDE_SETS: OVERRIDE at once, except in a
-    probe move, which runs at 100 % as in Grbl and takes the keys' percent when it ends).
+    probe move, which runs at 100 % as in Grbl and takes the keys' percent when it ends; with
+    `spindle`, the spindle override keys of SPINDLE_STEPS and SPINDLE_SETS: SPINDLE_OVERRIDE
+    at once).
     Ctrl-X stops as a sender keeps the position: nothing more is sent, a feed hold brings the machine to
     rest on its path, then CONTROL.abort flushes the queue (within STOP_SECONDS in any
     case); a second Ctrl-X aborts at once (at speed the motors may lose steps that the
@@ -593,10 +621,13 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
         return (driver.read_register("EXECUTED") - base) & 0xFFFFFFFF
     if override is not None and (override.set or probe):     # over the run's settings
         driver.write_register("OVERRIDE", 100 if probe else override.percent)
+    if spindle is not None and spindle.set:
+        driver.write_register("SPINDLE_OVERRIDE", spindle_scale(spindle.percent))
     fill_bytes = max(1, min(len(stream), driver.free - driver.lmax))
     driver.start_stream(stream)
     snap = Snapshot(records=records, total_bytes=len(stream),
-                    override=100 if override is None or probe else override.percent)
+                    override=100 if override is None or probe else override.percent,
+                    spindle=100 if spindle is None else spindle.percent)
     held = aborted = paused = False
     stop_note = ""                          # Outcome.message of an abort
     stopping = None                         # link time of a Ctrl-X: holding, then the abort
@@ -641,6 +672,11 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                     driver.drop_stream()
                     hold_write = control(p.CONTROL_HOLD)
                     stopping = driver.clock()
+                elif spindle is not None and spindle.takes(key):
+                    if spindle.after(key) != spindle.percent:
+                        spindle.percent, spindle.set = spindle.after(key), True
+                        snap.spindle = spindle.percent
+                        driver.queue_write("SPINDLE_OVERRIDE", spindle_scale(spindle.percent))
                 elif key in OVERRIDE_STEPS or key in OVERRIDE_SETS:
                     if override is not None and override.after(key) != override.percent:
                         override.percent, override.set = override.after(key), True

@@ -43,6 +43,7 @@ REG_CMD_DATA = 0x74
 REG_EXECUTED = 0x78
 REG_OUTPUT_INVERT = 0x7C
 REG_INPUT_FILTER = 0x80
+REG_SPINDLE_OVERRIDE = 0x84
 
 REGISTERS = {
     "ID": REG_ID,
@@ -78,6 +79,7 @@ REGISTERS = {
     "EXECUTED": REG_EXECUTED,
     "OUTPUT_INVERT": REG_OUTPUT_INVERT,
     "INPUT_FILTER": REG_INPUT_FILTER,
+    "SPINDLE_OVERRIDE": REG_SPINDLE_OVERRIDE,
 }
 
 # register -> access of the register as a whole (ro, rw, wo)
@@ -115,6 +117,7 @@ ACCESS = {
     "EXECUTED": "ro",
     "OUTPUT_INVERT": "rw",
     "INPUT_FILTER": "rw",
+    "SPINDLE_OVERRIDE": "rw",
 }
 
 FIELDS = {
@@ -202,6 +205,7 @@ FIELDS = {
     "OUTPUT_INVERT.digital": (12, 4, "rw"),
     "INPUT_FILTER.period": (0, 16, "rw"),
     "INPUT_FILTER.mask": (16, 5, "rw"),
+    "SPINDLE_OVERRIDE.scale": (0, 10, "rw"),
 }
 
 RESETS = {
@@ -238,6 +242,7 @@ RESETS = {
     "EXECUTED": 0x00000000,
     "OUTPUT_INVERT": 0x00000000,
     "INPUT_FILTER": 0x001F0000,
+    "SPINDLE_OVERRIDE": 0x00000100,
 }
 
 # fields whose value is a two's-complement number
@@ -246,7 +251,7 @@ SIGNED = frozenset({"POS_X.value", "POS_Y.value", "POS_Z.value", "PROBE_X.value"
 # enumerated fields: value -> name
 ENUMS = {
     "STATUS.state": {0: "IDLE", 1: "RUN", 2: "HOLDING", 3: "HELD", 4: "ALARM"},
-    "ERROR.code": {0: "NONE", 1: "UNKNOWN_KIND", 2: "FEED_ZERO", 3: "RANGE", 4: "FAULT", 5: "QUEUE_FULL", 6: "STEP_OVERFLOW", 7: "PLANE", 8: "PROFILE", 9: "LATE", 16: "ESTOP", 17: "LIMIT_SWITCH", 18: "RECORD", 19: "ABORT_AT_SPEED"},
+    "ERROR.code": {0: "NONE", 1: "UNKNOWN_KIND", 2: "FEED_ZERO", 3: "RANGE", 4: "FAULT", 5: "QUEUE_FULL", 6: "STEP_OVERFLOW", 7: "PLANE", 8: "PROFILE", 9: "LATE", 10: "OVERRUN", 16: "ESTOP", 17: "LIMIT_SWITCH", 18: "RECORD", 19: "ABORT_AT_SPEED"},
 }
 
 

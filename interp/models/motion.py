@@ -313,12 +313,14 @@ class TimingMonitor:
 # ---------------- segment queue (rtl/motion_top.v), step level ----------------
 
 LINE, ARC_CW, ARC_CCW, CURVE, DWELL, EVENT = range(6)
-E_KIND, E_FEED, E_RANGE, E_CORE, E_QUEUE, E_SYNC, E_PLANE, E_PROFILE, E_LATE = range(1, 10)
+E_KIND, E_FEED, E_RANGE, E_CORE, E_QUEUE, E_SYNC, E_PLANE, E_PROFILE, E_LATE, E_OVERRUN = range(1, 11)
 ERROR_TEXT = {E_KIND: "unknown command kind", E_FEED: "feed 0", E_RANGE: "coordinate out of range",
               E_CORE: "the core refused the command (fault: stopped until reset)", E_QUEUE: "queue overflow",
               E_SYNC: "step buffer overflow", E_PLANE: "arc in plane 3",
               E_PROFILE: "bad profile (rate 0 or above 2^PF, length 0, limit below feed, block_shift below 2)",
-              E_LATE: "a segment ended above its target speed (too short for the look-ahead set-up)"}
+              E_LATE: "a segment ended above its target speed (too short for the look-ahead set-up)",
+              E_OVERRUN: "the steps were asked faster than the output stage makes them until the pacer "
+                         "overran (distance lost: stopped until reset)"}
 PROFILE_FIELDS = ("limit", "exit", "rate", "cost", "length", "budget")
 FIELDS = ("x", "y", "z", "i", "j", "k", "l")
 PLANES = {0: "XY", 1: "ZX", 2: "YZ"}
@@ -749,6 +751,7 @@ class MotionTop(CycleModel):
         core_error = (self.state == S_ARC and arc_nets["error"]) or (self.state == S_CURVE and self.curve.error)
         sync_overflow = sync.overflow
         late = self.profile.ramp.late          # the ramp's register, before the edge
+        overrun = self.profile.pacer.overrun and not fault     # the pacer's register: distance lost
         busy = self.busy_with(pnets["moving"])
         drv_step, drv_dir = out.step, out.dir
         inline = kind == EVENT and h["plane"] & 1           # an inline event: at once, no stop
@@ -814,6 +817,8 @@ class MotionTop(CycleModel):
                 self.state = S_IDLE
             else:
                 self.dwell_q -= 1
+        if overrun:
+            self.state = S_FAULT                       # until rst
         for k in range(3):
             if drv_step >> k & 1 and not self.step_q >> k & 1:
                 self.pos[k] = _signed(self.pos[k] + (-1 if drv_dir >> k & 1 else 1), self.pos_w)
@@ -823,7 +828,7 @@ class MotionTop(CycleModel):
         self.busy_q, self.done = busy, int(self.busy_q and not busy)
         code = (E_CORE if core_error or (valid and fault) else bad if valid and bad
                 else E_QUEUE if valid and full else E_SYNC if sync_overflow and not self.sync_overflow_q
-                else E_LATE if late else 0)
+                else E_OVERRUN if overrun else E_LATE if late else 0)
         self.sync_overflow_q = sync_overflow
         self.error = int(code != 0)
         if code:

@@ -100,7 +100,7 @@ async def registers(dut):
              "QUEUE_SIZE": size | aw << 16 | int(dut.CURVES.value) << 24, "STATUS": 0, "ERROR": 0,
              "QUEUE_FREE": size | (size // rb) << 16, "OVERRIDE": 100, "PULSE_WIDTH": half_us,
              "DIR_SETUP": half_us, "DIR_HOLD": half_us, "QUANTUM_LO": 1, "SPINDLE_PERIOD": clk // 20000,
-             "MOTION": BLOCK_SHIFT_MIN, "INPUT_FILTER": 0x1F << 16}
+             "MOTION": BLOCK_SHIFT_MIN, "INPUT_FILTER": 0x1F << 16, "SPINDLE_OVERRIDE": 256}
     names = sorted(REG, key=REG.get)
     want = {n: reset.get(n, 0) for n in names}
     for name in names:
@@ -110,7 +110,7 @@ async def registers(dut):
     rw = {"OVERRIDE": 0xFF, "PULSE_WIDTH": tw_mask, "DIR_SETUP": tw_mask, "DIR_HOLD": tw_mask,
           "QUANTUM_LO": feed_mask & 0xFFFFFFFF, "QUANTUM_HI": feed_mask >> 32, "MOTION": 0xFF,
           "SPINDLE_PERIOD": 0xFFFF, "POS_X": 0xFFFFFFFF, "POS_Y": 0xFFFFFFFF, "POS_Z": 0xFFFFFFFF,
-          "OUTPUT_INVERT": 0xFFFF, "INPUT_FILTER": 0x1FFFFF}
+          "OUTPUT_INVERT": 0xFFFF, "INPUT_FILTER": 0x1FFFFF, "SPINDLE_OVERRIDE": 0x3FF}
     for name, mask in rw.items():
         for value in (0xFFFFFFFF, 0x5A5A5A5A, 0):
             await tb.write(name, value)
@@ -134,7 +134,7 @@ async def registers(dut):
     assert await tb.read("CONTROL") == 0 and int(dut.enable.value) == 0
     # unknown addresses and CMD_DATA read 0; writes there change nothing
     snapshot = {n: await tb.read(n) for n in names}
-    for address in (0x84, 0xA4, 0xFC, 0x85, 0x03):
+    for address in (0x88, 0xA4, 0xFC, 0x89, 0x03):
         await tb.write(address, 0xFFFFFFFF)
         assert await tb.read(address) == (0 if address != 0x03 else 0x494E5450), f"address {address:#x}"
     assert {n: await tb.read(n) for n in names} == snapshot
@@ -479,7 +479,8 @@ async def pwm_high(tb, cycles):
 
 @cocotb.test()
 async def events_drive_outputs(dut):
-    """Spindle cw / ccw / speed / off with the PWM duty, mist, flood, coolant off, outputs on /
+    """Spindle cw / ccw / speed / off with the PWM duty (and SPINDLE_OVERRIDE's scale on it,
+    OUTPUTS keeping the programmed duty), mist, flood, coolant off, outputs on /
     off (a bad output number ignored), unknown codes ignored, program end; pause sets the hold
     (the next move waits until it is released), and two pauses in a row hold twice; abort
     switches the spindle off."""
@@ -496,6 +497,11 @@ async def events_drive_outputs(dut):
     assert await pwm_high(tb, 400) == 100           # 25 % of 100-clock periods
     assert await events((2, 32767)) == 3 | 32767 << 16
     assert abs(await pwm_high(tb, 400) - 200) <= 4
+    for scale, high in ((384, 300), (128, 100), (1023, 400), (256, 200)):   # SPINDLE_OVERRIDE: 150, 50, 400, 100 %
+        await tb.write("SPINDLE_OVERRIDE", scale)
+        await tb.clocks(250)
+        assert await tb.read("SPINDLE_OVERRIDE") == scale and await tb.read("OUTPUTS") >> 16 == 32767
+        assert abs(await pwm_high(tb, 400) - high) <= 4, f"scale {scale}"
     assert await events((4, -5)) == 3
     assert await pwm_high(tb, 300) == 0
     assert await events((4, 65535 >> (16 - min(16, tb.build["W"] - 1))), (3, 0)) & 0xFFFF == 2

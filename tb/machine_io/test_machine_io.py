@@ -3,8 +3,10 @@
 mist, flood, dout, pause, laser mode and the spindle pin it gates while `held`), seeded
 random event sequences with values out of range; `off`;
 the PWM duty measured over whole periods for several (duty, period) pairs, periods below
-the multiplier's 17 clocks and 0 included: high for exactly floor(duty * period / 65536)
-clocks of each period (duty 65535: always)."""
+the multiplier's 29 clocks and 0 included: high for exactly floor(duty * period / 65536)
+clocks of each period (duty 65535: always); the spindle override: (duty, scale, period)
+triples, seeded random ones among them, high for floor(level * period / 65536) with level =
+min(duty * scale / 256, 65535) (65535: always), M3 and the laser's M4 power alike."""
 import cocotb
 from cocotb.triggers import FallingEdge
 
@@ -12,7 +14,8 @@ from interp.simulation.runner import run_cocotb
 from interp.testing.controllerkit import icarus_in_make_test
 from interp.testing.tbkit import TB, seeded_rng
 
-IDLE = {"event_valid": 0, "event_code": 0, "event_value": 0, "off": 0, "period": 100, "held": 0, "scaled": 0}
+IDLE = {"event_valid": 0, "event_code": 0, "event_value": 0, "off": 0, "period": 100, "held": 0, "scaled": 0,
+        "scale": 256}
 
 
 class Outputs:
@@ -82,9 +85,9 @@ async def events(dut):
 
 async def high_per_period(dut, tb, inputs, length):
     """Clocks the PWM is high in each of 3 whole periods, once the threshold has settled (within
-    two periods, or 34 clocks)."""
+    two periods and 58 clocks)."""
     tb.drive(inputs)
-    for _ in range(3 * length + 40):
+    for _ in range(2 * length + 60):
         await FallingEdge(dut.clk)
     while int(dut.counter.value) != 0:
         await FallingEdge(dut.clk)
@@ -142,6 +145,41 @@ async def laser_dynamic_power(dut):
             await FallingEdge(dut.clk)
         high = await high_per_period(dut, tb, {**IDLE, "period": period, "scaled": scaled}, period)
         assert high == [want * period >> 16] * 3, f"laser {laser}, M{code + 2}: high {high}"
+
+
+def high_want(level, period):
+    """Clocks high of each period at this level (65535: always)."""
+    length = max(period, 1)
+    return length if level >= 65535 else level * length >> 16
+
+
+@cocotb.test()
+async def spindle_override(dut):
+    """SPINDLE_OVERRIDE's scale: the PWM at min(duty x scale / 256, 65535) for M3, and for M4
+    in laser mode at `scaled` x scale / 256; scale 256 is the duty itself."""
+    rng = seeded_rng(dut, "spindle_override")
+    tb = TB(dut)
+    await tb.reset(IDLE)
+    wide = int(dut.W.value) > 17
+    cases = [(30000, 256, 100), (30000, 282, 100), (30000, 26, 333), (40000, 512, 50), (65535, 128, 40),
+             (65535, 1023, 7), (0, 1023, 20), (20000, 0, 20), (32768, 512, 64), (1000, 1, 1000)]
+    cases += [(rng.randrange(65536), rng.randrange(1024), rng.randrange(1, 300)) for _ in range(6)]
+    for duty, scale, period in cases:
+        if not wide and duty >> (int(dut.W.value) - 1):
+            continue                                    # does not fit a narrow event value
+        tb.drive({**IDLE, "event_valid": 1, "event_code": 1, "event_value": duty, "period": period, "scale": scale})
+        await FallingEdge(dut.clk)
+        high = await high_per_period(dut, tb, {**IDLE, "period": period, "scale": scale}, max(period, 1))
+        want = high_want(min(duty * scale >> 8, 65535), period)
+        assert high == [want] * 3, f"duty {duty}, scale {scale}, period {period}: high {high}, want {want}"
+        assert int(dut.duty.value) == duty, "OUTPUTS.duty keeps the programmed duty"
+    period, scaled = 200, 16384                            # laser mode, M4: the power is scaled too
+    for event in ((13, 1), (2, 3000)):
+        tb.drive({**IDLE, "event_valid": 1, "event_code": event[0], "event_value": event[1], "period": period})
+        await FallingEdge(dut.clk)
+    for scale in (256, 384, 64):
+        high = await high_per_period(dut, tb, {**IDLE, "period": period, "scaled": scaled, "scale": scale}, period)
+        assert high == [high_want(scaled * scale >> 8, period)] * 3, f"laser M4, scale {scale}: high {high}"
 
 
 def test_machine_io(sim):

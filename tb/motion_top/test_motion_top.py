@@ -26,8 +26,8 @@ import cocotb
 from cocotb.triggers import FallingEdge
 
 from interp.models.arc import arc_error, arc_steps
-from interp.models.motion import (ARC_CCW, ARC_CW, CURVE, DWELL, E_CORE, E_FEED, E_KIND, E_PLANE, E_PROFILE,
-                                  E_QUEUE, E_RANGE, EVENT, LINE, Command, MotionTop, TimingMonitor,
+from interp.models.motion import (ARC_CCW, ARC_CW, CURVE, DWELL, E_CORE, E_FEED, E_KIND, E_OVERRUN, E_PLANE,
+                                  E_PROFILE, E_QUEUE, E_RANGE, EVENT, LINE, Command, MotionTop, TimingMonitor,
                                   command_steps, inline, queue_steps)
 from interp.models.profile import profile_for
 from interp.models.speed_ramp import BLOCK_SHIFT_MIN
@@ -104,7 +104,7 @@ class MotionTB(TB):
             assert not (last["stopped"] and rising), f"{context}: cycle {mon.cycle}: a step after `stopped`"
             last["step"], last["stopped"] = step, sample["stopped"]
             jump = abs(sample["speed"] - last["speed"])
-            assert (fault and E_CORE in errors) or jump <= 2 * quantum, f"{context}: cycle {mon.cycle}: speed jumps by {jump}"
+            assert (fault and {E_CORE, E_OVERRUN} & set(errors)) or jump <= 2 * quantum, f"{context}: cycle {mon.cycle}: speed jumps by {jump}"
             last["speed"] = sample["speed"]
 
         def stim():
@@ -290,6 +290,29 @@ async def core_error_is_a_fault(dut):
     tb.origin = [0, 0, 0]
     errors, _, _, _ = await tb.run([Command(LINE, TOP, -3, 5, 1)], context="after the fault")
     assert errors == []
+
+
+@cocotb.test()
+async def overrun_is_a_fault(dut):
+    """Steps asked far faster than the output stage makes them (the feed at one step a clock,
+    pulses of 15 clocks) with the S-curve's deepest window, until the pacer's phase saturates:
+    E_OVERRUN once, both queues flushed, no step after it, every later push refused (E_CORE)
+    until rst; the position counts what went out.  A line that stays below the output stage's
+    rate with the same window runs exactly."""
+    tb = await MotionTB(dut).start()
+    tb.settings.update(jerk_shift=tb.p["MW"])
+    slow = {**FAST, "pulse_width": 15}
+    cmds = tb.profiled([Command(LINE, TOP, 3000, 1), Command(LINE, TOP, 5, 5)])
+    errors, _, mon, _ = await tb.run(cmds, timing=slow, context="overrun", fault=True, profiled=True)
+    assert errors[0] == E_OVERRUN and errors.count(E_OVERRUN) == 1 and set(errors) <= {E_OVERRUN, E_CORE}, errors
+    assert 0 < len(mon.pulses) < 3000
+    await tb.reset({**IDLE, **FAST, **tb.settings})
+    tb.ref.reset()
+    tb.ref.settled({**IDLE, **FAST, **tb.settings})
+    tb.origin = [0, 0, 0]
+    errors, want_errors, mon, _ = await tb.run([Command(LINE, ONE // 20, 300, 1)], timing=slow, context="below the rate")
+    assert errors == want_errors == [] and len(mon.pulses) == 300
+    tb.settings.update(jerk_shift=0)
 
 
 @cocotb.test()
