@@ -29,12 +29,13 @@ def attach(monkeypatch, device):
     monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
 
 
-def send_program(capsys, tmp_path, monkeypatch, device, text, flag="--sim-model"):
-    """`interp send` of `text` to `device` (the controller model): (exit status, stdout, stderr)."""
+def send_program(capsys, tmp_path, monkeypatch, device, text, *flags):
+    """`interp send` of `text` to `device` (the controller model; flags: --sim-model by
+    default): (exit status, stdout, stderr)."""
     attach(monkeypatch, device)
     program = tmp_path / "p.nc"
     program.write_text(text)
-    return run(capsys, "send", str(program), flag)
+    return run(capsys, "send", str(program), *(flags or ("--sim-model",)))
 
 
 def linear_moves(device):
@@ -127,10 +128,25 @@ def test_a_probe_touching_before_the_move(capsys, tmp_path, monkeypatch):
     assert linear_moves(device) == [(500, 0, 0)]
 
 
-def test_the_simulator_has_no_probe(capsys, tmp_path, monkeypatch):
+@pytest.mark.parametrize("argv, word", [
+    (["--port", "loop://", "--probe-at", "Z-1"], "--probe-at goes with --sim, not --port"),
+    (["--sim", "--probe-at", "Z0"], "--probe-at Z0: give an axis and a non-zero machine position in mm, e.g. Z-1.5"),
+    (["--sim", "--probe-at", "A-1"], "--probe-at A-1: give an axis"),
+    (["--sim", "--probe-at", "Z"], "--probe-at Z: give an axis"),
+    (["--sim-model", "--probe-at", "Z-1"], "--probe-at goes with --sim"),
+])
+def test_probe_at_usage(capsys, tmp_path, monkeypatch, argv, word):
+    """--probe-at: only with --sim, an axis and a non-zero position: one line, exit status 2."""
+    device = DeviceModel()
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, TOUCH_OFF, *argv)
+    assert code == 2 and word in err and len(err.strip().splitlines()) == 1, err
+    assert not device.executed
+
+
+def test_the_simulator_needs_a_touch(capsys, tmp_path, monkeypatch):
     device = DeviceModel()
     code, out, err = send_program(capsys, tmp_path, monkeypatch, device, TOUCH_OFF, "--sim")
-    assert code == 2 and "line 3: G38.2: the simulated controller has no probe" in err
+    assert code == 2 and "line 3: G38.2: give the simulated controller's probe a touch with --probe-at" in err
     assert not device.executed
 
 

@@ -250,7 +250,7 @@ def test_gcode_error_like_interp_gcode(capsys, tmp_path):
 @pytest.mark.parametrize("text, word", [
     ("G21\nG1 X1 F600\nG1 Q7 X2\n", "line 3"),
     ("G21\nG1 X5000 F600\n", "line 2: X 5000 mm is beyond the X travel"),
-    ("G21\nG38.2 Z-5 F100\nG1 Q7\n", "line 2: G38.2: the simulated controller has no probe"),
+    ("G21\nG38.2 Z-5 F100\nG1 Q7\n", "line 2: G38.2: give the simulated controller's probe a touch with --probe-at"),
 ])
 def test_sim_reports_gcode_errors_before_the_simulator(capsys, tmp_path, monkeypatch, text, word):
     """--sim interprets and compiles the program from 0 (where a fresh simulated controller

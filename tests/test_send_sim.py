@@ -29,6 +29,7 @@ The machine file of these tests runs the controller at 12 MHz (the lowest clock 
 3 Mbaud: the link needs 4 clocks a bit) so that the simulated seconds cost few cycles.
 """
 import os
+import re
 import subprocess
 
 import pytest
@@ -281,6 +282,38 @@ def test_home_sim(files, tmp_path, capsys):
     assert lines[0] == "homed X: switch at -1.200 mm, now at -1.000 mm", out
     assert lines[1].startswith("machine position X-1.000 Y0.000 Z0.000 mm ("), out
     assert "the simulated machine powers up 0.400 mm from each limit switch" in err, err
+
+
+PROBE = """G21 G90
+G38.2 Z-5 F300
+G91 G0 Z1
+G90 G38.3 X-3 F600
+M2
+"""
+
+
+def end_steps(out: str) -> tuple[int, int, int]:
+    return tuple(int(v) for v in re.search(r"end \((-?\d+), (-?\d+), (-?\d+)\) steps", out).groups())
+
+
+def test_probe_on_the_sim(files, capsys):
+    """`interp send --sim --probe-at Z-1.5`: the simulated probe touches at machine Z -1.5 mm
+    (150 steps), the G38.2 move holds there and stops a few steps past the touch, the next
+    move starts from where it stopped; the G38.3 finds no touch on X and runs to its end.  A
+    plate below the G38.2 move's end: one line, exit status 1.  No touch given: refused."""
+    program = files / "probe.nc"
+    program.write_text(PROBE)
+    machine = str(files / "machine.toml")
+    assert main(["send", str(program), "--sim", "--machine", machine, "--probe-at", "Z-1.5"]) == 0
+    out, err = capsys.readouterr()
+    x, y, z = end_steps(out)
+    assert (x, y) == (-300, 0) and -150 + 100 - 5 <= z < -150 + 100, out
+    assert main(["send", str(program), "--sim", "--machine", machine, "--probe-at", "Z-6"]) == 1
+    out, err = capsys.readouterr()
+    assert err.strip().splitlines()[-1] == ("interp: error: line 2: G38.2: the probe did not touch before the end "
+                                            "of the move"), err
+    assert main(["send", str(program), "--sim", "--machine", machine]) == 2
+    assert "G38.2: give the simulated controller's probe a touch with --probe-at" in capsys.readouterr().err
 
 
 def test_send_sim_equals_gcode(files, gcode_steps, capsys):

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import sys
 
 from ..cores import UsageError
@@ -121,7 +122,7 @@ def check_link_args(args) -> None:
         if args.baud is None:
             args.baud = DEFAULT_BAUD
         for flag, value in (("--steps", getattr(args, "steps", None)), ("--line-noise", getattr(args, "line_noise", None)),
-                            ("--seed", getattr(args, "seed", None))):
+                            ("--seed", getattr(args, "seed", None)), ("--probe-at", getattr(args, "probe_at", None))):
             if value is not None:
                 raise UsageError(f"{flag} goes with --sim, not --port")
     pause = getattr(args, "pause_seconds", 0.0)
@@ -233,16 +234,33 @@ def limit_names(limits: int) -> str:
 # ---------------- the command ----------------
 
 def refuse_probe(move) -> None:
-    raise UsageError(f"line {move.line}: G38.{move.probe - 380}: the simulated controller has no "
-                     "probe (interp gcode takes the touch at the end of the move)")
+    raise UsageError(f"line {move.line}: G38.{move.probe - 380}: give the simulated controller's probe a "
+                     "touch with --probe-at (e.g. --probe-at Z-1.5)")
 
 
-def check_for_sim(text: str, machine: Machine, saved: dict) -> None:
+PROBE_AT = re.compile(r"([XYZ])([-+]?(?:\d+\.?\d*|\.\d+))", re.IGNORECASE)
+
+
+def probe_touches(words, machine: Machine) -> list[tuple[int, str, int]]:
+    """--probe-at AXIS MM words: (axis, side, steps) of the simulated probe's touches.  The
+    simulated machine powers up at machine 0: a touch at MM > 0 is reached at or above it
+    ("max"), one below 0 at or below it ("min")."""
+    touches = []
+    for word in words or []:
+        m = PROBE_AT.fullmatch(word.strip())
+        if not m or float(m.group(2)) == 0.0:
+            raise UsageError(f"--probe-at {word}: give an axis and a non-zero machine position in mm, e.g. Z-1.5")
+        axis, mm = AXES.index(m.group(1).lower()), float(m.group(2))
+        touches.append((axis, "max" if mm > 0 else "min", round(mm * machine.steps_per_mm[axis])))
+    return touches
+
+
+def check_for_sim(text: str, machine: Machine, saved: dict, probe: bool = False) -> None:
     """--sim: the program as the run will interpret and compile it (a fresh simulated
-    controller stands at 0), so that a G-code error, or a probe move the simulator cannot
-    run, is reported before the simulator is built and started."""
+    controller stands at 0), so that a G-code error, or a probe move without a simulated
+    touch (probe False: no --probe-at), is reported before the simulator is built and started."""
     program = gcode_command.interpret_program(text, machine, (0, 0, 0), saved, probes=[])
-    if program.probe_pending:
+    if program.probe_pending and not probe:
         refuse_probe(program.moves[-1])
     compile_program(program, machine, start_steps=(0, 0, 0))
 
@@ -252,14 +270,19 @@ def cmd_send(args) -> int:
     machine = load_machine(args.machine, [], None)
     text = read_program(args.file)
     saved = saved_parameters(machine)
+    touches = probe_touches(args.probe_at, machine)
+    if touches and not args.sim:
+        raise UsageError("--probe-at goes with --sim")
     if args.sim:
-        check_for_sim(text, machine, saved)
+        check_for_sim(text, machine, saved, probe=bool(touches))
     if machine.parameter_file is not None and not args.sim:
         check_writable(machine.parameter_file)      # before the machine moves
     opened = open_or_report(args, machine)
     if opened is None:
         return 1
     transport, baud = opened
+    for touch in touches:                   # (--sim only)
+        transport.set_touch(*touch)
     keyboard = progress = None
     result = at_end = None
     try:
@@ -394,7 +417,7 @@ class ProgramRun:
             self.show(program.warnings, "warning")
             moves = program.moves[done:]
             probe = moves.pop() if program.probe_pending else None      # (the interpretation's last move)
-            if probe is not None and self.args.sim:
+            if probe is not None and self.args.sim and not self.args.probe_at:
                 refuse_probe(probe)
             if moves or (probe is None and self.compiled is None):
                 if not self.piece(program, moves, here, last=probe is None):
@@ -556,6 +579,9 @@ def add_parser(sub) -> None:
     add_link_options(p_, "the Verilator model of the controller instead of a port", seed=True)
     p_.add_argument("--steps", metavar="FILE", help="--sim: CSV of the steps (cycle,dx,dy,dz)")
     p_.add_argument("--line-noise", type=float, metavar="P", help="--sim: bit-flip probability per bit, both ways")
+    p_.add_argument("--probe-at", action="append", metavar="AXIS_MM",
+                    help="--sim: where the simulated probe touches, e.g. Z-1.5: machine mm (the simulated machine "
+                         "powers up at 0), reached at or beyond it as seen from 0; again for more touches (any counts)")
     p_.add_argument("--pause-seconds", type=float, default=0.0, metavar="S",
                     help="a program pause (M0, M1, M6, M60) ends after S seconds when no terminal is attached to "
                          "resume it with ~ (default 0)")

@@ -192,6 +192,12 @@ class SimLink:
         words = self._ask(f"s {int(axis)} {int(side == 'max')} {int(at)}").split(" ")
         self._cycle = int(words[1])
 
+    def set_touch(self, axis: int, side: str, at: int) -> None:
+        """A probe touch on axis 0..2 at harness position `at`, side as for set_switch: the probe
+        pin then follows the position, high while any touch is reached (a plate, an edge)."""
+        words = self._ask(f"t {int(axis)} {int(side == 'max')} {int(at)}").split(" ")
+        self._cycle = int(words[1])
+
     def close(self) -> dict:
         """Stop the simulator; the run's figures: cycles, first_push, steps, position [x, y, z]
         (pulses counted at the pins), bits / flipped bits each way, chars dropped, skipped

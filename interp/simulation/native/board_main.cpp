@@ -19,6 +19,9 @@
 //                    counted at the pins, 0 at reset): SIDE 0 active at or below AT, 1 at
 //                    or above; from then on that limit bit follows the position after
 //                    every step (a machine's switch: homing).  Answer "ok CYCLE".
+//   t AXIS SIDE AT   a probe touch on axis 0..2 at harness position AT, SIDE as for s: from
+//                    then on the probe pin is high while any such touch is reached (a
+//                    touch plate, an edge: probing).  Answer "ok CYCLE".
 //   q                finish: close the steps CSV, answer one JSON line, exit 0.
 // CYCLE: rising edges of clk since reset was released (simulated seconds = CYCLE / CLK_HZ).
 //
@@ -138,6 +141,14 @@ class Board {
         switch_on_[axis] = true;
         switch_side_[axis] = side;
         switch_at_[axis] = at;
+        update_switches();
+        calm_ = 0;
+    }
+
+    void set_touch(int axis, int side, int64_t at) {
+        touch_on_[axis] = true;
+        touch_side_[axis] = side;
+        touch_at_[axis] = at;
         update_switches();
         calm_ = 0;
     }
@@ -344,16 +355,28 @@ class Board {
     bool switch_on_[3] = {false, false, false};
     int switch_side_[3] = {0, 0, 0};
     int64_t switch_at_[3] = {0, 0, 0};
+    bool touch_on_[3] = {false, false, false};
+    int touch_side_[3] = {0, 0, 0};
+    int64_t touch_at_[3] = {0, 0, 0};
 
-    // the limit pins of the axes with a switch, from the position
+    bool reached(int k, int side, int64_t at) const {
+        return side ? position_[k] >= at : position_[k] <= at;
+    }
+
+    // the limit pins of the axes with a switch, and the probe pin of the touches, from the position
     void update_switches() {
         unsigned limit = top_->limit;
+        bool touched = false, touching = false;
         for (int k = 0; k < 3; ++k) {
-            if (!switch_on_[k]) continue;
-            const bool active = switch_side_[k] ? position_[k] >= switch_at_[k] : position_[k] <= switch_at_[k];
-            limit = active ? limit | 1u << k : limit & ~(1u << k);
+            if (switch_on_[k])
+                limit = reached(k, switch_side_[k], switch_at_[k]) ? limit | 1u << k : limit & ~(1u << k);
+            if (touch_on_[k]) {
+                touching = true;
+                touched = touched || reached(k, touch_side_[k], touch_at_[k]);
+            }
         }
         top_->limit = limit;
+        if (touching) top_->probe = touched;
     }
     unsigned prev_step_ = 0;
     bool activity_ = false, pushed_ = false;
@@ -462,6 +485,14 @@ int main(int argc, char** argv) {
                 side < 0 || side > 1)
                 fail("s: want AXIS (0..2) SIDE (0 or 1) AT");
             board.set_switch(axis, side, at);
+            std::printf("ok %" PRIu64 "\n", board.cycle());
+        } else if (op == 't') {
+            int axis = 0, side = 0;
+            long long at = 0;
+            if (std::sscanf(rest.c_str(), "%d %d %lld", &axis, &side, &at) != 3 || axis < 0 || axis > 2 ||
+                side < 0 || side > 1)
+                fail("t: want AXIS (0..2) SIDE (0 or 1) AT");
+            board.set_touch(axis, side, at);
             std::printf("ok %" PRIu64 "\n", board.cycle());
         } else if (op == 'q') {
             board.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count());
