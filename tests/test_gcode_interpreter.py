@@ -484,6 +484,21 @@ def test_overrides_are_ignored_with_a_warning_and_messages_are_collected():
     assert program.messages == ["line 1: clear\\x1b[2J\\x07 Привет"]
 
 
+def test_debug_print_and_abort_comments():
+    """LinuxCNC's (DEBUG, ...) and (PRINT, ...): messages with #N and #<name> as printf's %lf
+    (|v| < 0.0001 as 0), "######" for an undefined name; DEBUG only while #5599 > 0 (1 at the
+    start).  (ABORT, ...) ends the program with its text as the error of its line."""
+    program = interpret("#1=2.5\n#<d>=-1\n(debug, a #1 d #<D> e #< d > x #<nope> #2 # y)\n(PRINT,#3)\n"
+                        "#5599=0\n(debug, hidden)\n(print, shown #1)\n#5599=1\n(Debug,0.00001 is #4)\n#4=0.00001")
+    assert program.messages == ["line 3: a 2.500000 d -1.000000 e -1.000000 x ###### 0.000000 # y",
+                                "line 4: 0.000000", "line 7: shown 2.500000", "line 9: 0.00001 is 0.000000"]
+    assert interpret("#4=0.00001\n(debug,#4)\n(debug,#5)\n#5=-0.00002").messages == \
+        ["line 2: 0.000000", "line 3: 0.000000"]
+    assert error("G1 X1 F100\no1 if [#5070 EQ 0]\n(ABORT, probe failed: #5070)\no1 endif\nG1 X2") == \
+        "line 3, column 1: (ABORT) probe failed: 0.000000"
+    assert interpret("(MSG, plain #1)\n(abortive comment)").messages == ["line 1: plain #1"]
+
+
 def test_move_limit(monkeypatch):
     # the moves of a program, an arc's turns counted, are at most MAX_MOVES: loops of many-turn
     # arcs stop within seconds

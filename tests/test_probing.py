@@ -143,6 +143,17 @@ def test_probe_at_usage(capsys, tmp_path, monkeypatch, argv, word):
     assert not device.executed
 
 
+def test_an_abort_comment_after_a_probe_stops_the_run(capsys, tmp_path, monkeypatch):
+    """(ABORT, ...) on the probe's result (#5070 = 0: G38.3 found nothing) stops the program
+    after the probe move, with its text; the check before the run (every probe touching at
+    its move's end) does not reach it."""
+    device = DeviceModel(probe=(2, "min", -500))
+    text = "G21 G90\nG38.3 Z-1 F300\no1 if [#5070 EQ 0]\n(abort, no touch: #5070)\no1 endif\nG0 X1\nM2\n"
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, text)
+    assert code == 2 and err.strip().splitlines()[-1] == "interp: error: line 4, column 1: (ABORT) no touch: 0.000000"
+    assert linear_moves(device) == [(0, 0, -100)]
+
+
 def test_the_simulator_needs_a_touch(capsys, tmp_path, monkeypatch):
     device = DeviceModel()
     code, out, err = send_program(capsys, tmp_path, monkeypatch, device, TOUCH_OFF, "--sim")

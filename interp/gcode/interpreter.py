@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 from . import cycles
 from .errors import GcodeError, without_controls
-from .language import Block, ExpressionError, Parameters, Word, iterate_blocks
+from .language import Block, ExpressionError, Parameters, Word, iterate_blocks, substitute_parameters
 from .moves import PLANES, Arc, Dwell, Event, Line, Point, ProbeResult, Program
 from .parameter_file import LENGTHS
 
@@ -39,6 +39,7 @@ CENTRE_RELATIVE_TOLERANCE = 0.001
 MAX_CYCLE_MOVES = 1_000_000     # one canned-cycle block expands to at most this many moves
 MAX_TURNS = 10_000              # an arc's P (turns): 10,000 compile in about 6 s
 MAX_MOVES = 2_000_000           # moves of one program, an arc's turns counted (minutes to compile)
+DEBUG_FLAG = 5599                                # #5599 > 0: (DEBUG, ...) comments are shown
 WORD_LIMIT = 1e15               # a word's value beyond this is refused (no position overflows)
 SAME_POINT_MM = 1e-9            # an arc's end this close to its start is a full circle
 
@@ -121,6 +122,7 @@ def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0
     probe move touches at its end.  Raises GcodeError for anything it cannot run.
     """
     params = Parameters()
+    params.set(DEBUG_FLAG, 1.0)                       # (DEBUG, ...) shown, as LinuxCNC starts
     machine = _Machine(params, g28, g30, tools or {}, start, saved or {})
     machine.probe_results = probes
     for block in iterate_blocks(text, params):
@@ -328,8 +330,16 @@ class _Machine:
     def run_block(self, block: Block) -> None:
         for comment in block.comments:
             text = comment.strip()
-            if text[:4].upper() == "MSG,":
-                self.program.messages.append(f"line {block.line}: {without_controls(text[4:].strip())}")
+            head, comma, rest = text.partition(",")
+            kind = head.strip().lower() if comma else ""
+            if kind == "msg":
+                self.program.messages.append(f"line {block.line}: {without_controls(rest.strip())}")
+            elif kind in ("debug", "print") and (kind == "print" or self.params.get(DEBUG_FLAG) > 0.0):
+                shown = substitute_parameters(rest, self.params).strip()
+                self.program.messages.append(f"line {block.line}: {without_controls(shown)}")
+            elif kind == "abort":
+                shown = without_controls(substitute_parameters(rest, self.params).strip())
+                raise GcodeError(block.line, 1, "", f"(ABORT) {shown}")
         words = self._sort_words(block)
         line = block.line
         if words.g.keys() & {"non-modal", "units", "tool length", "coordinate system"} or \

@@ -69,6 +69,23 @@ def _name(key: str) -> str:
     return key.lower().replace(" ", "").replace("\t", "")
 
 
+_COMMENT_PARAMETER = re.compile(r"#(\d+|<[^>)]*>)")
+
+
+def substitute_parameters(text: str, params: "Parameters") -> str:
+    """A (DEBUG, ...), (PRINT, ...) or (ABORT, ...) comment's text with each #N and #<name>
+    replaced by its value as LinuxCNC writes it (printf's %lf: 5.000000), "######" for an
+    undefined name or a number out of range; a '#' followed by neither stays."""
+    def value(m) -> str:
+        key = m.group(1)
+        try:
+            v = params.get(int(key)) if key.isdigit() else params.get(key)
+        except ExpressionError:
+            return "######"
+        return f"{0.0 if abs(v) < 1e-4 else v:f}"       # (LinuxCNC's equal(): |v| < 0.0001 is 0)
+    return _COMMENT_PARAMETER.sub(value, text)
+
+
 class Parameters:
     """The parameter store: numbered #1..#5602, global #<_name>, local #<name> per call level.
 
