@@ -111,6 +111,8 @@ def main(argv: list[str] | None = None) -> int:
             parser.error(f"unrecognized arguments: {' '.join(rest)}")
         return args.func(args) or 0
     except UsageError as err:
+        for message in getattr(err, "messages", ()):      # what the program said before its (ABORT, ...)
+            print(f"interp: message: {message}", file=sys.stderr)
         print(f"interp: error: {err}", file=sys.stderr)
         return 2
     except (RuntimeError, OSError) as err:

@@ -496,7 +496,14 @@ def test_debug_print_and_abort_comments():
         ["line 2: 0.000000", "line 3: 0.000000"]
     assert error("G1 X1 F100\no1 if [#5070 EQ 0]\n(ABORT, probe failed: #5070)\no1 endif\nG1 X2") == \
         "line 3, column 1: (ABORT) probe failed: 0.000000"
-    assert interpret("(MSG, plain #1)\n(abortive comment)").messages == ["line 1: plain #1"]
+    assert interpret("(MSG, plain #1)\n(abortive comment)\n(MSG , spaced)\n( msg,lead)").messages == \
+        ["line 1: plain #1", "line 4: lead"]                   # (LinuxCNC: "msg," at the start)
+    with pytest.raises(GcodeError) as caught:                  # the messages before the abort go with it
+        interpret("(MSG, one)\n(debug, two)\n(abort)\n(abort,)\n")
+    assert str(caught.value) == "line 4, column 1: (ABORT)" and caught.value.messages == ["line 1: one", "line 2: two"]
+    program = interpret("G38.2 Z-5 F100\n(abort, #5063)")              # after a touch taken at the move's end
+    assert program.warnings[-1] == ("line 2: (ABORT) -5.000000: not taken, since a probe move before it took "
+                                    "its touch at the end of the move")
 
 
 def test_move_limit(monkeypatch):

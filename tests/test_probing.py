@@ -14,6 +14,7 @@ from interp.gcode.errors import GcodeError
 from interp.gcode.interpreter import interpret
 from interp.gcode.moves import Line, ProbeResult
 from interp.gcode.parameter_file import read_parameters
+from interp.link import protocol as p
 from interp.link.devicemodel import DeviceModel
 
 TOUCH_OFF = "G21 G90\nG0 X5\nG38.2 Z-10 F50\nG10 L20 P1 Z1.5\nG0 Z5\nM2\n"
@@ -130,7 +131,9 @@ def test_a_probe_touching_before_the_move(capsys, tmp_path, monkeypatch):
 
 @pytest.mark.parametrize("argv, word", [
     (["--port", "loop://", "--probe-at", "Z-1"], "--probe-at goes with --sim, not --port"),
-    (["--sim", "--probe-at", "Z0"], "--probe-at Z0: give an axis and a non-zero machine position in mm, e.g. Z-1.5"),
+    (["--sim", "--probe-at", "Z0"], "--probe-at Z0: give an axis and a machine position in mm at least a step from 0"),
+    (["--sim", "--probe-at", "z-0.004"], "--probe-at z-0.004: give an axis"),         # 0.4 steps
+    (["--sim", "--probe-at", "Z-1", "--probe-at", "z-2"], "--probe-at z-2: Z given twice (one touch per axis)"),
     (["--sim", "--probe-at", "A-1"], "--probe-at A-1: give an axis"),
     (["--sim", "--probe-at", "Z"], "--probe-at Z: give an axis"),
     (["--sim-model", "--probe-at", "Z-1"], "--probe-at goes with --sim"),
@@ -152,6 +155,25 @@ def test_an_abort_comment_after_a_probe_stops_the_run(capsys, tmp_path, monkeypa
     code, out, err = send_program(capsys, tmp_path, monkeypatch, device, text)
     assert code == 2 and err.strip().splitlines()[-1] == "interp: error: line 4, column 1: (ABORT) no touch: 0.000000"
     assert linear_moves(device) == [(0, 0, -100)]
+
+
+def test_an_abort_on_the_probed_position(capsys, tmp_path, monkeypatch):
+    """An (ABORT, ...) on the touch's position is checked on the true touch: the check before
+    the run (every touch at its move's end, Z-10) only warns of it, the touch at Z-2 passes and
+    the program runs on; a touch at Z-7 stops the run after the probe move, with the messages
+    before the abort, and the spindle and coolant are switched off (CONTROL.abort at rest)."""
+    text = ("G21 G90\nG38.2 Z-10 F300\n(debug, touched at #5063)\no1 if [#5063 LT -5]\n(abort, too deep: #5063)\n"
+            "o1 endif\nG0 Z0\nM2\n")
+    device = DeviceModel(probe=(2, "min", -200))
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, text)
+    assert code == 0, err
+    assert "interp: message: line 3: touched at -2.000000" in err and "ABORT" not in err
+    device = DeviceModel(probe=(2, "min", -700))
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, text)
+    assert code == 2, err
+    assert err.strip().splitlines()[-2:] == ["interp: message: line 3: touched at -7.000000",
+                                             "interp: error: line 5, column 1: (ABORT) too deep: -7.000000"], err
+    assert [n for n, _ in device.writes][-1] == "CONTROL" and device.writes[-1][1] & p.CONTROL_ABORT
 
 
 def test_the_simulator_needs_a_touch(capsys, tmp_path, monkeypatch):

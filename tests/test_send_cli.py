@@ -349,3 +349,13 @@ def test_a_line_of_mdi_that_sets_an_offset_is_no_empty_program(capsys, tmp_path)
     code, out, err = run(capsys, "send", str(path), "--sim-model", "--machine", str(machine))
     assert code == 0 and out.startswith("sent 0 records (0 bytes)") and "no command to send" not in err, err
     assert "saved the offsets" in err
+
+
+def test_typed_keys_drop_escape_sequences():
+    """Arrow keys, PgUp / PgDn, F keys and Alt+key are not the '[' '5' '~' inside them."""
+    from interp.commands.send import typed_keys
+
+    assert typed_keys("!~]") == "!~]"
+    assert typed_keys("\x1b[A\x1b[5~\x1b[6~\x1bOP\x1b[1;5C") == ""
+    assert typed_keys("+\x1b[5~-\x1b!]\x1b") == "+-]"
+    assert typed_keys("[\x1b[5") == "["                      # (a sequence cut off at the end of a read)

@@ -28,6 +28,7 @@ from ..gcode.machine import AXES, Machine, load_machine
 from ..gcode.parameter_file import check_lengths, check_writable, describe, write_parameters
 from ..link import protocol as p
 from ..gcode.compile import compile_program
+from ..gcode.errors import GcodeError
 from ..gcode.moves import ProbeResult
 from ..link.driver import (Driver, FeedOverride, LinkError, MachineError, MismatchError, SpindleOverride,
                            apply_pin_settings, check_controller, check_idle, configure, read_position, run_program,
@@ -96,6 +97,16 @@ def open_or_report(args, machine: Machine):
         return None
 
 
+def switch_off(driver: Driver) -> None:
+    """A program stopped between its pieces (an (ABORT, ...) or a failed probe after a
+    probe move): CONTROL.abort at rest switches the spindle and coolant off, as LinuxCNC's
+    abort does, and latches no error."""
+    try:
+        driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_ENABLE)
+    except LinkError as err:
+        print(f"interp: warning: switching the spindle and coolant off failed ({err})", file=sys.stderr)
+
+
 def interrupted(driver: Driver | None) -> int:
     """Ctrl-C in `interp home` or `jog`: nothing more is sent and the controller is told to
     abort (at once: the motors may lose steps, as a second Ctrl-X); one line, exit status 1."""
@@ -137,8 +148,20 @@ def check_link_args(args) -> None:
 
 # ---------------- the keyboard ----------------
 
+# a terminal's escape sequences: CSI (arrow keys ESC [ A, PgUp ESC [ 5 ~, also cut off at the
+# end of a read), SS3 (F1 ESC O P), ESC + a key (Alt+key), a lone ESC
+ESCAPE = re.compile(r"\x1b(?:\[[0-?]*[ -/]*(?:[@-~]|$)|O.?|.)?", re.DOTALL)
+
+
+def typed_keys(text: str) -> str:
+    """The keys typed, without the terminal's escape sequences: an arrow key or PgUp must not
+    act as the '[' (spindle override), '5' (feed override) and '~' (resume) inside them."""
+    return ESCAPE.sub("", text)
+
+
 class Keyboard:
-    """Single keys from a terminal's stdin (cbreak mode, no echo) without blocking."""
+    """Single keys from a terminal's stdin (cbreak mode, no echo) without blocking; the
+    escape sequences of arrow and function keys dropped (typed_keys)."""
 
     def __init__(self, enabled: bool):
         self.saved = None
@@ -162,7 +185,7 @@ class Keyboard:
             if not chunk:
                 break
             out += chunk.decode("latin-1")
-        return out
+        return typed_keys(out)
 
     def close(self) -> None:
         if self.saved is not None:
@@ -248,10 +271,14 @@ def probe_touches(words, machine: Machine) -> list[tuple[int, str, int]]:
     touches = []
     for word in words or []:
         m = PROBE_AT.fullmatch(word.strip())
-        if not m or float(m.group(2)) == 0.0:
-            raise UsageError(f"--probe-at {word}: give an axis and a non-zero machine position in mm, e.g. Z-1.5")
-        axis, mm = AXES.index(m.group(1).lower()), float(m.group(2))
-        touches.append((axis, "max" if mm > 0 else "min", round(mm * machine.steps_per_mm[axis])))
+        axis = AXES.index(m.group(1).lower()) if m else 0
+        at = round(float(m.group(2)) * machine.steps_per_mm[axis]) if m else 0
+        if at == 0:
+            raise UsageError(f"--probe-at {word}: give an axis and a machine position in mm at least a step "
+                             "from 0, e.g. Z-1.5")
+        if any(axis == a for a, _, _ in touches):
+            raise UsageError(f"--probe-at {word}: {AXES[axis].upper()} given twice (one touch per axis)")
+        touches.append((axis, "max" if at > 0 else "min", at))
     return touches
 
 
@@ -302,7 +329,14 @@ def cmd_send(args) -> int:
         keyboard = Keyboard(interactive)
         run = ProgramRun(args, driver, machine, text, start, saved, keyboard, interactive)
         try:
-            run.all()
+            try:
+                run.all()
+            except UsageError:                  # an (ABORT, ...) between the pieces
+                if run.records:
+                    switch_off(driver)
+                raise
+            if run.failure:                     # a probe move that failed
+                switch_off(driver)
             try:                                # where the machine stands (POS_X/Y/Z)
                 at_end = read_position(driver)
             except LinkError:
@@ -405,8 +439,13 @@ class ProgramRun:
     def all(self) -> None:
         done, here = 0, tuple(self.start)                 # moves run so far; the machine's position
         while True:
-            self.program = program = gcode_command.interpret_program(self.text, self.machine, self.start, self.saved,
-                                                       probes=self.results)
+            try:
+                self.program = program = gcode_command.interpret_program(self.text, self.machine, self.start,
+                                                                         self.saved, probes=self.results)
+            except GcodeError as err:           # an (ABORT, ...) after a probe: what it said before, once
+                self.show(getattr(err, "messages", []), "message")
+                err.messages = []
+                raise
             whole = program
             if program.probe_pending and not self.results:
                 # the whole program once (each touch at its move's end): G-code errors before anything moves
@@ -501,6 +540,11 @@ def warn_of_stop(driver: Driver, who: str) -> None:
               "steps stopped at once, so the motors may have lost steps the position counts", file=sys.stderr)
 
 
+# ERROR codes that stop the steps at once, at speed: motion_top's fault (4) and overrun (10),
+# the e-stop, a limit switch, an abort at speed
+STOPPED_AT_ONCE = (4, 10, 16, 17, p.ERROR_ABORT_AT_SPEED)
+
+
 class NotHomed(Exception):
     """homing.required and an axis not homed: one line, exit status 1."""
 
@@ -526,7 +570,7 @@ def check_homed(driver: Driver, machine: Machine) -> None:
     homed = driver.read_register("STATUS") >> 16 & 7
     missing = [AXES[a].upper() for a in machine.homed_axes() if not homed >> a & 1]
     error = driver.read_register("ERROR") & 0xFF
-    if error in (16, 17, p.ERROR_ABORT_AT_SPEED):     # stopped at once: steps may be lost, as Grbl's alarm
+    if error in STOPPED_AT_ONCE:                 # steps may be lost, as Grbl's alarm
         raise NotHomed(f"the controller stopped on error {error} ({p.error_text(error)}): the motors may have "
                        "lost steps: run interp home (homing.required)")
     if missing:

@@ -203,6 +203,7 @@ class _Machine:
         self.probe_results: list[ProbeResult] | None = None
         self.coolant_on = False                  # M7 / M8 in force (M9 ends it)
         self.probes_made = 0
+        self.touch_assumed = False                # a probe move took its touch at its end (no machine)
         self._restore(saved or {})
         self._write_parameters()
 
@@ -329,9 +330,9 @@ class _Machine:
     # ---- one block ------------------------------------------------------------------
     def run_block(self, block: Block) -> None:
         for comment in block.comments:
-            text = comment.strip()
+            text = comment.lstrip()
             head, comma, rest = text.partition(",")
-            kind = head.strip().lower() if comma else ""
+            kind = head.lower() if comma else ""           # (LinuxCNC: "msg," etc. at the start)
             if kind == "msg":
                 self.program.messages.append(f"line {block.line}: {without_controls(rest.strip())}")
             elif kind in ("debug", "print") and (kind == "print" or self.params.get(DEBUG_FLAG) > 0.0):
@@ -339,7 +340,13 @@ class _Machine:
                 self.program.messages.append(f"line {block.line}: {without_controls(shown)}")
             elif kind == "abort":
                 shown = without_controls(substitute_parameters(rest, self.params).strip())
-                raise GcodeError(block.line, 1, "", f"(ABORT) {shown}")
+                if self.touch_assumed:          # (it may depend on a touch only the machine knows)
+                    self._warn(block.line, f"(ABORT){' ' + shown if shown else ''}: not taken, since a probe move before it "
+                                           "took its touch at the end of the move")
+                else:
+                    error = GcodeError(block.line, 1, "", f"(ABORT) {shown}".rstrip())
+                    error.messages = list(self.program.messages)      # what the program said before
+                    raise error
         words = self._sort_words(block)
         line = block.line
         if words.g.keys() & {"non-modal", "units", "tool length", "coordinate system"} or \
@@ -705,6 +712,7 @@ class _Machine:
         self._add(Line(tuple(self.position), tuple(target), feed, self._line, probe=mode))
         index, self.probes_made = self.probes_made, self.probes_made + 1
         if self.probe_results is None:
+            self.touch_assumed = True
             result = ProbeResult(True, tuple(target), tuple(target))
             self._warn(self._line, f"{name}: the probe's touch is taken at the end of the move (only the machine "
                                    "knows where it is)")

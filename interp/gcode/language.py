@@ -75,14 +75,16 @@ _COMMENT_PARAMETER = re.compile(r"#(\d+|<[^>)]*>)")
 def substitute_parameters(text: str, params: "Parameters") -> str:
     """A (DEBUG, ...), (PRINT, ...) or (ABORT, ...) comment's text with each #N and #<name>
     replaced by its value as LinuxCNC writes it (printf's %lf: 5.000000), "######" for an
-    undefined name or a number out of range; a '#' followed by neither stays."""
+    undefined name, a number out of range or a value of 30 characters or more (#0 is 0, as
+    LinuxCNC's parameter 0); a '#' followed by neither stays."""
     def value(m) -> str:
         key = m.group(1)
         try:
-            v = params.get(int(key)) if key.isdigit() else params.get(key)
+            v = (0.0 if int(key) == 0 else params.get(int(key))) if key.isdigit() else params.get(key)
         except ExpressionError:
             return "######"
-        return f"{0.0 if abs(v) < 1e-4 else v:f}"       # (LinuxCNC's equal(): |v| < 0.0001 is 0)
+        shown = f"{0.0 if abs(v) < 1e-4 else v:f}"     # (LinuxCNC's equal(): |v| < 0.0001 is 0)
+        return shown if len(shown) < 30 else "######"   # (and its 30-character buffer)
     return _COMMENT_PARAMETER.sub(value, text)
 
 

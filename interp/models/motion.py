@@ -315,12 +315,12 @@ class TimingMonitor:
 LINE, ARC_CW, ARC_CCW, CURVE, DWELL, EVENT = range(6)
 E_KIND, E_FEED, E_RANGE, E_CORE, E_QUEUE, E_SYNC, E_PLANE, E_PROFILE, E_LATE, E_OVERRUN = range(1, 11)
 ERROR_TEXT = {E_KIND: "unknown command kind", E_FEED: "feed 0", E_RANGE: "coordinate out of range",
-              E_CORE: "the core refused the command (fault: stopped until reset)", E_QUEUE: "queue overflow",
+              E_CORE: "the core refused the command (a fault: motion stopped)", E_QUEUE: "queue overflow",
               E_SYNC: "step buffer overflow", E_PLANE: "arc in plane 3",
               E_PROFILE: "bad profile (rate 0 or above 2^PF, length 0, limit below feed, block_shift below 2)",
               E_LATE: "a segment ended above its target speed (too short for the look-ahead set-up)",
               E_OVERRUN: "the steps were asked faster than the output stage makes them until the pacer "
-                         "overran (distance lost: stopped until reset)"}
+                         "overran (distance lost: motion stopped)"}
 PROFILE_FIELDS = ("limit", "exit", "rate", "cost", "length", "budget")
 FIELDS = ("x", "y", "z", "i", "j", "k", "l")
 PLANES = {0: "XY", 1: "ZX", 2: "YZ"}
