@@ -160,8 +160,8 @@ def typed_keys(text: str) -> str:
 
 
 class Keyboard:
-    """Single keys from a terminal's stdin (cbreak mode, no echo) without blocking; the
-    escape sequences of arrow and function keys dropped (typed_keys)."""
+    """Single keys from a terminal's stdin (cbreak mode, no echo) without blocking, as typed
+    (`interp jog` reads the arrow keys' escape sequences; `interp send` drops them: typed_keys)."""
 
     def __init__(self, enabled: bool):
         self.saved = None
@@ -185,7 +185,7 @@ class Keyboard:
             if not chunk:
                 break
             out += chunk.decode("latin-1")
-        return typed_keys(out)
+        return out
 
     def close(self) -> None:
         if self.saved is not None:
@@ -501,7 +501,8 @@ class ProgramRun:
         if self.override is None:               # from the settings' percent
             self.override = FeedOverride(compiled.settings.get("override", 100))
         self.outcome = run_program(self.driver, stream, len(compiled.commands), progress=self.progress,
-                                   keys=self.keyboard, on_pause=on_pause, probe=probe, override=self.override, spindle=self.spindle,
+                                   keys=lambda: typed_keys(self.keyboard()), on_pause=on_pause, probe=probe,
+                                   override=self.override, spindle=self.spindle,
                                    pause_resume=None if self.interactive else self.args.pause_seconds)
         self.records += len(compiled.commands)
         self.bytes += len(stream)
