@@ -478,21 +478,16 @@ int main(int argc, char** argv) {
             if (std::sscanf(rest.c_str(), "%31s %llu", name, &value) != 2) fail("p: want NAME VALUE");
             board.set_pin(name, value);
             std::printf("ok %" PRIu64 "\n", board.cycle());
-        } else if (op == 's') {
+        } else if (op == 's' || op == 't') {     // a limit switch, a probe touch
             int axis = 0, side = 0;
             long long at = 0;
             if (std::sscanf(rest.c_str(), "%d %d %lld", &axis, &side, &at) != 3 || axis < 0 || axis > 2 ||
                 side < 0 || side > 1)
-                fail("s: want AXIS (0..2) SIDE (0 or 1) AT");
-            board.set_switch(axis, side, at);
-            std::printf("ok %" PRIu64 "\n", board.cycle());
-        } else if (op == 't') {
-            int axis = 0, side = 0;
-            long long at = 0;
-            if (std::sscanf(rest.c_str(), "%d %d %lld", &axis, &side, &at) != 3 || axis < 0 || axis > 2 ||
-                side < 0 || side > 1)
-                fail("t: want AXIS (0..2) SIDE (0 or 1) AT");
-            board.set_touch(axis, side, at);
+                fail(std::string(1, op) + ": want AXIS (0..2) SIDE (0 or 1) AT");
+            if (op == 's')
+                board.set_switch(axis, side, at);
+            else
+                board.set_touch(axis, side, at);
             std::printf("ok %" PRIu64 "\n", board.cycle());
         } else if (op == 'q') {
             board.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count());
