@@ -17,7 +17,8 @@
 // PWM: a counter runs over `period` clocks (0 counts as 1); `pwm` is high while the
 // counter is below level * period / 65536, where level = duty x scale / 256 (the spindle
 // override, 256 = 100 %; above 65535 it counts as 65535, always high), and low while the
-// spindle is off.  One adder makes both products by shift and add, from the start of a
+// spindle is off.  The spindle pin and the PWM are registers (a clock after the state they
+// show: no glitch reaches the drive).  One adder makes both products by shift and add, from the start of a
 // period: level over 10 clocks, then the threshold over 16, 29 clocks in all (a new duty,
 // scale or period takes effect within two periods and 58 clocks).
 module machine_io #(
@@ -34,10 +35,10 @@ module machine_io #(
     input  wire [15:0]  period,         // PWM period, clocks
     input  wire [9:0]   scale,          // spindle override: the PWM's duty x scale / 256
     output reg          spindle_on,     // the program's spindle state
-    output wire         spindle_pin,    // spindle_on, low while held in laser mode
+    output reg          spindle_pin,    // spindle_on, low while held in laser mode (a clock later: a register)
     output reg          spindle_ccw,
     output reg  [15:0]  duty,           // 0 .. 65535
-    output wire         spindle_pwm,
+    output reg          spindle_pwm,    // the PWM (a register: no glitch at the pin)
     output reg          mist,
     output reg          flood,
     output reg  [3:0]   dout,
@@ -160,7 +161,17 @@ module machine_io #(
         end
     end
 
-    assign spindle_pin = spindle_on & ~(laser & held);
-    assign spindle_pwm = spindle_pin & (full || counter < threshold);
+    // the pins from registers, a clock after the state they show: a comparator's or a gate's
+    // glitch never reaches the spindle drive or the laser
+    wire beam = spindle_on & ~(laser & held);
+    always @(posedge clk) begin
+        if (rst) begin
+            spindle_pin <= 1'b0;
+            spindle_pwm <= 1'b0;
+        end else begin
+            spindle_pin <= beam;
+            spindle_pwm <= beam & (full || counter < threshold);
+        end
+    end
 endmodule
 `default_nettype wire

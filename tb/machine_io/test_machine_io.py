@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """machine_io: every event code against a model of the outputs (spindle on / ccw / duty,
-mist, flood, dout, pause, laser mode and the spindle pin it gates while `held`), seeded
+mist, flood, dout, pause, laser mode and the spindle pin it gates while `held`, a register a
+clock after the state), seeded
 random event sequences with values out of range; `off`;
 the PWM duty measured over whole periods for several (duty, period) pairs, periods below
 the multiplier's 29 clocks and 0 included: high for exactly floor(duty * period / 65536)
@@ -70,6 +71,8 @@ async def events(dut):
         off = rng.random() < 0.05
         tb.drive({**IDLE, "event_valid": 1, "event_code": code, "event_value": value & ((1 << w) - 1), "off": int(off)})
         await FallingEdge(dut.clk)
+        # the pin is a register: at the event's edge it took the spindle state before the event
+        assert int(dut.spindle_pin.value) == model.on, f"event {n}: the spindle pin is not a clock behind"
         pause = int(dut.pause.value)
         if off:
             model.off()
