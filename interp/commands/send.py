@@ -626,7 +626,7 @@ def add_parser(sub) -> None:
     p_.add_argument("--line-noise", type=float, metavar="P", help="--sim: bit-flip probability per bit, both ways")
     p_.add_argument("--probe-at", action="append", metavar="AXIS_MM",
                     help="--sim: where the simulated probe touches, e.g. Z-1.5: machine mm (the simulated machine "
-                         "powers up at 0), reached at or beyond it as seen from 0; again for more touches (any counts)")
+                         "powers up at 0), reached at or beyond it as seen from 0; again for another axis (any counts)")
     p_.add_argument("--pause-seconds", type=float, default=0.0, metavar="S",
                     help="a program pause (M0, M1, M6, M60) ends after S seconds when no terminal is attached to "
                          "resume it with ~ (default 0)")

@@ -341,8 +341,9 @@ class _Machine:
             elif kind == "abort":
                 shown = without_controls(substitute_parameters(rest, self.params).strip())
                 if self.touch_assumed:          # (it may depend on a touch only the machine knows)
-                    self._warn(block.line, f"(ABORT){' ' + shown if shown else ''}: not taken, since a probe move before it "
-                                           "took its touch at the end of the move")
+                    said = f"(ABORT) {shown}".rstrip()
+                    self._warn(block.line, f"{said}: not taken, since a probe move before it took its touch at "
+                                           "the end of the move")
                 else:
                     error = GcodeError(block.line, 1, "", f"(ABORT) {shown}".rstrip())
                     error.messages = list(self.program.messages)      # what the program said before

@@ -17,9 +17,9 @@ with the same sequence number.
 from __future__ import annotations
 
 import time
-from typing import ClassVar
 from collections import deque
 from dataclasses import dataclass, field
+from typing import ClassVar
 
 from . import protocol as p
 from ..models.speed_ramp import BLOCK_SHIFT_MIN
