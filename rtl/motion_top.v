@@ -24,8 +24,9 @@
 // at run time 4 a core refused its command (FAULT until rst: queues flushed, speed block
 // stopped), 6 step buffer overflow (a monitor), 9 `late` (a segment ended above its
 // target speed), 10 the step pacer overran (steps asked faster than the output stage
-// makes them for so long that its phase saturated: distance lost; FAULT until rst).  A DWELL or EVENT waits while `hold` is high.  `hold` decelerates the path to speed 0 (`stopped`, once the S-curve
-// filter is empty too) and resumes on release; no step is lost.  `still`: no speed in the
+// makes them for so long that its phase saturated: distance lost; FAULT until rst).
+// A DWELL or EVENT waits while `hold` is high.  `hold` decelerates the path to speed 0
+// (`stopped`, once the S-curve filter is empty too) and resumes on release; no step is lost.  `still`: no speed in the
 // ramp or the filter, so no step comes (a stop now loses nothing).  pos_x/y/z count the pulses at the drive (rising edges of
 // step_*).
 module motion_top #(
