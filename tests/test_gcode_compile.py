@@ -388,7 +388,10 @@ def test_command_limit(monkeypatch):
 def test_corrections_in_random_chains():
     # chains of lines and arcs (ends off their circles within LinuxCNC's tolerance, some of them
     # sharing the centre before, some in another plane): every arc about its centre rounded
-    # once (nothing drifts), every move starting near its programmed start, the end exact
+    # once (nothing drifts), every move starting near its programmed start, the end exact.
+    # "Near": an arc that takes a correction in runs through the start it was given, up to
+    # TAKE_IN_STEPS off its circle, so its end may be that far off as well as its own end's
+    # offset from its circle (three arcs about one centre, each ending further out)
     rng, seed = seeded_random()
     taken_in = 0
     for n in range(150):
@@ -433,7 +436,7 @@ def test_corrections_in_random_chains():
                 assert abs(math.hypot(c.i, c.j) - 100 * r) <= TAKE_IN_STEPS, (seed, n, c.source)
         for line, start in first.items():
             gap = max(abs(a - b) for a, b in zip(start, steps_of(moves[line - 1].start)))
-            assert gap <= 100 * slack + 3, (seed, n, line, gap)
+            assert gap <= 100 * slack + TAKE_IN_STEPS + 3, (seed, n, line, gap)
             taken_in += gap > 0
     assert taken_in > 20            # the test does exercise moves that take a correction in
 
