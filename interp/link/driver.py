@@ -102,6 +102,14 @@ class FeedOverride:
             return self.SETS[key]
         return min(OVERRIDE_MAX, max(OVERRIDE_MIN, self.percent + self.STEPS.get(key, 0)))
 
+    def press(self, key: str) -> bool:
+        """Take `key`: True if it changed the percent (which is then `set`)."""
+        percent = self.after(key)
+        if percent == self.percent:
+            return False
+        self.percent, self.set = percent, True
+        return True
+
 
 @dataclass
 class SpindleOverride(FeedOverride):
@@ -673,16 +681,14 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
                     hold_write = control(p.CONTROL_HOLD)
                     stopping = driver.clock()
                 elif spindle is not None and spindle.takes(key):
-                    if spindle.after(key) != spindle.percent:
-                        spindle.percent, spindle.set = spindle.after(key), True
+                    if spindle.press(key):
                         snap.spindle = spindle.percent
                         driver.queue_write("SPINDLE_OVERRIDE", spindle_scale(spindle.percent))
                 elif key in OVERRIDE_STEPS or key in OVERRIDE_SETS:
-                    if override is not None and override.after(key) != override.percent:
-                        override.percent, override.set = override.after(key), True
-                        if not probe:           # (a probe move: the next run writes it)
-                            snap.override = override.percent
-                            driver.queue_write("OVERRIDE", override.percent)
+                    # (in a probe move the percent is kept for the next run, which writes it)
+                    if override is not None and override.press(key) and not probe:
+                        snap.override = override.percent
+                        driver.queue_write("OVERRIDE", override.percent)
                 elif key == "\x18" and not aborted:
                     control(p.CONTROL_ABORT)       # a second Ctrl-X: at once
                     aborted = True
