@@ -1,9 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
-"""G38.2 / G38.3 probing: the interpreter's probe moves and their results (interpret's probes),
+"""G38.2 .. G38.5 probing: the interpreter's probe moves and their results (interpret's probes),
 `interp gcode` (the touch taken at the end of the move) and `interp send` against the Python
 model of the controller with a touch plate: the program runs in pieces, the probe move holds
-at the touch, and what follows is interpreted from where the machine stopped (a Z touch-off:
-G38.2, then G10 L20 sets the work zero)."""
+at the touch (G38.4 / G38.5: where the probe loses contact), and what follows is interpreted
+from where the machine stopped (a Z touch-off: G38.2, then G10 L20 sets the work zero)."""
 from __future__ import annotations
 
 import pytest
@@ -71,7 +71,8 @@ def test_without_a_machine_the_touch_is_at_the_end_of_the_move():
 
 
 @pytest.mark.parametrize("text, message", [
-    ("G38.4 Z-1 F50\n", "G38.4: probing away from the work (G38.4, G38.5) is not supported"),
+    ("G38.4 Z-1\n", "feed move without a feed rate"),
+    ("G38.5 Z0 F50\n", "the probe move has no length"),
     ("G38.2 Z-1\n", "feed move without a feed rate"),
     ("G38.2 Z0 F50\n", "the probe move has no length"),
     ("G38.2 @1 F50\n", "polar coordinates cannot be used with G38.2"),
@@ -80,6 +81,21 @@ def test_probe_moves_refused(text, message):
     with pytest.raises(GcodeError) as info:
         interpret(text)
     assert message in str(info.value)
+
+
+def test_probing_away_from_the_work():
+    """G38.4 / G38.5: #5070 = 1 where the probe lost contact, #5061..#5063 that position; a
+    G38.4 that keeps contact to its end is an error, a G38.5 sets #5070 = 0 and goes on."""
+    text = "G21 G90\nG38.4 Z5 F50\nG0 X#5063 Y#5070\n"
+    program = interpret(text, probes=[ProbeResult(True, (0.0, 0.0, 0.5), (0.0, 0.0, 0.53))])
+    assert program.moves[0] == Line((0.0, 0.0, 0.0), (0.0, 0.0, 5.0), 50.0, 2, probe=384)
+    assert program.moves[-1].end == (0.5, 1.0, 0.53)
+    with pytest.raises(GcodeError, match="line 2, column 1: G38.4: the probe did not lose contact before the end"):
+        interpret(text, probes=[ProbeResult(False, (0.0, 0.0, 5.0), (0.0, 0.0, 5.0))])
+    program = interpret(text.replace("G38.4", "G38.5"), probes=[ProbeResult(False, (0.0, 0.0, 5.0), (0.0, 0.0, 5.0))])
+    assert program.moves[0].probe == 385 and program.moves[-1].end == (5.0, 0.0, 5.0)
+    assert interpret(text).warnings == ["line 2: G38.4: the probe's loss of contact is taken at the end of the "
+                                        "move (only the machine knows where it is)"]
 
 
 def test_a_g382_result_without_a_touch_is_an_error():
@@ -120,6 +136,46 @@ def test_no_touch_goes_on_for_g383(capsys, tmp_path, monkeypatch):
     code, out, err = send_program(capsys, tmp_path, monkeypatch, device, "G21 G90\nG38.3 Z-10 F50\no1 if [#5070 EQ 0]\nG0 X1\no1 else\nG0 X2\no1 endif\nM2\n")
     assert code == 0, err
     assert device.position == [100, 0, -1000]
+
+
+BACK_OFF = "G21 G90\nG38.2 Z-10 F50\nG91 G38.4 Z2 F25\n(debug, lost at #5063)\nG90 G0 Z0\nM2\n"
+
+
+def test_backing_off_the_plate(capsys, tmp_path, monkeypatch):
+    """G38.2 touches the plate at Z-3.2 and stops 3 steps below; G38.4 backs up until the probe
+    loses contact one step above the touch (the controller's probe inverted for the move,
+    then as before), stopping 3 steps further."""
+    device = DeviceModel(probe=(2, "min", -320))
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, BACK_OFF)
+    assert code == 0, err
+    assert linear_moves(device) == [(0, 0, -1000), (0, 0, 200), (0, 0, 316)]
+    assert device.probe_position == [0, 0, -319] and device.position == [0, 0, 0]
+    assert "interp: message: line 4: lost at -3.190000" in err.splitlines()
+    inverts = [value for name, value in device.writes if name == "INPUT_INVERT"]
+    assert inverts == [p.PROBE_INPUT, 0] and device.regs["INPUT_INVERT"] == 0
+
+
+@pytest.mark.parametrize("code, expected", [
+    ("G38.4", "interp: error: line 3: G38.4: the probe did not lose contact before the end of the move"),
+    ("G38.5", ""),
+])
+def test_a_probe_that_keeps_contact(capsys, tmp_path, monkeypatch, code, expected):
+    """A back-off shorter than the overshoot past the touch (3 steps): G38.4 stops the program,
+    G38.5 goes on with #5070 = 0; the probe's polarity is restored either way."""
+    device = DeviceModel(probe=(2, "min", -100))
+    text = f"G21 G90\nG38.2 Z-10 F50\nG91 {code} Z0.02 F25\no1 if [#5070 EQ 0]\nG0 X1\no1 endif\nM2\n"
+    status, out, err = send_program(capsys, tmp_path, monkeypatch, device, text)
+    assert (status, err.strip()) == ((1, expected) if expected else (0, ""))
+    assert linear_moves(device)[1:] == [(0, 0, 2)] + ([] if expected else [(100, 0, 0)])
+    assert device.regs["INPUT_INVERT"] == 0
+
+
+def test_probing_away_needs_a_touch(capsys, tmp_path, monkeypatch):
+    device = DeviceModel(probe=(2, "min", -320))
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, "G21 G90\nG0 X1\nG38.5 Z5 F50\n")
+    assert code == 1 and err.strip() == ("interp: error: line 3: G38.5: the probe does not touch before the move "
+                                         "(it backs away from a touch)")
+    assert linear_moves(device) == [(100, 0, 0)] and device.regs["INPUT_INVERT"] == 0
 
 
 def test_a_probe_touching_before_the_move(capsys, tmp_path, monkeypatch):

@@ -286,7 +286,9 @@ def test_home_sim(files, tmp_path, capsys):
 
 PROBE = """G21 G90
 G38.2 Z-5 F300
-G91 G0 Z1
+G91 G38.4 Z1 F300
+(debug, lost at #5063)
+G0 Z1
 G90 G38.3 X-3 F600
 M2
 """
@@ -298,16 +300,19 @@ def end_steps(out: str) -> tuple[int, int, int]:
 
 def test_probe_on_the_sim(files, capsys):
     """`interp send --sim --probe-at Z-1.5`: the simulated probe touches at machine Z -1.5 mm
-    (150 steps), the G38.2 move holds there and stops a few steps past the touch, the next
-    move starts from where it stopped; the G38.3 finds no touch on X and runs to its end.  A
-    plate below the G38.2 move's end: one line, exit status 1.  No touch given: refused."""
+    (150 steps), the G38.2 move holds there and stops a few steps past the touch; the G38.4
+    backs up from there until the probe loses contact (PROBE_Z at 149 steps) and stops a few
+    steps further, the next move starts from where it stopped; the G38.3 finds no touch on X
+    and runs to its end.  A plate below the G38.2 move's end: one line, exit status 1.  No
+    touch given: refused."""
     program = files / "probe.nc"
     program.write_text(PROBE)
     machine = str(files / "machine.toml")
     assert main(["send", str(program), "--sim", "--machine", machine, "--probe-at", "Z-1.5"]) == 0
     out, err = capsys.readouterr()
     x, y, z = end_steps(out)
-    assert (x, y) == (-300, 0) and -150 + 100 - 5 <= z < -150 + 100, out
+    assert (x, y) == (-300, 0) and -149 + 100 < z <= -149 + 100 + 5, out
+    assert "interp: message: line 4: lost at -1.490000" in err.splitlines(), err
     assert main(["send", str(program), "--sim", "--machine", machine, "--probe-at", "Z-6"]) == 1
     out, err = capsys.readouterr()
     assert err.strip().splitlines()[-1] == ("interp: error: line 2: G38.2: the probe did not touch before the end "

@@ -29,6 +29,7 @@ from ..gcode.parameter_file import check_lengths, check_writable, describe, writ
 from ..link import protocol as p
 from ..gcode.compile import compile_program
 from ..gcode.errors import GcodeError
+from ..gcode.interpreter import PROBE_AWAY, PROBE_FAIL
 from ..gcode.moves import ProbeResult
 from ..link.driver import (Driver, FeedOverride, LinkError, MachineError, MismatchError, SpindleOverride,
                            apply_pin_settings, check_controller, check_idle, configure, read_position, run_program,
@@ -399,7 +400,7 @@ def cmd_send(args) -> int:
 class ProgramRun:
     """A program on the controller: compiled and run in pieces where it probes.
 
-    Without a probe move (G38.2, G38.3) the whole program is one piece, compiled as
+    Without a probe move (G38.2 .. G38.5) the whole program is one piece, compiled as
     `interp gcode` compiles it.  A probe move is a piece of its own, run with the probe armed
     to stop the machine at the touch; the program is then interpreted again with what the
     probe did (interpret's probes: the touch and where the machine stopped), and the moves
@@ -512,18 +513,29 @@ class ProgramRun:
     def probe_piece(self, program, move, here) -> bool:
         """Run a probe move; its ProbeResult joins self.results.  False: stop the program."""
         name = f"line {move.line}: G38.{move.probe - 380}"
-        if self.driver.read_register("INPUTS") >> 4 & 1:
-            self.failure = f"{name}: the probe touches already before the move"
+        away = move.probe in PROBE_AWAY
+        touching = bool(self.driver.read_register("INPUTS") & p.PROBE_INPUT)
+        if touching != away:
+            self.failure = (f"{name}: the probe does not touch before the move (it backs away from a touch)"
+                            if away else f"{name}: the probe touches already before the move")
             return False
-        ended = self.piece(program, [move], here, last=False, probe=True)
+        invert = self.driver.read_register("INPUT_INVERT")
+        if away:                                # the probe trips where it loses contact
+            self.driver.write_register("INPUT_INVERT", invert ^ p.PROBE_INPUT)
+        try:
+            ended = self.piece(program, [move], here, last=False, probe=True)
+        finally:
+            if away:                            # (probe_stop off first: a probe still armed trips
+                self.driver.write_register("CONTROL", p.CONTROL_ENABLE)     # when its polarity is back)
+                self.driver.write_register("INPUT_INVERT", invert)
         self.driver.write_register("CONTROL", p.CONTROL_ENABLE)       # probe_stop off
         if not ended:
             return False
         touched = self.outcome.status == "probed"
         stop = read_position(self.driver)
         trip = tuple(signed32(self.driver.read_register(f"PROBE_{a}")) for a in "XYZ") if touched else stop
-        if not touched and move.probe == 382:
-            self.failure = f"{name}: the probe did not touch before the end of the move"
+        if not touched and move.probe in PROBE_FAIL:
+            self.failure = f"{name}: {PROBE_FAIL[move.probe]}"
             return False
         # in mm as the interpreter's start is (the next piece is compiled from `stop` in steps)
         result = ProbeResult(touched, gc.start_mm(self.machine, trip), gc.start_mm(self.machine, stop))

@@ -51,7 +51,7 @@ PLANE_CODE = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
 # G codes in tenths (G59.1 -> 591) -> modal group
 G_GROUPS: dict[int, str] = {}
 for _codes, _group in (
-        ((0, 10, 20, 30, 382, 383, 800, 730, 810, 820, 830, 850, 890), "motion"),
+        ((0, 10, 20, 30, 382, 383, 384, 385, 800, 730, 810, 820, 830, 850, 890), "motion"),
         ((40, 100, 280, 281, 300, 301, 530, 920, 921, 922, 923), "non-modal"),
         ((170, 180, 190), "plane"), ((900, 910), "distance"), ((901, 911), "arc distance"),
         ((930, 940), "feed mode"), ((200, 210), "units"), ((400,), "cutter compensation"),
@@ -74,8 +74,6 @@ G_REFUSED = {
     70: "lathe diameter mode is not supported",
     330: "spindle-synchronized motion is not supported",
     331: "rigid tapping is not supported",
-    384: "probing away from the work (G38.4, G38.5) is not supported",
-    385: "probing away from the work (G38.4, G38.5) is not supported",
     740: "tapping cycles need a spindle encoder: not supported",
     840: "tapping cycles need a spindle encoder: not supported",
     760: "threading cycles are not supported",
@@ -98,6 +96,10 @@ for _codes, _group in (((0, 1, 2, 30, 60), "stopping"), ((3, 4, 5), "spindle"),
     for _code in _codes:
         M_GROUPS[_code] = _group
 
+PROBE_CODES = {382: "G38.2", 383: "G38.3", 384: "G38.4", 385: "G38.5"}
+PROBE_AWAY = (384, 385)           # the probe trips where it loses contact
+PROBE_FAIL = {382: "the probe did not touch before the end of the move",
+              384: "the probe did not lose contact before the end of the move"}
 MOTION_NAMES = {0: "G0", 10: "G1", 20: "G2", 30: "G3", 800: "G80", 730: "G73", 810: "G81",
                 820: "G82", 830: "G83", 850: "G85", 890: "G89"}
 CYCLE_CODES = {730: 73, 810: 81, 820: 82, 830: 83, 850: 85, 890: 89}
@@ -117,7 +119,7 @@ def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0
     an earlier program left (parameter_file.py: offsets, G92, coordinate system, G28 /
     G30 positions in machine mm; they override g28 and g30).  The program's own end
     values are `Program.saved` (M2 / M30: G54 selected).  probes: what the program's probe
-    moves (G38.2, G38.3) did on the machine, in order; the interpretation stops after the first
+    moves (G38.2 .. G38.5) did on the machine, in order; the interpretation stops after the first
     probe move beyond them (`Program.probe_pending`).  None: no machine (`interp gcode`), each
     probe move touches at its end.  Raises GcodeError for anything it cannot run.
     """
@@ -514,7 +516,7 @@ class _Machine:
                 self._straight(words, new_mode, g53, inverse_f)
             elif new_mode in (20, 30):
                 self._arc(words, new_mode, motion, inverse_f)
-            elif new_mode in (382, 383):
+            elif new_mode in PROBE_CODES:
                 self._probe(words, new_mode, inverse_f)
             else:
                 self._cycle(words, new_mode, motion)
@@ -698,8 +700,10 @@ class _Machine:
 
     def _probe(self, words: _Words, mode: int, inverse_f: float | None) -> None:
         """G38.2 / G38.3: a feed move towards the target that stops where the probe touches;
-        #5070 = 1 if it touched, #5061..#5063 = the touch (work coordinates, program units)."""
-        name, word = ("G38.2" if mode == 382 else "G38.3"), self._motion_word(words)
+        G38.4 / G38.5: one away from the work that stops where the probe loses contact.
+        #5070 = 1 if the probe tripped (touched, or lost contact), #5061..#5063 = where
+        (work coordinates, program units).  G38.2 and G38.4 fail without the trip."""
+        name, word = PROBE_CODES[mode], self._motion_word(words)
         if words.has("@") or words.has("^"):
             self._fail(words.word("@" if words.has("@") else "^"), f"polar coordinates cannot be used with {name}")
         target = self._target(words)
@@ -715,12 +719,13 @@ class _Machine:
         if self.probe_results is None:
             self.touch_assumed = True
             result = ProbeResult(True, tuple(target), tuple(target))
-            self._warn(self._line, f"{name}: the probe's touch is taken at the end of the move (only the machine "
+            trip = "loss of contact" if mode in PROBE_AWAY else "touch"
+            self._warn(self._line, f"{name}: the probe's {trip} is taken at the end of the move (only the machine "
                                    "knows where it is)")
         elif index < len(self.probe_results):
             result = self.probe_results[index]
-            if not result.touched and mode == 382:
-                self._fail(word, "the probe did not touch before the end of the move")
+            if not result.touched and mode in PROBE_FAIL:
+                self._fail(word, PROBE_FAIL[mode])
         else:
             self.program.probe_pending = True
             return

@@ -24,13 +24,14 @@ class Line:
     end: Point
     feed: float | None          # mm/min; None = rapid
     line: int
-    probe: int = 0              # 382 / 383: a G38.2 / G38.3 probe move (stops at the probe's touch)
+    probe: int = 0              # 382 .. 385: a G38.2 .. G38.5 probe move (stops where the probe trips)
 
 
 @dataclass(frozen=True)
 class ProbeResult:
-    """What a probe move did on the machine: touched, where (the probe's latch) and where the
-    machine came to rest (machine mm)."""
+    """What a probe move did on the machine: touched (the probe tripped: it touched, or for
+    G38.4 / G38.5 lost contact), where (the probe's latch) and where the machine came to rest
+    (machine mm)."""
     touched: bool
     trip: Point
     stop: Point

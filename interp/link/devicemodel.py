@@ -373,6 +373,19 @@ class DeviceModel:
         axis, side, at = self.probe
         return self.position[axis] <= at if side == "min" else self.position[axis] >= at
 
+    def probe_edge(self) -> tuple[int, str, int] | None:
+        """The probe's active region as (axis, side, at): its touch, or with INPUT_INVERT's
+        probe bit (G38.4, G38.5) the positions where it has lost contact (the model's probe
+        closes its pin at the touch)."""
+        if self.probe is None or not self.regs["INPUT_INVERT"] & p.PROBE_INPUT:
+            return self.probe
+        axis, side, at = self.probe
+        return (axis, "max", at + 1) if side == "min" else (axis, "min", at - 1)
+
+    def probe_active(self) -> bool:
+        """INPUTS.probe: the touch, inverted by INPUT_INVERT's probe bit."""
+        return self.probe_touching() != bool(self.regs["INPUT_INVERT"] & p.PROBE_INPUT)
+
     def _reach(self, delta, axis: int, side: str, at: int, active: bool):
         """The fraction of the line at which it reaches `at` on `axis` from outside, or None."""
         toward = delta[axis] < 0 if side == "min" else delta[axis] > 0
@@ -389,12 +402,12 @@ class DeviceModel:
             fraction = self._reach(delta, axis, side, at, self.switch_active(axis))
             if fraction is not None:
                 first = min(first or (2.0, 0), (fraction, axis))
-        touch = None if not self.probe_armed or self.probe is None else \
-            self._reach(delta, *self.probe, self.probe_touching())
+        edge = self.probe_edge()
+        touch = None if not self.probe_armed or edge is None else self._reach(delta, *edge, self.probe_active())
         if touch is not None and (first is None or touch < first[0]):
-            axis = self.probe[0]
+            axis = edge[0]
             at = [p + round(d * touch) for p, d in zip(self.position, delta)]
-            at[axis] = self.probe[2]
+            at[axis] = edge[2]
             self.probe_position, self.probe_valid, self.probe_armed = at, True, False
             if self.probe_stop:                     # held just past the touch: the rest waits for an abort
                 past = list(at)
@@ -430,7 +443,7 @@ class DeviceModel:
             a["POS_X"]: self.position[0] & 0xFFFFFFFF, a["POS_Y"]: self.position[1] & 0xFFFFFFFF,
             a["POS_Z"]: self.position[2] & 0xFFFFFFFF,
             a["INPUTS"]: (sum(int(self.switch_active(axis)) << (1 + axis) for axis in range(3))
-                          | int(self.probe_touching()) << 4),
+                          | int(self.probe_active()) << 4),
             a["PROBE_X"]: self.probe_position[0] & 0xFFFFFFFF, a["PROBE_Y"]: self.probe_position[1] & 0xFFFFFFFF,
             a["PROBE_Z"]: self.probe_position[2] & 0xFFFFFFFF,
             a["CONTROL"]: (int(self.hold) | int(self.enabled) << 4 | int(self.fill) << 5

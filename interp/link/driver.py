@@ -615,8 +615,8 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     (the whole program, or all but LMAX bytes of the queue's room) and cleared by a
     WRITE sequenced after them, so motion_top starts as from a reset with its records
     there: the steps come at the cycles `interp gcode` gives while the link keeps up.
-    probe (a G38.2 / G38.3 move): the probe is armed with CONTROL.probe_stop, so its touch
-    holds the machine; at rest the rest of the move is aborted and the Outcome is "probed"
+    probe (a G38.2 .. G38.5 move): the probe is armed with CONTROL.probe_stop, so its touch
+    (its loss of contact, with the probe inverted by the caller) holds the machine; at rest the rest of the move is aborted and the Outcome is "probed"
     (PROBE_X/Y/Z: the touch; POS_X/Y/Z: where the machine stopped)."""
     start = driver.clock()
     # a stale partial record or a latched error of an earlier run: flush and clear

@@ -200,6 +200,8 @@ CONTROL_HOLD, CONTROL_ABORT, CONTROL_CLEAR, CONTROL_PROBE_ARM, CONTROL_ENABLE, C
     1 << _registers.FIELDS[f"CONTROL.{name}"][0]
     for name in ("hold", "abort", "clear", "probe_arm", "enable", "fill", "probe_stop"))
 STATUS_PROBE_VALID = 1 << _registers.FIELDS["STATUS.probe_valid"][0]
+PROBE_INPUT = 1 << _registers.FIELDS["INPUTS.probe"][0]     # INPUTS' and INPUT_INVERT's probe bit
+assert PROBE_INPUT == 1 << _registers.FIELDS["INPUT_INVERT.probe"][0]
 
 
 # the pin setting registers (the machine file's polarity, input filter, spindle PWM period):
