@@ -71,7 +71,7 @@ def fake_harness(commands_path, sim, *, steps_path, timing, max_cycles, progress
 
 @pytest.fixture
 def fakes(monkeypatch):
-    monkeypatch.setattr(gcode, "interpret_program", lambda text, machine, start_steps=(0, 0, 0), saved=None: PROGRAM)
+    monkeypatch.setattr(gcode, "interpret_program", lambda text, machine, start_steps=(0, 0, 0), saved=None, program=None: PROGRAM)
     monkeypatch.setattr(gcode, "run_simulation", fake_harness)
     return monkeypatch
 
@@ -289,7 +289,7 @@ def test_soft_limit_error_one_line(fakes, nc, capsys):
 def test_bad_bytes_reach_the_interpreter_as_surrogates(monkeypatch, tmp_path, capsys):
     seen = {}
 
-    def interpret(text, machine, start_steps=(0, 0, 0), saved=None):
+    def interpret(text, machine, start_steps=(0, 0, 0), saved=None, program=None):
         seen["text"] = text
         return Program()
 
@@ -408,7 +408,7 @@ def test_hold_lines_follow_the_steps_csv():
 def test_empty_program_no_numpy_warning(fakes, nc, tmp_path, capsys):
     import warnings
 
-    fakes.setattr(gcode, "interpret_program", lambda text, machine, start_steps=(0, 0, 0), saved=None: Program(
+    fakes.setattr(gcode, "interpret_program", lambda text, machine, start_steps=(0, 0, 0), saved=None, program=None: Program(
         moves=[], warnings=[], end_work=(0.0, 0.0, 0.0), units="mm", end_machine=(0.0, 0.0, 0.0)))
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -470,3 +470,28 @@ def test_a_program_too_large_is_one_line(monkeypatch, tmp_path, capsys):
     program = tmp_path / "big.nc"
     program.write_text("G0 X1\n" * 20)
     one_line_error(capsys, 2, ["gcode", str(program), "--check"], f"{program}: a program of more than 0 MiB")
+
+
+def test_subroutine_files(tmp_path, capsys):
+    """`interp gcode` finds o<name> call's name.ngc in the program's folder, then in the
+    machine file's gcode.subroutine_path (relative to the machine file); standard input's
+    program looks in the current folder first."""
+    (tmp_path / "jobs").mkdir()
+    (tmp_path / "macros").mkdir()
+    (tmp_path / "jobs" / "part.nc").write_text("G21 G90\no<square> call [4]\no<mark> call\nM2\n")
+    (tmp_path / "jobs" / "square.ngc").write_text("o<square> sub\nG1 X#1 F600\nG1 Y#1\n(debug, side #1)\n"
+                                                   "o<square> endsub\n")
+    (tmp_path / "macros" / "mark.ngc").write_text("o<mark> sub\nG0 Z1\no<mark> endsub\n")
+    machine = tmp_path / "m.toml"
+    machine.write_text('[gcode]\nsubroutine_path = ["macros"]\n')
+    part = str(tmp_path / "jobs" / "part.nc")
+    assert main(["gcode", part, "--check", "--machine", str(machine)]) == 0
+    out, err = capsys.readouterr()
+    assert "3 moves" in out and err.splitlines() == ["interp: message: line 2: side 4.000000"], (out, err)
+    assert main(["gcode", part, "--check"]) == 2
+    assert capsys.readouterr().err.strip() == ("interp: error: line 3, column 1: o<mark> call: o<mark> is not "
+                                               "defined: no 'o<mark> sub' in the program and no mark.ngc in the "
+                                               "subroutine folders")
+    machine.write_text('[gcode]\nsubroutine_path = "macros"\n')
+    assert main(["gcode", part, "--check", "--machine", str(machine)]) == 2
+    assert "gcode.subroutine_path must be a list of folder names (got 'macros')" in capsys.readouterr().err

@@ -646,3 +646,26 @@ def test_corpus_program(name):
     for move in program.moves:
         if isinstance(move, Line) and move.feed is not None or isinstance(move, Arc):
             assert move.feed > 0
+
+
+# ---------------- subroutine files ----------------
+
+def test_subroutine_files_from_folders(tmp_path):
+    """o<name> call finds name.ngc in the first folder that has it; its moves carry the
+    program's line of the call, and an error the interpreter finds in it names the file and
+    its line, after the call's line."""
+    first, second = tmp_path / "a", tmp_path / "b"
+    first.mkdir(), second.mkdir()
+    (first / "drill.ngc").write_text("o<drill> sub\nG0 X#1\nG1 Z-1 F100\nG0 Z0\no<drill> endsub\n")
+    (second / "drill.ngc").write_text("o<drill> sub\nG0 Y#1\no<drill> endsub\n")
+    (second / "arc.ngc").write_text("o<arc> sub\nG1 X1 F100\nG2 X3 R0.1\no<arc> endsub\n")
+    program = interpret("G21 G90\no<drill> call [5]\nG0 X0\n", folders=[first, second])
+    assert [(m.line, m.end) for m in program.moves] == [(2, (5.0, 0.0, 0.0)), (2, (5.0, 0.0, -1.0)),
+                                                        (2, (5.0, 0.0, 0.0)), (3, (0.0, 0.0, 0.0))]
+    assert interpret("G21 G90\no<drill> call [5]\n", folders=[second]).moves[0].end == (0.0, 5.0, 0.0)
+    with pytest.raises(GcodeError) as info:
+        interpret("G21 G90\n\no<arc> call\n", folders=[first, second])
+    assert str(info.value) == (f"line 3: {second / 'arc.ngc'}: line 3, column 7: R0.1: the radius is too small to "
+                               "reach the end point (half the chord is 1.0000)")
+    with pytest.raises(GcodeError, match="no arc.ngc in the subroutine folders"):
+        interpret("o<arc> call\n", folders=[first])

@@ -280,6 +280,50 @@ X#<_value>
     assert values(text) == [720]
 
 
+def test_subroutine_files():
+    """o<name> call of a subroutine the program lacks reads name.ngc once (LinuxCNC's
+    single-file subroutines): its blocks carry the call's line and their own, a file may call
+    another, its other subroutines are defined from then on, its lines outside them do not
+    run, and the program's own definition comes first."""
+    files = {"square": "(side #1)\no<square> sub\nX#1\no<side> call [#1]\no<square> endsub\nM2\n",
+             "side": "o<side> sub\nY#1\no<side> endsub\no<other> sub\nZ#1\no<other> endsub\n",
+             "own": "o<own> sub\nX666\no<own> endsub\n"}
+    asked = []
+
+    def find(name):
+        asked.append(name)
+        return (f"{name}.ngc", files[name]) if name in files else None
+    text = "G0\no<square> call [2]\no<square> call [3]\no<other> call [4]\no<own> call\n" \
+           "o<own> sub\nX5\no<own> endsub\n"
+    got = list(iterate_blocks(text, Parameters(), find))
+    assert [(b.line, b.file, b.file_line, [(w.letter, w.value) for w in b.words]) for b in got] == [
+        (1, "", 1, [("G", 0)]),
+        (2, "square.ngc", 3, [("X", 2)]), (2, "side.ngc", 2, [("Y", 2)]),
+        (3, "square.ngc", 3, [("X", 3)]), (3, "side.ngc", 2, [("Y", 3)]),
+        (4, "side.ngc", 5, [("Z", 4)]), (5, "", 7, [("X", 5)])]
+    assert asked == ["square", "side"]
+
+
+@pytest.mark.parametrize("files, message", [
+    ({}, "line 1, column 1: o<sq> call: o<sq> is not defined: no 'o<sq> sub' in the program and no sq.ngc in "
+         "the subroutine folders"),
+    ({"sq": "o<other> sub\no<other> endsub\n"}, "line 1, column 1: o<sq> call: o<sq> is not defined: sq.ngc has "
+                                                "no 'o<sq> sub'"),
+    ({"sq": "G0\no<sq> sub\nX[1/0]\no<sq> endsub\n"}, "line 1: sq.ngc: line 3, column 1: X[1/0]: division by zero"),
+    ({"sq": "o<sq> sub\nX1\n"}, "line 1: sq.ngc: line 1, column 1: o<sq> sub: sub without endsub"),
+    ({"sq": "o<sq> sub\no<in> call\no<sq> endsub\n", "in": "o<in> sub\nG0 X1 X2 Y\no<in> endsub\n"},
+     "line 1: in.ngc: line 2, column 10: Y: "),
+])
+def test_errors_in_subroutine_files(files, message):
+    """An error in a subroutine file names the program's line of the call, the file, and the
+    line and column in it."""
+    def find(name):
+        return (f"{name}.ngc", files[name]) if name in files else None
+    with pytest.raises(GcodeError) as info:
+        list(iterate_blocks("o<sq> call\n", Parameters(), find))
+    assert str(info.value).startswith(message), str(info.value)
+
+
 def test_while_do_repeat_break_continue():
     text = """
 #1 = 0

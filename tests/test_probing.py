@@ -282,3 +282,15 @@ def test_a_gcode_error_after_a_probe_stops_the_program_before_anything_moves(cap
     device = DeviceModel(probe=(2, "min", -320))
     code, out, err = send_program(capsys, tmp_path, monkeypatch, device, "G21 G90\nG0 X5\nG38.2 Z-10 F50\nG0 X1 I5\n")
     assert code == 2 and not device.executed and "line 4" in err
+
+
+def test_a_touch_off_macro_from_a_subroutine_file(capsys, tmp_path, monkeypatch):
+    """docs/gcode.md's touch_off.ngc next to the program: its probe move runs as a piece of its
+    own, and G54 Z0 is then the plate's underside, 1.5 mm (150 steps) below where it stopped."""
+    (tmp_path / "touch_off.ngc").write_text("o<touch_off> sub\n  G91 G38.2 Z-20 F100\n  G90 G10 L20 P0 Z#1\n"
+                                            "  G91 G0 Z2\n  G90\no<touch_off> endsub\nM2\n")
+    device = DeviceModel(probe=(2, "min", -320))
+    code, out, err = send_program(capsys, tmp_path, monkeypatch, device, "G21 G90\no<touch_off> call [1.5]\nG0 Z0\nM2\n")
+    assert code == 0, err
+    assert linear_moves(device) == [(0, 0, -2000), (0, 0, 200), (0, 0, -350)]
+    assert device.position == [0, 0, -473]          # stopped at -323 (3 past the touch): Z1.5

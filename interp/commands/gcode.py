@@ -67,28 +67,33 @@ def saved_parameters(machine: Machine) -> dict[int, float]:
     return read_parameters(path) if path is not None else {}
 
 
-def interpret_program(text: str, machine: Machine, start_steps=(0, 0, 0), saved=None, probes=None):
+def interpret_program(text: str, machine: Machine, start_steps=(0, 0, 0), saved=None, probes=None,
+                      program: str | None = None):
     """The program's moves in machine mm (interface 1), from start_steps (the machine's
     position), with the saved parameters (default: the machine's parameter file) and what its
-    probe moves did (interpret's probes; None: each touches at its end)."""
+    probe moves did (interpret's probes; None: each touches at its end).  program: the
+    program's file ("-": standard input), whose folder has its subroutine files."""
     from ..gcode.compile import start_mm
     from ..gcode.interpreter import interpret
 
     return interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools,
                      start=start_mm(machine, start_steps),
-                     saved=saved_parameters(machine) if saved is None else saved, probes=probes)
+                     saved=saved_parameters(machine) if saved is None else saved, probes=probes,
+                     folders=machine.subroutine_folders(program))
 
 
 def compile_text(text: str, machine: Machine | None = None, pause_seconds: float = 0.0,
-                 profile: str | None = None, costs: str = "true", start_steps=(0, 0, 0), saved=None):
-    """(Program, Compiled) of a program's text, as `interp gcode` makes them (default machine),
+                 profile: str | None = None, costs: str = "true", start_steps=(0, 0, 0), saved=None,
+                 program: str | None = None):
+    """(Program, Compiled) of a program's text (program: its file, for its subroutine files), as
+    `interp gcode` makes them (default machine),
     from start_steps: the machine's position in steps (`interp send`: the controller's POS_X/Y/Z;
     a fresh controller is at 0), with the saved parameters (default: the machine's parameter
     file; `Program.saved` has the program's end values)."""
     machine = machine or load_machine()
-    program = interpret_program(text, machine, start_steps, saved)
-    return program, compile_program(program, machine, pause_seconds, profile=profile, costs=costs,
-                                    start_steps=start_steps)
+    moves = interpret_program(text, machine, start_steps, saved, program=program)
+    return moves, compile_program(moves, machine, pause_seconds, profile=profile, costs=costs,
+                                  start_steps=start_steps)
 
 
 def run_simulation(commands_path: str, sim: str, *, steps_path, timing: dict, max_cycles: int,
@@ -377,7 +382,8 @@ def cmd_gcode(args) -> int:
     check_plot_format(args.plot_speed, "--plot-speed")
     if not args.check:
         check_outputs(args.steps, args.events, args.vcd, args.plot, args.plot_speed, inputs=(args.file, args.machine))
-    program, compiled = compile_text(read_program(args.file), machine, args.pause_seconds, args.profile)
+    program, compiled = compile_text(read_program(args.file), machine, args.pause_seconds, args.profile,
+                                     program=args.file)
     compiled.settings["override"] = override
     for message in program.messages:
         print(f"interp: message: {message}", file=sys.stderr)

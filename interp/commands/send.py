@@ -283,11 +283,11 @@ def probe_touches(words, machine: Machine) -> list[tuple[int, str, int]]:
     return touches
 
 
-def check_for_sim(text: str, machine: Machine, saved: dict, probe: bool = False) -> None:
+def check_for_sim(text: str, machine: Machine, saved: dict, probe: bool = False, file: str | None = None) -> None:
     """--sim: the program as the run will interpret and compile it (a fresh simulated
     controller stands at 0), so that a G-code error, or a probe move without a simulated
     touch (probe False: no --probe-at), is reported before the simulator is built and started."""
-    program = gcode_command.interpret_program(text, machine, (0, 0, 0), saved, probes=[])
+    program = gcode_command.interpret_program(text, machine, (0, 0, 0), saved, probes=[], program=file)
     if program.probe_pending and not probe:
         refuse_probe(program.moves[-1])
     compile_program(program, machine, start_steps=(0, 0, 0))
@@ -302,7 +302,7 @@ def cmd_send(args) -> int:
     if touches and not args.sim:
         raise UsageError("--probe-at goes with --sim")
     if args.sim:
-        check_for_sim(text, machine, saved, probe=bool(touches))
+        check_for_sim(text, machine, saved, probe=bool(touches), file=args.file)
     if machine.parameter_file is not None and not args.sim:
         check_writable(machine.parameter_file)      # before the machine moves
     opened = open_or_report(args, machine)
@@ -442,7 +442,8 @@ class ProgramRun:
         while True:
             try:
                 self.program = program = gcode_command.interpret_program(self.text, self.machine, self.start,
-                                                                         self.saved, probes=self.results)
+                                                                         self.saved, probes=self.results,
+                                                                         program=self.args.file)
             except GcodeError as err:           # an (ABORT, ...) after a probe: what it said before, once
                 self.show(getattr(err, "messages", []), "message")
                 err.messages = []
@@ -450,7 +451,8 @@ class ProgramRun:
             whole = program
             if program.probe_pending and not self.results:
                 # the whole program once (each touch at its move's end): G-code errors before anything moves
-                whole = gcode_command.interpret_program(self.text, self.machine, self.start, self.saved)
+                whole = gcode_command.interpret_program(self.text, self.machine, self.start, self.saved,
+                                                        program=self.args.file)
             if self.machine.parameter_file is not None and (whole is not program or not program.probe_pending):
                 check_lengths(whole.saved)
             self.show(program.messages, "message")

@@ -40,13 +40,17 @@ class GcodeError(UsageError):
     """Bad G-code: str() is "line L, column C: WORD: text" ("line L, column C: text" with no word).
 
     line and column are 1-based; word is the offending word as written (e.g. "G41"), or "".
+    In a subroutine file (`o<name> call` of name.ngc), file names it, line and column are
+    in it and called_at is the program's line of the call: "line N: FILE: line L, ...".
     """
 
-    def __init__(self, line: int, column: int, word: str, text: str):
+    def __init__(self, line: int, column: int, word: str, text: str, file: str = "", called_at: int = 0):
         self.line = line
         self.column = column
         self.word = word
         self.text = text
+        self.file = file
+        self.called_at = called_at
         super().__init__(str(self))
 
     def __str__(self) -> str:
@@ -54,9 +58,19 @@ class GcodeError(UsageError):
         if len(word) > WORD_SHOWN:                  # e.g. a 400-digit number: its start is enough
             word = f"{word[:WORD_SHOWN - 3]}... ({len(self.word)} characters)"
         text = printable(self.text)
-        if word:
-            return f"line {self.line}, column {self.column}: {word}: {text}"
-        return f"line {self.line}, column {self.column}: {text}"
+        where = f"line {self.line}, column {self.column}"
+        if self.file:
+            where = f"line {self.called_at}: {printable(self.file)}: {where}"
+        return f"{where}: {word}: {text}" if word else f"{where}: {text}"
+
+    def in_file(self, file: str, called_at: int, line: int | None = None) -> "GcodeError":
+        """This error, placed in subroutine file `file` (at its `line`, default the error's)
+        called at program line `called_at` (unchanged if it already names a file)."""
+        if self.file:
+            return self
+        error = GcodeError(self.line if line is None else line, self.column, self.word, self.text, file, called_at)
+        error.__dict__.update({k: v for k, v in self.__dict__.items() if k not in error.__dict__})
+        return error
 
     def __reduce__(self):
-        return (type(self), (self.line, self.column, self.word, self.text))
+        return (type(self), (self.line, self.column, self.word, self.text, self.file, self.called_at))

@@ -19,7 +19,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
+from typing import Sequence
 
+from ..cores import UsageError
 from . import cycles
 from .errors import GcodeError, without_controls
 from .language import Block, ExpressionError, Parameters, Word, iterate_blocks, substitute_parameters
@@ -109,7 +112,8 @@ VALID_LETTERS = set("ABCDFGHIJKLMNPQRSTUVWXYZ@^")
 
 def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0, 0.0),
               tools: dict[int, dict] | None = None, start: Point = (0.0, 0.0, 0.0),
-              saved: dict[int, float] | None = None, probes: list[ProbeResult] | None = None) -> Program:
+              saved: dict[int, float] | None = None, probes: list[ProbeResult] | None = None,
+              folders: Sequence[Path] = ()) -> Program:
     """Run a G-code program: text -> Program of moves in machine mm (see moves.py).
 
     g28, g30: the G28 / G30 home positions in machine mm (#5161.., #5181..);
@@ -121,16 +125,23 @@ def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0
     values are `Program.saved` (M2 / M30: G54 selected).  probes: what the program's probe
     moves (G38.2 .. G38.5) did on the machine, in order; the interpretation stops after the first
     probe move beyond them (`Program.probe_pending`).  None: no machine (`interp gcode`), each
-    probe move touches at its end.  Raises GcodeError for anything it cannot run.
+    probe move touches at its end.  folders: where `o<name> call` of a subroutine the program
+    does not define finds name.ngc, in order (LinuxCNC's single-file subroutines).  Raises
+    GcodeError for anything it cannot run.
     """
     params = Parameters()
     params.set(DEBUG_FLAG, 1.0)                       # (DEBUG, ...) shown, as LinuxCNC starts
     machine = _Machine(params, g28, g30, tools or {}, start, saved or {})
     machine.probe_results = probes
-    for block in iterate_blocks(text, params):
+    for block in iterate_blocks(text, params, subroutine_finder(folders)):
         if block.delete:
             continue                                  # block delete switch on
-        machine.run_block(block)
+        try:
+            machine.run_block(block)
+        except GcodeError as error:
+            if not block.file or error.file or error.line != block.line:
+                raise
+            raise error.in_file(block.file, block.line, block.file_line) from None
         if machine.ended or machine.program.probe_pending:
             break
     program = machine.program
@@ -1100,6 +1111,29 @@ class _Machine:
                     offset[a] = words.value(AXES[a]) * self.scale
             self.tool_offset = offset
             return True
+
+
+MAX_SUBROUTINE_BYTES = 1 << 24
+
+
+def subroutine_finder(folders: Sequence[Path]):
+    """find_file for iterate_blocks: name -> (path shown, text) of the first folder's
+    name.ngc, or None."""
+    def find(name: str):
+        for folder in folders:
+            path = Path(folder) / f"{name}.ngc"
+            if not path.is_file():
+                continue
+            try:
+                with open(path, "rb") as f:
+                    data = f.read(MAX_SUBROUTINE_BYTES + 1)
+            except OSError as err:
+                raise UsageError(f"cannot read {path}: {err.strerror or err}") from None
+            if len(data) > MAX_SUBROUTINE_BYTES:
+                raise UsageError(f"{path}: a subroutine file of more than {MAX_SUBROUTINE_BYTES >> 20} MiB")
+            return str(path), data.decode("utf-8", errors="surrogateescape")
+        return None
+    return find
 
 
 def _warning_line(text: str) -> int:

@@ -53,10 +53,12 @@ class Word:
 
 @dataclass
 class Block:
-    line: int                   # 1-based line number in the text
+    line: int                   # 1-based line number in the text (in a subroutine file: of the call)
     words: list[Word]
     delete: bool = False        # "/" at the start of the line
     comments: list[str] = field(default_factory=list)   # ( ) and ; texts, without delimiters
+    file: str = ""              # the subroutine file it is in ("": the program)
+    file_line: int = 0          # ... and its line there
 
 
 def _name(key: str) -> str:
@@ -892,25 +894,62 @@ def _read_program(text: str, warnings: list[str]) -> list[_Line]:
     return prog
 
 
-def iterate_blocks(text: str, params: Parameters) -> Iterator[Block]:
+@dataclass
+class _Unit:
+    """The program, or a subroutine file: its lines and where its subroutines start."""
+    prog: list[_Line]
+    subs: dict[str, int]
+    file: str = ""              # "": the program
+
+
+def iterate_blocks(text: str, params: Parameters, find_file=None) -> Iterator[Block]:
     """The blocks the program executes, in order, with every value evaluated.
 
     The whole text is read and its O-word structure checked before the first block
     (subroutines may be called before their definition).  Each block's expressions are
     evaluated when it is yielded, then its parameter assignments are made.
+
+    `o<name> call` of a subroutine the program does not define reads it from a file, as
+    LinuxCNC does: find_file(name) -> (the file's name as shown, its text) or None.  The
+    file is read and checked at the first such call; its subroutines (and those of the
+    files it calls) are then defined for the rest of the run, and its lines outside them
+    are not run.  Its blocks carry the program's line of the call.
     """
-    prog = _read_program(text, params.warnings)
-    subs = _structure(prog)
+    main = _Unit(_read_program(text, params.warnings), {})
+    main.subs = _structure(main.prog)
+    defined = {label: main for label in main.subs}      # label -> the unit defining it
+    unit, prog = main, main.prog
+    called_at = 0                               # in a subroutine file: the program's line of the call
     ev = _Evaluator(params)
-    returns: list[tuple[int, dict]] = []        # (return index, the caller's repeat counts)
+    returns: list[tuple] = []                   # (unit, return index, the caller's repeat counts, called_at)
     repeats: dict[int, int] = {}                # repeat line -> iterations left, this level
     iterations = calls = 0
     pc, n = 0, len(prog)
 
     def fail(rec: _Line, item, text: str):
-        if item is None:
-            raise GcodeError(rec.line, rec.column, rec.text, text)
-        raise GcodeError(rec.line, item.column, item.text, text)
+        column, word = (rec.column, rec.text) if item is None else (item.column, item.text)
+        raise GcodeError(rec.line, column, word, text, unit.file, called_at)
+
+    def load(rec: _Line) -> None:
+        """The subroutine file of a call the program does not define."""
+        label = rec.label
+        name = label[2:-1] if label.startswith("o<") else ""
+        found = find_file(name) if name and find_file is not None else None
+        if found is None:
+            where = f" and no {name}.ngc in the subroutine folders" if name and find_file is not None else ""
+            fail(rec, None, f"{label} is not defined: no '{label} sub' in the program{where}")
+        shown, body = found
+        at, warnings = called_at or rec.line, []
+        try:
+            loaded = _Unit(_read_program(body, warnings), {}, shown)
+            loaded.subs = _structure(loaded.prog)
+        except GcodeError as error:
+            raise error.in_file(shown, at) from None
+        params.warnings.extend(f"line {at}: {shown}: {w}" for w in warnings)
+        if label not in loaded.subs:
+            fail(rec, None, f"{label} is not defined: {shown} has no '{label} sub'")
+        for other in loaded.subs:
+            defined.setdefault(other, loaded)
 
     def condition(rec: _Line) -> float:
         try:
@@ -946,7 +985,7 @@ def iterate_blocks(text: str, params: Parameters) -> Iterator[Block]:
                     params.set(key, value)
             except ExpressionError as e:
                 fail(rec, item, str(e))
-            yield Block(rec.line, words, rec.delete, rec.comments)
+            yield Block(called_at or rec.line, words, rec.delete, rec.comments, unit.file, rec.line)
             pc += 1
         elif kind == "sub":
             pc = rec.end + 1
@@ -959,10 +998,11 @@ def iterate_blocks(text: str, params: Parameters) -> Iterator[Block]:
             params.pop_call()
             params.set("_value", 0.0 if value is None else value)
             params.set("_value_returned", 0.0 if value is None else 1.0)
-            pc, repeats = returns.pop()
+            unit, pc, repeats, called_at = returns.pop()
+            prog, n = unit.prog, len(unit.prog)
         elif kind == "call":
-            if rec.label not in subs:
-                fail(rec, None, f"{rec.label} is not defined: no '{rec.label} sub' in the program")
+            if rec.label not in defined:
+                load(rec)
             try:
                 args = [ev.value(a) for a in rec.args]
             except ExpressionError as e:
@@ -974,9 +1014,12 @@ def iterate_blocks(text: str, params: Parameters) -> Iterator[Block]:
             if calls > MAX_CALLS:
                 fail(rec, None, f"more than {MAX_CALLS} subroutine calls: a runaway program?")
             params.push_call(args)
-            returns.append((pc + 1, repeats))
+            returns.append((unit, pc + 1, repeats, called_at))
             repeats = {}
-            pc = subs[rec.label] + 1
+            called_at = called_at or rec.line          # (a call from the program)
+            unit = defined[rec.label]
+            prog, n = unit.prog, len(unit.prog)
+            pc = unit.subs[rec.label] + 1
         elif kind == "while":
             pc = pc + 1 if condition(rec) != 0.0 else rec.end + 1
         elif kind == "endwhile":

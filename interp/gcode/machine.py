@@ -73,6 +73,7 @@ SCHEMA: dict[str, dict[str, tuple]] = {
     },
     "gcode": {
         "parameter_file": ("text", "", None, None, "", "file of the settings that outlive a program (work offsets, G92, the coordinate system, G28 / G30 positions); empty: none"),
+        "subroutine_path": ("folders", (), None, None, "", "folders where `o<name> call` finds name.ngc, after the program's own folder"),
     },
     "homing": {
         "order": ("text", "zxy", None, None, "", "the axes `interp home` homes, one after another (those with a home end)"),
@@ -134,8 +135,17 @@ class Machine:
     def parameter_file(self) -> Path | None:
         """The parameter file (gcode.parameter_file, relative to the machine file's folder), or None."""
         name = self.values["gcode"]["parameter_file"]
-        if not name:
-            return None
+        return self._path(name) if name else None
+
+    def subroutine_folders(self, program: str | None = None) -> list[Path]:
+        """Where `o<name> call` looks for name.ngc: the folder of the program file (None: none;
+        "-", standard input: the current folder), then gcode.subroutine_path (relative to the
+        machine file's folder)."""
+        first = [] if program is None else [Path(".") if program == "-" else Path(program).parent]
+        return first + [self._path(name) for name in self.values["gcode"]["subroutine_path"]]
+
+    def _path(self, name: str) -> Path:
+        """A file or folder named in the machine file: relative to its folder."""
         folder = Path(self.source).parent if self.source_is_file else Path(".")
         try:
             return folder / Path(name).expanduser()
@@ -231,6 +241,10 @@ def _check(where: str, key: str, spec: tuple, value):
         if not isinstance(value, str):
             raise MachineError(f"{name} must be a string (got {value!r})")
         return value
+    if kind == "folders":
+        if not isinstance(value, list) or not all(isinstance(v, str) and v for v in value):
+            raise MachineError(f"{name} must be a list of folder names (got {value!r})")
+        return tuple(value)
     if kind == "names":
         if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
             raise MachineError(f"{name} must be a list of names of {', '.join(low)} (got {value!r})")
