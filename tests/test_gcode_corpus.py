@@ -25,7 +25,8 @@ REFUSED = {
     # A 3D printer's Marlin program: extruder axis E, M104/M140 heaters, and two lines of
     # plain text that a hand edit broke out of a ';' comment (line 58 is the first).
     "cura_own_gcode.gcode": 58,
-    # G41/G42 cutter radius compensation (the sample exists to show it); not supported.
+    # G42 D1: cutter radius compensation with tool 1 of LinuxCNC's sim tool table, which the
+    # corpus machine file has not got (tests/test_gcode_cutter.py runs it with that tool).
     "lcnc_comp.ngc": 12,
     # Its feed rate is a LinuxCNC HAL pin, #<_hal[plasmac.cut-feed-rate]>, which has no
     # value outside a LinuxCNC plasma configuration (so the feed rate is not positive).

@@ -81,12 +81,12 @@ def test_error_is_a_usage_error_with_the_exact_format():
     ("G1 X1 F0", "line 1, column 7: F0: the feed rate must be positive"),
     ("G0 X1 E5", "line 1, column 7: E5: E is not an RS274NGC word"),
     ("G0 X1 I5", "line 1, column 7: I5: word not used by any command in this block"),
-    ("G0 X1 D1", "line 1, column 7: D1: D word without cutter radius compensation (G41/G42 are "
-                 "not supported)"),
+    ("G0 X1 D1", "line 1, column 7: D1: D word without G41, G42, G41.1 or G42.1"),
     ("G0 X1 H1", "line 1, column 7: H1: H word without G43"),
     ("G0 G28 X1", "line 1, column 1: G0: G28 and G0 both use the axis words"),
-    ("G41 D1", "line 1, column 1: G41: cutter radius compensation is not supported"),
-    ("G42.1 D1", "line 1, column 1: G42.1: cutter radius compensation is not supported"),
+    ("G41 D1", "line 1, column 5: D1: tool 1 is not in the tool table: its diameter is not known"),
+    ("G42.1 D1 G41", "line 1, column 10: G41: two G codes of the cutter compensation group in one block "
+                     "(G42.1 and G41)"),
     ("G95", "line 1, column 1: G95: feed per revolution (G95) is not supported"),
     ("G38.5 Z-1", "line 1, column 1: G38.5: feed move without a feed rate (no F word yet)"),
     ("G5 X1 Y1 I1 J1 P1 Q1", "line 1, column 1: G5: cubic spline moves (G5) are not supported"),
@@ -624,7 +624,7 @@ CORPUS = Path(os.environ.get("INTERP_GCODE_CORPUS", ROOT.parent / "shared" / "gc
 REFUSED = {
     "cura_own_gcode.gcode": "",                 # 3D printer (Marlin): M140, E axis, G5 ...
     "lcnc_metric_wrench.ngc": "F#<_hal[plasmac.cut-feed-rate]>",  # feed from a HAL pin
-    "lcnc_comp.ngc": "g42",                     # cutter radius compensation
+    "lcnc_comp.ngc": "d1",                      # G42 D1: tool 1 is not in the tool table
     "ur5_drawing.gcode": "M300",                # pen-plotter servo M300 (not RS274NGC)
 }
 CORPUS_FILES = sorted(p.name for p in CORPUS.glob("*") if p.suffix != ".md") \

@@ -24,6 +24,7 @@ from typing import Sequence
 
 from ..cores import UsageError
 from . import cycles
+from .cutter import CompensationError, Compensator
 from .errors import GcodeError, without_controls
 from .language import Block, ExpressionError, Parameters, Word, iterate_blocks, substitute_parameters
 from .moves import PLANES, Arc, Dwell, Event, Line, Point, ProbeResult, Program
@@ -57,7 +58,7 @@ for _codes, _group in (
         ((0, 10, 20, 30, 382, 383, 384, 385, 800, 730, 810, 820, 830, 850, 890), "motion"),
         ((40, 100, 280, 281, 300, 301, 530, 920, 921, 922, 923), "non-modal"),
         ((170, 180, 190), "plane"), ((900, 910), "distance"), ((901, 911), "arc distance"),
-        ((930, 940), "feed mode"), ((200, 210), "units"), ((400,), "cutter compensation"),
+        ((930, 940), "feed mode"), ((200, 210), "units"), ((400, 410, 420, 411, 421), "cutter compensation"),
         ((430, 431, 490), "tool length"), ((980, 990), "return mode"),
         ((540, 550, 560, 570, 580, 590, 591, 592, 593), "coordinate system"),
         ((610, 611, 640), "path control"), ((970,), "spindle speed mode"),
@@ -66,10 +67,6 @@ for _codes, _group in (
         G_GROUPS[_code] = _group
 
 G_REFUSED = {
-    410: "cutter radius compensation is not supported",
-    420: "cutter radius compensation is not supported",
-    411: "cutter radius compensation is not supported",
-    421: "cutter radius compensation is not supported",
     50: "cubic spline moves (G5) are not supported",
     51: "quadratic spline moves (G5.1) are not supported",
     52: "NURBS moves (G5.2) are not supported",
@@ -144,6 +141,8 @@ def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0
             raise error.in_file(block.file, block.line, block.file_line) from None
         if machine.ended or machine.program.probe_pending:
             break
+    if not machine.program.probe_pending:
+        machine.compensation_off(tool_stays=True)   # (the text ended with compensation on)
     program = machine.program
     # the language layer's warnings and ours, in line order
     program.warnings = sorted(list(getattr(params, "warnings", [])) + program.warnings,
@@ -217,6 +216,7 @@ class _Machine:
         self.coolant_on = False                  # M7 / M8 in force (M9 ends it)
         self.probes_made = 0
         self.touch_assumed = False                # a probe move took its touch at its end (no machine)
+        self.comp: Compensator | None = None      # cutter compensation (G41 / G42, until its exit move)
         self._restore(saved or {})
         self._write_parameters()
 
@@ -320,12 +320,76 @@ class _Machine:
 
     # ---- output ---------------------------------------------------------------------
     def _add(self, move) -> None:
-        """Append a move (an arc's turns count as moves towards MAX_MOVES)."""
-        self.moves_made += move.turns if isinstance(move, Arc) else 1
-        if self.moves_made > MAX_MOVES:
-            self._fail(None, f"the program makes more than {MAX_MOVES} moves (an arc's turns counted): "
-                             "split it")
-        self.program.moves.append(move)
+        """Append a move (an arc's turns count as moves towards MAX_MOVES); under cutter
+        compensation, the tool's moves the compensator settles with it."""
+        moves = [move]
+        if self.comp is not None:
+            try:
+                moves = self.comp.take(move)
+            except CompensationError as error:
+                self._fail(None, error.text, line=error.line)
+            if self.comp.state == "done":
+                self.comp = None
+        for move in moves:
+            self.moves_made += move.turns if isinstance(move, Arc) else 1
+            if self.moves_made > MAX_MOVES:
+                self._fail(None, f"the program makes more than {MAX_MOVES} moves (an arc's turns counted): "
+                                 "split it")
+            self.program.moves.append(move)
+
+    def compensation_off(self, tool_stays: bool = False) -> None:
+        """G40: the pending compensated move ends; the next XY move starts where the tool is.
+        tool_stays (the program's end): compensation ends where the tool is (no exit move)."""
+        if self.comp is None:
+            return
+        comp = self.comp
+        for move in comp.off():
+            self.comp = None                    # (settled moves go out as they are)
+            self._add(move)
+        self.comp = None if tool_stays or comp.state == "done" else comp
+        if tool_stays:
+            u, v, _ = PLANES[comp.plane]
+            self.position[u], self.position[v] = comp.tool
+
+    def _compensating(self) -> bool:
+        return self.comp is not None and self.comp.state in ("entering", "on")
+
+    def _refuse_in_compensation(self, word: Word, what: str) -> None:
+        if self._compensating():
+            self._fail(word, f"{what} cannot be used with cutter compensation on (G40 first)")
+
+    def _cutter(self, words: _Words) -> None:
+        """17. G40, G41 / G42 D (tool number; without D the loaded tool), G41.1 / G42.1 D (diameter)."""
+        code, word = words.g["cutter compensation"]
+        if code == 400:
+            self.compensation_off()
+            return
+        if self._compensating():
+            self._fail(word, "cutter compensation is already on: turn it off (G40) first")
+        if words.has("L"):
+            self._fail(words.word("L"), "a lathe tool orientation (L) is not supported")
+        if code in (410, 420):
+            tool = self.tool_loaded
+            if words.has("D"):
+                d = words.value("D")
+                if d < 0 or d != int(d):
+                    self._fail(words.word("D"), "D must be a tool number (a whole number >= 0)")
+                tool = int(d)
+            if tool != 0 and tool not in self.tools:
+                self._fail(words.word("D") if words.has("D") else word,
+                           f"tool {tool} is not in the tool table: its diameter is not known")
+            diameter = float(self.tools.get(tool, {}).get("diameter_mm", 0.0))
+        else:
+            if not words.has("D"):
+                self._fail(word, "needs a D word (the tool's diameter)")
+            diameter = words.value("D") * self.scale
+            if diameter < 0:
+                self._fail(words.word("D"), "the tool's diameter cannot be negative")
+        words.used.add("D")
+        u, v, _ = PLANES[self.plane]
+        tool = self.comp.tool if self.comp is not None else (self.position[u], self.position[v])
+        self.comp = Compensator("left" if code in (410, 411) else "right", diameter / 2, tool, self._line,
+                                self.plane)
 
     def _event(self, name: str, value: float, line: int) -> None:
         self._add(Event(name, float(value), line))
@@ -413,6 +477,7 @@ class _Machine:
         if "tool change" in words.m:
             code, word = words.m["tool change"]
             if code == 6:
+                self._refuse_in_compensation(word, "a tool change")
                 self._event("tool_change", self.tool_selected, line)
                 self._event("pause", 6, line)
                 self.tool_loaded = self.tool_selected
@@ -453,10 +518,17 @@ class _Machine:
             self._add(Dwell(p, line))
         # 15. plane, 16. units
         if "plane" in words.g:
+            if PLANE_OF[words.g["plane"][0]] != self.plane:
+                self._refuse_in_compensation(words.g["plane"][1], "a change of plane")
+            if self.comp is not None and PLANE_OF[words.g["plane"][0]] != self.comp.plane:
+                self.compensation_off(tool_stays=True)      # (its exit move not made yet)
             self.plane = PLANE_OF[words.g["plane"][0]]
         if block_units != self.units:
             self._keep_assignments()
         self.units = block_units
+        # 17. cutter radius compensation
+        if "cutter compensation" in words.g:
+            self._cutter(words)
         # 18. tool length offset
         axes_taken = False
         if "tool length" in words.g:
@@ -505,6 +577,8 @@ class _Machine:
             self._fail(nonmodal[1], "G53 needs G0 or G1")
         if g53 and not self.absolute:
             self._fail(nonmodal[1], "G53 cannot be used in incremental mode (G91)")
+        if g53:
+            self._refuse_in_compensation(nonmodal[1], "G53")
         if new_mode == 800:
             if motion is not None and axis_letters and not axes_taken:
                 self._fail(motion[1], "axis words cannot be used with G80")
@@ -545,6 +619,7 @@ class _Machine:
         if "stopping" in words.m:
             code = words.m["stopping"][0]
             if code in (2, 30):
+                self.compensation_off(tool_stays=True)      # (LinuxCNC's M2 / M30 end it)
                 self._event("program_end", code, line)
                 self.ended = True
             else:
@@ -627,8 +702,7 @@ class _Machine:
         for letter, word in words.letters.items():
             if letter not in words.used and letter not in "FST":
                 if letter == "D":
-                    self._fail(word, "D word without cutter radius compensation (G41/G42 are "
-                                     "not supported)")
+                    self._fail(word, "D word without G41, G42, G41.1 or G42.1")
                 if letter == "H":
                     self._fail(word, "H word without G43")
                 self._fail(word, "word not used by any command in this block")
@@ -715,6 +789,8 @@ class _Machine:
         #5070 = 1 if the probe tripped (touched, or lost contact), #5061..#5063 = where
         (work coordinates, program units).  G38.2 and G38.4 fail without the trip."""
         name, word = PROBE_CODES[mode], self._motion_word(words)
+        if self.comp is not None:               # (the probe's piece starts where the program is)
+            self._fail(word, f"{name} cannot be used with cutter compensation on (G40 and an exit move first)")
         if words.has("@") or words.has("^"):
             self._fail(words.word("@" if words.has("@") else "^"), f"polar coordinates cannot be used with {name}")
         target = self._target(words)
@@ -850,6 +926,7 @@ class _Machine:
         line = self._line
         code = CYCLE_CODES[mode]
         mword = motion[1] if motion is not None else self._motion_word(words)
+        self._refuse_in_compensation(mword, "a canned cycle")
         s = self.scale
         ia, ib, ic = PLANES[self.plane]
         la, lb, lc = AXES[ia], AXES[ib], AXES[ic]
@@ -978,6 +1055,7 @@ class _Machine:
             self._g10(words, word)
             return True
         if code in (280, 300):
+            self._refuse_in_compensation(word, "G28 / G30")
             self._extra_axes(words)
             named = [a for a in range(3) if words.has(AXES[a])]
             if words.has("@") or words.has("^"):
