@@ -357,6 +357,17 @@ def test_g82_g85_g89():
         ("G1", (1, 0, -1)), ("G4", 2), ("G1", (1, 0, 5))]
 
 
+def test_g86_stops_the_spindle_in_the_hole():
+    """G86: feed down, dwell, spindle off, rapid out, the spindle on again the way it turned
+    (M4 here, at its S); without the spindle turning it is an error."""
+    moves = interpret("G0 Z5\nM4 S800\nG98 G86 X1 Z-1 R1 P0.5 F10\nG80\n").moves
+    assert [(type(m).__name__, getattr(m, "name", None)) for m in moves[-5:]] == [
+        ("Line", None), ("Dwell", None), ("Event", "spindle_off"), ("Line", None), ("Event", "spindle_ccw")]
+    assert moves[-1].value == 800 and moves[-2].end == (1, 0, 5) and moves[-4].seconds == 0.5
+    assert "line 1, column 1: G86: G86 needs the spindle turning (M3 or M4)" in error("G86 X1 Z-1 R1 P1 F10")
+    assert "needs a P word" in error("M3 S100\nG86 X1 Z-1 R1 F10")
+
+
 def test_g83_and_g73_pecks():
     assert cycle_steps("G0 Z5\nG83 X1 Z-2 R1 Q1.5 F10")[3:] == [
         ("G1", (1, 0, -0.5)), ("G0", (1, 0, 1)), ("G0", (1, 0, -0.246)),

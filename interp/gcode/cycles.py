@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Canned cycles G73, G81, G82, G83, G85, G89, expanded into rapids, feeds and dwells.
+"""Canned cycles G73, G81, G82, G83, G85, G86, G89, expanded into rapids, feeds, dwells and
+(G86) spindle stops.
 
 The expansion follows LinuxCNC's interpreter (RS274NGC).  Everything here is in
 machine millimetres along the cycle's axes: `aa` and `bb` are the plane's first
@@ -18,6 +19,8 @@ G83  peck: feed down by Q, rapid out to R, rapid back down to 0.254 mm
 G73  chip break: feed down by Q, rapid back 0.254 mm (0.010 inch), feed on by Q;
      at the bottom rapid out.
 G85  feed to the bottom, feed back to R, rapid to the clearance height.
+G86  feed to the bottom, dwell P seconds, stop the spindle, rapid out, start the spindle
+     again in the direction it turned.
 G89  feed to the bottom, dwell P seconds, feed out to the clearance height.
 """
 from __future__ import annotations
@@ -27,13 +30,13 @@ from collections.abc import Iterator
 # LinuxCNC 2.9's G83_RAPID_DELTA, 0.010 inch, in mm (used for both G73 and G83).
 PECK_CLEARANCE_MM = 0.254
 
-CYCLES = (73, 81, 82, 83, 85, 89)
+CYCLES = (73, 81, 82, 83, 85, 86, 89)
 
 
 def expand(code: int, *, axes: tuple[int, int, int], start: tuple[float, float, float],
            holes: list[tuple[float, float]], r: float, bottom: float, clear: float,
            q: float = 0.0, p: float = 0.0) -> Iterator[tuple[str, object]]:
-    """Yield ("rapid", point), ("feed", point) and ("dwell", seconds) steps.
+    """Yield ("rapid", point), ("feed", point), ("dwell", seconds) and ("spindle", on) steps.
 
     axes: the machine axis indices of (aa, bb, cc); start: the machine position
     before the cycle (after any rise to R); holes: (aa, bb) of each repeat;
@@ -78,6 +81,12 @@ def expand(code: int, *, axes: tuple[int, int, int], start: tuple[float, float, 
             yield "feed", point(a, b, bottom)
             yield "feed", point(a, b, r)
             yield "rapid", point(a, b, clear)
+        elif code == 86:
+            yield "feed", point(a, b, bottom)
+            yield "dwell", p
+            yield "spindle", False
+            yield "rapid", point(a, b, clear)
+            yield "spindle", True
         elif code == 89:
             yield "feed", point(a, b, bottom)
             yield "dwell", p

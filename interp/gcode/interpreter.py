@@ -55,7 +55,7 @@ PLANE_CODE = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
 # G codes in tenths (G59.1 -> 591) -> modal group
 G_GROUPS: dict[int, str] = {}
 for _codes, _group in (
-        ((0, 10, 20, 30, 382, 383, 384, 385, 800, 730, 810, 820, 830, 850, 890), "motion"),
+        ((0, 10, 20, 30, 382, 383, 384, 385, 800, 730, 810, 820, 830, 850, 860, 890), "motion"),
         ((40, 100, 280, 281, 300, 301, 530, 920, 921, 922, 923), "non-modal"),
         ((170, 180, 190), "plane"), ((900, 910), "distance"), ((901, 911), "arc distance"),
         ((930, 940), "feed mode"), ((200, 210), "units"), ((400, 410, 420, 411, 421), "cutter compensation"),
@@ -77,7 +77,6 @@ G_REFUSED = {
     740: "tapping cycles need a spindle encoder: not supported",
     840: "tapping cycles need a spindle encoder: not supported",
     760: "threading cycles are not supported",
-    860: "G86 (stop the spindle in the hole) is not supported",
     870: "back boring (G87) is not supported",
     880: "G88 (manual retract) is not supported",
     432: "G43.2 (additional tool offset) is not supported",
@@ -101,8 +100,8 @@ PROBE_AWAY = (384, 385)           # the probe trips where it loses contact
 PROBE_FAIL = {382: "the probe did not touch before the end of the move",
               384: "the probe did not lose contact before the end of the move"}
 MOTION_NAMES = {0: "G0", 10: "G1", 20: "G2", 30: "G3", 800: "G80", 730: "G73", 810: "G81",
-                820: "G82", 830: "G83", 850: "G85", 890: "G89"}
-CYCLE_CODES = {730: 73, 810: 81, 820: 82, 830: 83, 850: 85, 890: 89}
+                820: "G82", 830: "G83", 850: "G85", 860: "G86", 890: "G89"}
+CYCLE_CODES = {730: 73, 810: 81, 820: 82, 830: 83, 850: 85, 860: 86, 890: 89}
 AXIS_USERS = {100: "G10", 280: "G28", 300: "G30", 920: "G92"}
 VALID_LETTERS = set("ABCDFGHIJKLMNPQRSTUVWXYZ@^")
 
@@ -955,7 +954,9 @@ class _Machine:
             if q <= 0:
                 self._fail(words.word("Q") if words.has("Q") else mword,
                            "the peck depth Q must be positive")
-        if code in (82, 89):
+        if code == 86 and self.spindle is None:
+            self._fail(mword, "G86 needs the spindle turning (M3 or M4): it stops it in the hole")
+        if code in (82, 86, 89):
             if words.has("P"):
                 sticky["P"] = words.value("P")
             elif not same_mode or "P" not in sticky:
@@ -1042,6 +1043,11 @@ class _Machine:
                                          p=p):
             if kind == "dwell":
                 self._add(Dwell(value, line))
+            elif kind == "spindle":
+                if value:
+                    self._event("spindle_cw" if self.spindle == "cw" else "spindle_ccw", self.speed, line)
+                else:
+                    self._event("spindle_off", 0, line)
             else:
                 self._line_to(list(value), None if kind == "rapid" else self.feed, line)
 
