@@ -300,8 +300,12 @@ def test_subroutine_files():
         (1, "", 1, [("G", 0)]),
         (2, "square.ngc", 3, [("X", 2)]), (2, "side.ngc", 2, [("Y", 2)]),
         (3, "square.ngc", 3, [("X", 3)]), (3, "side.ngc", 2, [("Y", 3)]),
-        (4, "side.ngc", 5, [("Z", 4)]), (5, "", 7, [("X", 5)])]
+        (4, "side.ngc", 5, [("Z", 4)]), (7, "", 7, [("X", 5)])]
     assert asked == ["square", "side"]
+    # a file calling a subroutine of the program: its lines are the program's own
+    files["outer"] = "o<outer> sub\no<inmain> call\no<outer> endsub\n"
+    got = list(iterate_blocks("o<outer> call\nM2\no<inmain> sub\nX1\no<inmain> endsub\n", Parameters(), find))
+    assert [(b.line, b.file, b.file_line) for b in got] == [(4, "", 4), (2, "", 2)]
 
 
 @pytest.mark.parametrize("files, message", [

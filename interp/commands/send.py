@@ -528,8 +528,10 @@ class ProgramRun:
             ended = self.piece(program, [move], here, last=False, probe=True)
         finally:
             if away:                            # (probe_stop off first: a probe still armed trips
-                self.driver.write_register("CONTROL", p.CONTROL_ENABLE)     # when its polarity is back)
-                self.driver.write_register("INPUT_INVERT", invert)
+                try:                            # when its polarity is back)
+                    self.driver.write_register("CONTROL", p.CONTROL_ENABLE)
+                finally:
+                    self.driver.write_register("INPUT_INVERT", invert)
         self.driver.write_register("CONTROL", p.CONTROL_ENABLE)       # probe_stop off
         if not ended:
             return False

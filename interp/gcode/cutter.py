@@ -2,7 +2,7 @@
 """Cutter radius compensation (G41 / G42 and G41.1 / G42.1; G40 ends it) in the plane in force,
 as LinuxCNC runs it: the tool's centre keeps `radius` to the left (G41) or the right (G42) of
 the programmed path, seen from the positive end of the plane's normal axis (Z for G17, Y for
-G18, X for G19).
+G18, whose frame is (Z, X) as LinuxCNC's).
 
 The interpreter hands the moves it makes to a Compensator while compensation is on; the
 compensator gives back the tool's moves.  A move's compensated end depends on the move after
@@ -11,14 +11,17 @@ next XY move or G40:
 
 - each line is shifted sideways by the radius; each arc keeps its centre and takes the
   radius R + r or R - r (an arc on the inside with R <= r is an error);
-- an outside corner gets an arc of the tool's radius about the programmed corner; an inside
-  corner moves the end of the one move and the start of the next to where their shifted
-  paths cross (a move that would then run backwards, or paths that do not cross, is an
-  error: the tool does not fit the corner);
-- the entry move (the first XY move after G41 / G42, a straight line longer than the radius)
-  ends where the tool touches its programmed end point on a line tangent to that circle, as
-  LinuxCNC's; the moves after G40 start from where the compensated path ended, and the first
-  XY move (the exit move, a straight line) goes to its programmed end.
+- a bend of less than BEND between two moves joins them as they are (a line starts where the
+  move before ended); a larger outside bend, or a reversal, gets an arc of the tool's radius
+  about the programmed corner (a straight rapid before a G0); an inside bend moves the end of
+  the one move and the start of the next to where their paths meet (a move that then runs
+  backwards, or paths that do not meet, is an error: the tool does not fit the corner);
+- the entry move (the first XY move after G41 / G42, longer than the radius) is LinuxCNC's:
+  a line ends at the radius from its programmed end, square to the line from the tool to
+  that end; an arc ends at the radius from its programmed end along its radius, about a
+  centre moved so that it stays an arc;
+- the moves after G40 start from where the compensated path ended, and the first XY move
+  (the exit move, a straight line) goes to its programmed end.
 
 All positions are machine millimetres; only the plane's two axes are changed (the third
 follows the program).  Below, the plane's axes (u, v, w) are called x, y, z: the compensator
@@ -33,6 +36,9 @@ from .moves import PLANES, Arc, Dwell, Event, Line
 
 CLOSE = 1e-6            # mm: points closer than this are the same point
 CHORD = 1e-3            # mm: a corner shorter than this is a straight line, not an arc
+BEND = 0.05             # rad: a smaller bend joins two moves as they are (LinuxCNC's concave tolerance)
+GOUGE_NEIGHBOURS = 5    # programmed moves a compensated move is checked against (the gouge warning)
+GOUGE_TOLERANCE = 1e-4  # mm
 
 
 class CompensationError(Exception):
@@ -73,6 +79,32 @@ def tangent(move, at_end: bool) -> tuple[float, float]:
     return _unit(-ry, rx) if move.ccw else _unit(ry, -rx)
 
 
+def _points(move, count: int = 16) -> list[tuple[float, float]]:
+    """Points along a Line or Arc (XY), its ends included."""
+    if isinstance(move, Line):
+        return [(move.start[0] + (move.end[0] - move.start[0]) * k / count,
+                 move.start[1] + (move.end[1] - move.start[1]) * k / count) for k in range(count + 1)]
+    a0, sweep = _angle(move.start, move.centre), _sweep(move) * (1 if move.ccw else -1)
+    radius = math.dist(_xy(move.start), _xy(move.centre))
+    return [(move.centre[0] + radius * math.cos(a0 + sweep * k / count),
+             move.centre[1] + radius * math.sin(a0 + sweep * k / count)) for k in range(count + 1)]
+
+
+def _distance(point, move) -> float:
+    """The distance from a point to a Line or Arc (XY)."""
+    a, b = _xy(move.start), _xy(move.end)
+    if isinstance(move, Line):
+        ab = (b[0] - a[0], b[1] - a[1])
+        length = _dot(ab, ab)
+        t = 0.0 if length == 0 else max(0.0, min(1.0, _dot((point[0] - a[0], point[1] - a[1]), ab) / length))
+        return math.dist(point, (a[0] + t * ab[0], a[1] + t * ab[1]))
+    centre = _xy(move.centre)
+    turn = (_angle(point, centre) - _angle(a, centre)) * (1 if move.ccw else -1) % (2 * math.pi)
+    if turn <= _sweep(move):
+        return abs(math.dist(point, centre) - math.dist(a, centre))
+    return min(math.dist(point, a), math.dist(point, b))
+
+
 def _angle(point, centre) -> float:
     return math.atan2(point[1] - centre[1], point[0] - centre[0])
 
@@ -98,8 +130,14 @@ class Compensator:
         self.pending = None             # the last XY move, compensated, its end not settled yet
         self.pending_turn = (0.0, 0.0)  # ... its programmed direction at its end
         self.pending_corner = (0.0, 0.0)    # ... and its programmed end point
-        self.pending_sweep = 0.0        # an arc's sweep before its start or end moved
+        self.pending_shifted = None     # ... as it was before an inside corner moved its start
+        self.trimmed = False            # ... its start was moved back at an inside corner
         self.after: list = []           # moves after it (events, dwells, Z-only lines)
+        self.entered = False            # the pending move is not the entry move
+        self.programmed: list = []      # the last programmed moves (the gouge check's neighbours)
+        self.unchecked: list = []       # moves made at the last corner, checked at the next one
+        self.warnings: list[tuple[int, str]] = []   # (line, text): gouges found, for the interpreter
+        self.warned: set[int] = set()
 
     # ---- geometry ----------------------------------------------------------------
     def normal(self, direction) -> tuple[float, float]:
@@ -125,20 +163,35 @@ class Compensator:
             return (move.centre[0] + radius * ux, move.centre[1] + radius * uy, point[2])
         return replace(move, start=moved(move.start), end=moved(move.end))
 
-    def _entry(self, move: Line) -> Line:
-        """The entry move: from the tool to where it touches the programmed end, tangentially."""
+    def _entry(self, move):
+        """The entry move (LinuxCNC's): a line ends at the tool's radius from its programmed end,
+        square to the line from the tool to that end; an arc ends at the tool's radius from
+        its programmed end along its radius, about a centre moved so that it is an arc."""
         px, py = _xy(move.end)
-        dx, dy = px - self.tool[0], py - self.tool[1]
-        distance = math.hypot(dx, dy)
-        if distance <= self.radius + CLOSE:
+        distance = math.hypot(px - self.tool[0], py - self.tool[1])
+        if distance <= self.radius:
             raise CompensationError(move.line, f"the entry move after G41 / G42 must be longer than the tool's "
                                                f"radius ({self.radius:g} mm): it is {distance:g} mm")
-        phi = math.atan2(dy, dx) + self.sign * math.asin(self.radius / distance)
-        direction = (math.cos(phi), math.sin(phi))
-        nx, ny = self.normal(direction)
-        end = (px + self.radius * nx, py + self.radius * ny, move.end[2])
-        self.pending_turn, self.pending_corner, self.pending_sweep = direction, (px, py), 0.0
-        return replace(move, start=(self.tool[0], self.tool[1], move.start[2]), end=end)
+        start = (*self.tool, move.start[2])
+        if isinstance(move, Line):
+            direction = _unit(px - self.tool[0], py - self.tool[1])
+            nx, ny = self.normal(direction)
+            self.pending_turn = direction
+            return replace(move, start=start, end=(px + self.radius * nx, py + self.radius * ny, move.end[2]))
+        cx, cy = _xy(move.centre)
+        towards = _unit(cx - px, cy - py)
+        nx, ny = self.normal(tangent(move, True))
+        side = 1.0 if nx * towards[0] + ny * towards[1] > 0 else -1.0      # tool inside the arc: towards
+        ex, ey = px + side * self.radius * towards[0], py + side * self.radius * towards[1]
+        chord = (self.tool[0] - ex, self.tool[1] - ey)
+        bx, by = _unit(cx - ex, cy - ey)
+        cosine = _dot(_unit(*chord), (bx, by))
+        reach = math.hypot(*chord) / 2 / cosine if abs(cosine) > 1e-9 else -1.0
+        if reach <= CLOSE:
+            raise CompensationError(move.line, f"the entry arc cannot run with the tool's radius ({self.radius:g} mm)")
+        self.pending_turn = tangent(move, True)
+        return replace(move, start=start, end=(ex, ey, move.end[2]),
+                       centre=(ex + reach * bx, ey + reach * by, move.start[2]))
 
     @staticmethod
     def _path(move):
@@ -215,67 +268,111 @@ class Compensator:
                 self.after.append(move)
                 return []
             return [replace(move, start=(*self.tool, move.start[2]), end=(*self.tool, move.end[2]))]
-        if self.state in ("entering", "exiting") and isinstance(move, Arc):
-            which = "entry move after G41 / G42" if self.state == "entering" else "exit move after G40"
-            raise CompensationError(move.line, f"the {which} must be a straight line (G0 or G1), not an arc")
         if self.state == "exiting":
+            if isinstance(move, Arc):
+                raise CompensationError(move.line, "the exit move after G40 must be a straight line (G0 or G1), "
+                                                   "not an arc")
             self.state = "done"
             return [replace(move, start=(*self.tool, move.start[2]))]
         if self.state == "entering":
             self.state = "on"
-            self.pending = self._entry(move)
+            self.pending, self.trimmed = self._entry(move), False
+            self.pending_shifted, self.pending_corner = self.pending, _xy(move.end)
             return []
         return self._join(move)
 
     def _join(self, move) -> list:
-        """The corner between the pending move and the next XY move."""
+        """The corner between the pending move and the next move in the plane, as LinuxCNC
+        takes it: a bend of less than BEND (rad) either way joins the moves as they are; a
+        larger outside bend (or a reversal) gets a corner, an inside one moves the end of the
+        one and the start of the other to where their paths meet."""
         before, after = self.pending, self.shifted(move)
-        end, start = _xy(before.end), _xy(after.start)
-        corner_move = None
-        if math.dist(end, start) > CLOSE:
-            turn_in, turn_out = self.pending_turn, tangent(move, False)
-            turn = _cross(turn_in, turn_out) * self.sign
-            outside = turn < -1e-12 or (turn <= 1e-12 and _dot(turn_in, turn_out) < 0)
-            if outside:
+        turn_in, turn_out = self.pending_turn, tangent(move, False)
+        angle = math.atan2(_cross(turn_in, turn_out), _dot(turn_in, turn_out))
+        bend = -self.sign * angle                   # > 0: an outside corner
+        corner_move, trimmed = None, False
+        if abs(angle) > math.pi - 1e-9 or bend > BEND:
+            if math.dist(_xy(before.end), _xy(after.start)) > CLOSE:
                 corner_move = self._corner(before, after, move)
-            else:
-                found = self._crossings(self._path(before), self._path(after))
-                if not found:
-                    raise CompensationError(move.line, self._misfit())
-                x, y = min(found, key=lambda p: math.dist(p, self.pending_corner))
-                before = replace(before, end=(x, y, before.end[2]))
-                after = replace(after, start=(x, y, after.start[2]))
-        out = self._settle(before, move.line)
-        self.pending = after
+        elif bend < -BEND or (bend < 0 and isinstance(after, Arc)):
+            x, y = self._meet(before, after, turn_in, abs(angle), move.line)
+            before = replace(before, end=(x, y, before.end[2]))
+            after = replace(after, start=(x, y, after.start[2]))
+            trimmed = True
+        elif isinstance(after, Line):
+            after = replace(after, start=(*_xy(before.end), after.start[2]))
+        elif math.dist(_xy(before.end), _xy(after.start)) > CLOSE:
+            corner_move = Line((*_xy(before.end), after.start[2]), after.start, move.feed, move.line)
+        if trimmed or self.trimmed:
+            self._check_forward(before, move.line)
+        self.programmed = (self.programmed + [move])[-GOUGE_NEIGHBOURS:]
+        for made in self.unchecked:
+            self._gouge(made)
+        self.unchecked = ([before] if self.entered else []) + ([corner_move] if corner_move is not None else [])
+        self.entered = True
+        out = self._settle(before)
+        self.pending, self.pending_shifted, self.trimmed = after, self.shifted(move), trimmed
         self.pending_turn = tangent(move, True)
         self.pending_corner = _xy(move.end)
-        self.pending_sweep = _sweep(self.shifted(move)) if isinstance(move, Arc) else 0.0
         if corner_move is not None:
             out.append(corner_move)
             self.tool = _xy(corner_move.end)
         return out
 
+    def _meet(self, before, after, turn_in, angle: float, line: int) -> tuple[float, float]:
+        """Where the paths of two compensated moves meet at an inside corner: between two lines,
+        the one's end moved back along its direction by r tan(angle / 2) (LinuxCNC's); else
+        where the paths cross, nearest the programmed corner."""
+        if isinstance(before, Line) and isinstance(after, Line):
+            back = self.radius * math.tan(angle / 2)
+            return before.end[0] - back * turn_in[0], before.end[1] - back * turn_in[1]
+        found = self._crossings(self._path(before), self._path(after))
+        if not found:
+            raise CompensationError(line, f"the tool (radius {self.radius:g} mm) does not fit the inside corner at "
+                                          "the start of this move (the compensated paths do not meet)")
+        return min(found, key=lambda p: math.dist(p, self.pending_corner))
+
+    def _check_forward(self, move, line: int, which: str = "before this one") -> None:
+        """The pending move, its start or end moved at an inside corner, must not run backwards
+        (a line) or further round than before (an arc): else the tool does not fit there."""
+        shifted = self.pending_shifted
+        if isinstance(move, Line):
+            backwards = _dot((move.end[0] - move.start[0], move.end[1] - move.start[1]),
+                             (shifted.end[0] - shifted.start[0], shifted.end[1] - shifted.start[1])) < 0
+        else:
+            full = _sweep(shifted)
+            backwards = move.turns <= 1 and full < 2 * math.pi and _sweep(move) > full + 1e-9
+        if backwards:
+            raise CompensationError(line, f"the tool (radius {self.radius:g} mm) does not fit here: the compensated "
+                                          f"move {which} would run backwards (an inside corner too tight for it)")
+
     def _corner(self, before, after, move):
-        """The arc about the programmed corner from the one shifted move to the next."""
+        """An arc about the programmed corner from the one compensated move to the next, at the
+        next move's feed; before a rapid a straight rapid (LinuxCNC's)."""
         z = after.start[2]
         start, end = (*_xy(before.end), z), after.start
-        feed = move.feed if move.feed is not None else before.feed
-        if feed is None or math.dist(_xy(start), _xy(end)) < CHORD:
-            return Line(start, end, feed, move.line)     # (rapids on both sides: a rapid line)
-        return Arc(start, end, (*self.pending_corner, z), "XY", self.side == "right", 1, feed, move.line)
+        if move.feed is None or math.dist(_xy(start), _xy(end)) < CHORD:
+            return Line(start, end, move.feed, move.line)
+        return Arc(start, end, (*self.pending_corner, z), "XY", self.side == "right", 1, move.feed, move.line)
 
-    def _misfit(self) -> str:
-        return (f"the tool (radius {self.radius:g} mm) does not fit the inside corner at the start of this move "
-                "(the compensated paths do not meet)")
+    def _gouge(self, move) -> None:
+        """Each corner is decided from the two moves that meet there, as LinuxCNC does; a
+        compensated move that still comes nearer the programmed path of its neighbours than
+        the radius (a small arc after a long line, a narrow slot) is a gouge: a warning, once
+        per line.  (Bends joined as they are may come r (1 - cos BEND) nearer.)"""
+        length = math.dist(_xy(move.start), _xy(move.end)) if isinstance(move, Line) else \
+            _sweep(move) * math.dist(_xy(move.start), _xy(move.centre))
+        count = min(64, 2 + int(8 * length / max(self.radius, CHORD)))
+        near = min(_distance(point, other) for point in _points(move, count) for other in self.programmed)
+        depth = self.radius - near
+        if depth > self.radius * (1 - math.cos(BEND)) + GOUGE_TOLERANCE and move.line not in self.warned:
+            self.warned.add(move.line)
+            self.warnings.append((move.line, f"cutter compensation: the tool (radius {self.radius:g} mm) cuts "
+                                             f"{depth:.4g} mm into the programmed path here: it is too big for "
+                                             "this shape"))
 
-    def _settle(self, move, next_line: int) -> list:
+    def _settle(self, move) -> list:
         """The pending move with its end settled -> it and the moves queued after it."""
-        if isinstance(move, Line):
-            direction = self.pending_turn
-            if _dot((move.end[0] - move.start[0], move.end[1] - move.start[1]), direction) < -CLOSE:
-                raise CompensationError(next_line, self._misfit_of(move))
-        elif self.pending_sweep and _sweep(move) > self.pending_sweep + 1e-9 and self.pending_sweep < 2 * math.pi:
-            raise CompensationError(next_line, self._misfit_of(move))
         self.tool = _xy(move.end)
         out = [move] if (math.dist(_xy(move.start), _xy(move.end)) > CLOSE or isinstance(move, Arc)
                          or move.start[2] != move.end[2]) else []
@@ -286,15 +383,17 @@ class Compensator:
         self.after = []
         return out
 
-    def _misfit_of(self, move) -> str:
-        return (f"the tool (radius {self.radius:g} mm) does not fit here: the compensated move of line "
-                f"{move.line} would run backwards (an inside corner too tight for it)")
-
     def off(self) -> list:
-        """G40 (or the program's end): the pending move ends at its shifted end point."""
+        """G40 (or the program's end): the pending move ends at its shifted end point; the next
+        move in the plane is the exit move (a second G40 changes nothing)."""
         out = []
         if self.pending is not None:
-            out = self._settle(self.pending, self.pending.line)
+            if self.trimmed:
+                self._check_forward(self.pending, self.pending.line, "of this line")
+            for made in self.unchecked + ([self.pending] if self.entered else []):
+                self._gouge(made)
+            self.unchecked = []
+            out = self._settle(self.pending)
             self.pending = None
-        self.state = "exiting" if self.state == "on" else "done"
+        self.state = "exiting" if self.state in ("on", "exiting") else "done"
         return [self._frame(m, False) for m in out]

@@ -323,11 +323,13 @@ class _Machine:
         compensation, the tool's moves the compensator settles with it."""
         moves = [move]
         if self.comp is not None:
+            comp = self.comp
             try:
-                moves = self.comp.take(move)
+                moves = comp.take(move)
             except CompensationError as error:
                 self._fail(None, error.text, line=error.line)
-            if self.comp.state == "done":
+            self._comp_warnings(comp)
+            if comp.state == "done":
                 self.comp = None
         for move in moves:
             self.moves_made += move.turns if isinstance(move, Arc) else 1
@@ -342,13 +344,23 @@ class _Machine:
         if self.comp is None:
             return
         comp = self.comp
-        for move in comp.off():
-            self.comp = None                    # (settled moves go out as they are)
+        try:
+            settled = comp.off()
+        except CompensationError as error:
+            self._fail(None, error.text, line=error.line)
+        self._comp_warnings(comp)
+        self.comp = None                        # (settled moves go out as they are)
+        for move in settled:
             self._add(move)
         self.comp = None if tool_stays or comp.state == "done" else comp
         if tool_stays:
             u, v, _ = PLANES[comp.plane]
             self.position[u], self.position[v] = comp.tool
+
+    def _comp_warnings(self, comp: Compensator) -> None:
+        for line, text in comp.warnings:
+            self._warn(line, text)
+        comp.warnings.clear()
 
     def _compensating(self) -> bool:
         return self.comp is not None and self.comp.state in ("entering", "on")
@@ -365,6 +377,8 @@ class _Machine:
             return
         if self._compensating():
             self._fail(word, "cutter compensation is already on: turn it off (G40) first")
+        if self.plane == "YZ":
+            self._fail(word, "cutter compensation works in the XY (G17) and XZ (G18) planes, not in G19")
         if words.has("L"):
             self._fail(words.word("L"), "a lathe tool orientation (L) is not supported")
         if code in (410, 420):
@@ -378,6 +392,9 @@ class _Machine:
                 self._fail(words.word("D") if words.has("D") else word,
                            f"tool {tool} is not in the tool table: its diameter is not known")
             diameter = float(self.tools.get(tool, {}).get("diameter_mm", 0.0))
+            if diameter < 0:
+                self._fail(words.word("D") if words.has("D") else word,
+                           f"tool {tool} has a negative diameter ({diameter:g} mm; G10 L1 R sets it)")
         else:
             if not words.has("D"):
                 self._fail(word, "needs a D word (the tool's diameter)")

@@ -939,7 +939,7 @@ def iterate_blocks(text: str, params: Parameters, find_file=None) -> Iterator[Bl
             where = f" and no {name}.ngc in the subroutine folders" if name and find_file is not None else ""
             fail(rec, None, f"{label} is not defined: no '{label} sub' in the program{where}")
         shown, body = found
-        at, warnings = called_at or rec.line, []
+        at, warnings = called_at if unit.file else rec.line, []
         try:
             loaded = _Unit(_read_program(body, warnings), {}, shown)
             loaded.subs = _structure(loaded.prog)
@@ -985,7 +985,7 @@ def iterate_blocks(text: str, params: Parameters, find_file=None) -> Iterator[Bl
                     params.set(key, value)
             except ExpressionError as e:
                 fail(rec, item, str(e))
-            yield Block(called_at or rec.line, words, rec.delete, rec.comments, unit.file, rec.line)
+            yield Block(called_at if unit.file else rec.line, words, rec.delete, rec.comments, unit.file, rec.line)
             pc += 1
         elif kind == "sub":
             pc = rec.end + 1
@@ -1016,7 +1016,7 @@ def iterate_blocks(text: str, params: Parameters, find_file=None) -> Iterator[Bl
             params.push_call(args)
             returns.append((unit, pc + 1, repeats, called_at))
             repeats = {}
-            called_at = called_at or rec.line          # (a call from the program)
+            called_at = called_at if unit.file else rec.line   # the program's line that leads there
             unit = defined[rec.label]
             prog, n = unit.prog, len(unit.prog)
             pc = unit.subs[rec.label] + 1
