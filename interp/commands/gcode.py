@@ -19,8 +19,6 @@ from __future__ import annotations
 import csv
 import json
 import math
-import os
-import stat
 import sys
 import tempfile
 from pathlib import Path
@@ -123,19 +121,11 @@ def read_program(path: str) -> str:
     """The program's text; "-" reads standard input (`echo "G91 G0 X10" | interp send - ...`).
     A device (a serial port given as the program by mistake, /dev/zero) is refused, and so is
     a program above MAX_PROGRAM_BYTES."""
-    try:
-        if path == "-":
-            data = sys.stdin.buffer.read(MAX_PROGRAM_BYTES + 1)
-        else:
-            mode = os.stat(path).st_mode
-            if stat.S_ISDIR(mode):
-                raise UsageError(f"cannot read {path}: is a folder")
-            if not (stat.S_ISREG(mode) or stat.S_ISFIFO(mode)):
-                raise UsageError(f"cannot read {path}: not a file (a device?)")
-            with open(path, "rb") as f:
-                data = f.read(MAX_PROGRAM_BYTES + 1)
-    except OSError as err:
-        raise UsageError(f"cannot read {path}: {err.strerror or err}") from None
+    from ..gcode.language import read_source
+
+    if path != "-":
+        return read_source(path, MAX_PROGRAM_BYTES)
+    data = sys.stdin.buffer.read(MAX_PROGRAM_BYTES + 1)
     if len(data) > MAX_PROGRAM_BYTES:
         raise UsageError(f"{path}: a program of more than {MAX_PROGRAM_BYTES >> 20} MiB")
     return data.decode("utf-8", errors="surrogateescape")

@@ -22,11 +22,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
 
-from ..cores import UsageError
 from . import cycles
 from .cutter import CompensationError, Compensator
 from .errors import GcodeError, without_controls
-from .language import Block, ExpressionError, Parameters, Word, iterate_blocks, substitute_parameters
+from .language import Block, ExpressionError, Parameters, Word, iterate_blocks, read_source, substitute_parameters
 from .moves import PLANES, Arc, Dwell, Event, Line, Point, ProbeResult, Program
 from .parameter_file import LENGTHS
 
@@ -1223,16 +1222,8 @@ def subroutine_finder(folders: Sequence[Path]):
     def find(name: str):
         for folder in folders:
             path = Path(folder) / f"{name}.ngc"
-            if not path.is_file():
-                continue
-            try:
-                with open(path, "rb") as f:
-                    data = f.read(MAX_SUBROUTINE_BYTES + 1)
-            except OSError as err:
-                raise UsageError(f"cannot read {path}: {err.strerror or err}") from None
-            if len(data) > MAX_SUBROUTINE_BYTES:
-                raise UsageError(f"{path}: a subroutine file of more than {MAX_SUBROUTINE_BYTES >> 20} MiB")
-            return str(path), data.decode("utf-8", errors="surrogateescape")
+            if path.is_file():
+                return str(path), read_source(path, MAX_SUBROUTINE_BYTES, "a subroutine file")
         return None
     return find
 

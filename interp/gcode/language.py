@@ -20,13 +20,16 @@ from __future__ import annotations
 
 import bisect
 import math
+import os
 import re
+import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterator
 
 import lark
 
+from interp.cores import UsageError
 from interp.gcode.errors import GcodeError, printable
 
 NUMBERED = 5602                 # numbered parameters #1 .. #5602
@@ -892,6 +895,24 @@ def _read_program(text: str, warnings: list[str]) -> list[_Line]:
             continue
         prog.append(rec)
     return prog
+
+
+def read_source(path, limit: int, what: str = "a program") -> str:
+    """A G-code file's text (bytes that are not UTF-8 kept as surrogate escapes); a folder, a
+    device or a file of more than `limit` bytes is refused with one line (UsageError)."""
+    try:
+        mode = os.stat(path).st_mode
+        if stat.S_ISDIR(mode):
+            raise UsageError(f"cannot read {path}: is a folder")
+        if not (stat.S_ISREG(mode) or stat.S_ISFIFO(mode)):
+            raise UsageError(f"cannot read {path}: not a file (a device?)")
+        with open(path, "rb") as f:
+            data = f.read(limit + 1)
+    except OSError as err:
+        raise UsageError(f"cannot read {path}: {err.strerror or err}") from None
+    if len(data) > limit:
+        raise UsageError(f"{path}: {what} of more than {limit >> 20} MiB")
+    return data.decode("utf-8", errors="surrogateescape")
 
 
 @dataclass
