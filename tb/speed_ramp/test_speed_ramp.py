@@ -52,9 +52,11 @@ class RampTB:
 
 def check(samples, segments, options, context):
     """The profile's rules on a run without resets: exact distance, n by at most one
-    a clock and only after a block end (or the last quantum at a stop), no `late`.  With
-    late arrivals the queue can run dry after a segment planned to go on at its exit speed
-    and too short to stop in: then, and only with `late`, the speed drops to 0 at once."""
+    a clock and only after a block end (or the last quantum at a stop: the clock the
+    segment's remainder crosses 0, where a successor may load in the same clock), no
+    `late`.  With late arrivals the queue can run dry after a segment planned to go on at
+    its exit speed and too short to stop in: then, and only with `late`, the speed drops
+    to 0 at once."""
     if options.get("resets"):
         return
     quantum = options["quantum"]
@@ -68,7 +70,7 @@ def check(samples, segments, options, context):
             continue                                    # (the documented late stop)
         dn = cur["n"] - prev["n"]
         assert abs(dn) <= 1, f"{context}: n jumped {prev['n']} -> {cur['n']}"
-        if dn and not (dn == -1 and cur["n"] == 0 and cur["remaining"] <= 0):
+        if dn and not (dn == -1 and cur["n"] == 0 and (cur["remaining"] <= 0 or cur["next_pop"])):
             assert prev["block"], f"{context}: n changed inside a block"
     if not options.get("arrivals"):
         assert not any(s["late"] for s in samples), f"{context}: a stop came late"
