@@ -37,8 +37,8 @@ from .moves import PLANES, Arc, Dwell, Event, Line
 CLOSE = 1e-6            # mm: points closer than this are the same point
 CHORD = 1e-3            # mm: a corner shorter than this is a straight line, not an arc
 BEND = 0.05             # rad: a smaller bend joins two moves as they are (LinuxCNC's concave tolerance)
-GOUGE_NEIGHBOURS = 5    # programmed moves a compensated move is checked against (the gouge warning)
-GOUGE_TOLERANCE = 1e-4  # mm
+GOUGE_NEIGHBOURS = 6    # programmed moves a compensated move is checked against (the gouge warning)
+GOUGE_TOLERANCE = 0.005     # mm: below, no warning (an arc's end radius may differ by as much)
 
 
 class CompensationError(Exception):
@@ -105,6 +105,17 @@ def _distance(point, move) -> float:
     return min(math.dist(point, a), math.dist(point, b))
 
 
+def _segment_gap(one: Line, two: Line) -> float:
+    """The distance between two line segments (XY): 0 where they cross."""
+    a, b, c, d = _xy(one.start), _xy(one.end), _xy(two.start), _xy(two.end)
+
+    def side(p, q, r) -> float:
+        return _cross((q[0] - p[0], q[1] - p[1]), (r[0] - p[0], r[1] - p[1]))
+    if side(a, b, c) * side(a, b, d) < 0 and side(c, d, a) * side(c, d, b) < 0:
+        return 0.0
+    return min(_distance(a, two), _distance(b, two), _distance(c, one), _distance(d, one))
+
+
 def _angle(point, centre) -> float:
     return math.atan2(point[1] - centre[1], point[0] - centre[0])
 
@@ -135,7 +146,8 @@ class Compensator:
         self.after: list = []           # moves after it (events, dwells, Z-only lines)
         self.entered = False            # the pending move is not the entry move
         self.programmed: list = []      # the last programmed moves (the gouge check's neighbours)
-        self.unchecked: list = []       # moves made at the last corner, checked at the next one
+        self.unchecked: list = []       # (move made, joins to wait): checked two moves on
+        self.bends: list = []           # (length, bend joined as it is at its start) of the last moves
         self.warnings: list[tuple[int, str]] = []   # (line, text): gouges found, for the interpreter
         self.warned: set[int] = set()
 
@@ -153,13 +165,14 @@ class Compensator:
                            end=(move.end[0] + r * nx, move.end[1] + r * ny, move.end[2]))
         radial = _unit(move.start[0] - move.centre[0], move.start[1] - move.centre[1])
         big = math.dist(_xy(move.start), _xy(move.centre))
-        radius = big + r * _dot(self.normal(tangent(move, False)), radial)
-        if radius <= CLOSE:
+        change = r * _dot(self.normal(tangent(move, False)), radial)       # + r or - r
+        if big + change <= CLOSE:
             raise CompensationError(move.line, f"the tool's radius ({r:g} mm) is not less than the arc's "
                                                f"({big:g} mm) on the side it cuts")
 
-        def moved(point):
+        def moved(point):                       # (each end by its own radius)
             ux, uy = _unit(point[0] - move.centre[0], point[1] - move.centre[1])
+            radius = math.dist(_xy(point), _xy(move.centre)) + change
             return (move.centre[0] + radius * ux, move.centre[1] + radius * uy, point[2])
         return replace(move, start=moved(move.start), end=moved(move.end))
 
@@ -264,6 +277,9 @@ class Compensator:
                 return []
             return [move]
         if not _moves_in_xy(move):                  # Z only: where the tool is in XY
+            if self.state == "entering":            # (before the entry move: as programmed)
+                self.tool = _xy(move.end)
+                return [move]
             if self.pending is not None:
                 self.after.append(move)
                 return []
@@ -291,24 +307,28 @@ class Compensator:
         angle = math.atan2(_cross(turn_in, turn_out), _dot(turn_in, turn_out))
         bend = -self.sign * angle                   # > 0: an outside corner
         corner_move, trimmed = None, False
-        if abs(angle) > math.pi - 1e-9 or bend > BEND:
+        if abs(angle) > math.pi - BEND or bend > BEND:          # (a reversal: round the outside)
             if math.dist(_xy(before.end), _xy(after.start)) > CLOSE:
                 corner_move = self._corner(before, after, move)
-        elif bend < -BEND or (bend < 0 and isinstance(after, Arc)):
+        elif bend < -BEND:
             x, y = self._meet(before, after, turn_in, abs(angle), move.line)
             before = replace(before, end=(x, y, before.end[2]))
             after = replace(after, start=(x, y, after.start[2]))
             trimmed = True
-        elif isinstance(after, Line):
-            after = replace(after, start=(*_xy(before.end), after.start[2]))
-        elif math.dist(_xy(before.end), _xy(after.start)) > CLOSE:
-            corner_move = Line((*_xy(before.end), after.start[2]), after.start, move.feed, move.line)
+        if corner_move is None and _xy(before.end) != _xy(after.start):   # joined as they are
+            if isinstance(after, Line):
+                after = replace(after, start=(*_xy(before.end), after.start[2]))
+            else:
+                corner_move = Line((*_xy(before.end), after.start[2]), after.start, move.feed, move.line)
+        self._curvature(move, -bend if abs(bend) <= BEND else 0.0)
         if trimmed or self.trimmed:
             self._check_forward(before, move.line)
         self.programmed = (self.programmed + [move])[-GOUGE_NEIGHBOURS:]
-        for made in self.unchecked:
-            self._gouge(made)
-        self.unchecked = ([before] if self.entered else []) + ([corner_move] if corner_move is not None else [])
+        for made, later in self.unchecked:
+            if later == 1:
+                self._gouge(made)
+        self.unchecked = [(made, later - 1) for made, later in self.unchecked if later > 1] + \
+            [(made, 2) for made in ([before] if self.entered else []) + ([corner_move] if corner_move else [])]
         self.entered = True
         out = self._settle(before)
         self.pending, self.pending_shifted, self.trimmed = after, self.shifted(move), trimmed
@@ -355,6 +375,25 @@ class Compensator:
             return Line(start, end, move.feed, move.line)
         return Arc(start, end, (*self.pending_corner, z), "XY", self.side == "right", 1, move.feed, move.line)
 
+    def _curvature(self, move, inside: float) -> None:
+        """Bends joined as they are (`inside`: the bend at this move's start towards the tool,
+        0 for a corner met or rounded exactly) add up like a curve's turning: where the last
+        tool's radius of programmed path turns more than 1 / r per mm towards the tool (plus
+        BEND), the tool is bigger than that inside curve and the joins carry it to the far
+        side: a warning."""
+        length = math.dist(_xy(move.start), _xy(move.end)) if isinstance(move, Line) else \
+            _sweep(move) * math.dist(_xy(move.start), _xy(move.centre))
+        self.bends.append((length, inside))
+        while len(self.bends) > 1 and sum(b[0] for b in self.bends[1:]) >= self.radius:
+            self.bends.pop(0)
+        total = sum(b[0] for b in self.bends)
+        turned = sum(b[1] for b in self.bends[1:])          # (the bends between them)
+        if self.radius > 0 and turned > total / self.radius + BEND and move.line not in self.warned:
+            self.warned.add(move.line)
+            self.warnings.append((move.line, f"cutter compensation: the tool (radius {self.radius:g} mm) is bigger "
+                                             f"than the inside curve here ({turned:.3g} rad in {total:.3g} mm): "
+                                             "it cuts into the far side"))
+
     def _gouge(self, move) -> None:
         """Each corner is decided from the two moves that meet there, as LinuxCNC does; a
         compensated move that still comes nearer the programmed path of its neighbours than
@@ -362,14 +401,18 @@ class Compensator:
         per line.  (Bends joined as they are may come r (1 - cos BEND) nearer.)"""
         length = math.dist(_xy(move.start), _xy(move.end)) if isinstance(move, Line) else \
             _sweep(move) * math.dist(_xy(move.start), _xy(move.centre))
-        count = min(64, 2 + int(8 * length / max(self.radius, CHORD)))
-        near = min(_distance(point, other) for point in _points(move, count) for other in self.programmed)
+        points = _points(move, min(16, 2 + int(4 * length / max(self.radius, CHORD))))
+
+        def gap(other) -> float:
+            if isinstance(move, Line) and isinstance(other, Line):
+                return _segment_gap(move, other)
+            return min(_distance(point, other) for point in points)
+        near, cut = min((gap(other), other.line) for other in self.programmed)
         depth = self.radius - near
         if depth > self.radius * (1 - math.cos(BEND)) + GOUGE_TOLERANCE and move.line not in self.warned:
             self.warned.add(move.line)
             self.warnings.append((move.line, f"cutter compensation: the tool (radius {self.radius:g} mm) cuts "
-                                             f"{depth:.4g} mm into the programmed path here: it is too big for "
-                                             "this shape"))
+                                             f"{depth:.4g} mm into the programmed path of line {cut}"))
 
     def _settle(self, move) -> list:
         """The pending move with its end settled -> it and the moves queued after it."""
@@ -390,7 +433,7 @@ class Compensator:
         if self.pending is not None:
             if self.trimmed:
                 self._check_forward(self.pending, self.pending.line, "of this line")
-            for made in self.unchecked + ([self.pending] if self.entered else []):
+            for made in [m for m, _ in self.unchecked] + ([self.pending] if self.entered else []):
                 self._gouge(made)
             self.unchecked = []
             out = self._settle(self.pending)

@@ -391,9 +391,10 @@ class _Machine:
                 self._fail(words.word("D") if words.has("D") else word,
                            f"tool {tool} is not in the tool table: its diameter is not known")
             diameter = float(self.tools.get(tool, {}).get("diameter_mm", 0.0))
-            if diameter < 0:
+            if not diameter >= 0 or not math.isfinite(diameter):
+                what = "a negative diameter" if diameter < 0 else "a diameter that is not a number"
                 self._fail(words.word("D") if words.has("D") else word,
-                           f"tool {tool} has a negative diameter ({diameter:g} mm; G10 L1 R sets it)")
+                           f"tool {tool} has {what} ({diameter:g} mm; G10 L1 R sets it)")
         else:
             if not words.has("D"):
                 self._fail(word, "needs a D word (the tool's diameter)")
@@ -401,6 +402,8 @@ class _Machine:
             if diameter < 0:
                 self._fail(words.word("D"), "the tool's diameter cannot be negative")
         words.used.add("D")
+        if diameter == 0:                       # (LinuxCNC: a radius of 0 compensates nothing)
+            return
         u, v, _ = PLANES[self.plane]
         tool = self.comp.tool if self.comp is not None else (self.position[u], self.position[v])
         self.comp = Compensator("left" if code in (410, 411) else "right", diameter / 2, tool, self._line,
@@ -535,8 +538,6 @@ class _Machine:
         if "plane" in words.g:
             if PLANE_OF[words.g["plane"][0]] != self.plane:
                 self._refuse_in_compensation(words.g["plane"][1], "a change of plane")
-            if self.comp is not None and PLANE_OF[words.g["plane"][0]] != self.comp.plane:
-                self.compensation_off(tool_stays=True)      # (its exit move not made yet)
             self.plane = PLANE_OF[words.g["plane"][0]]
         if block_units != self.units:
             self._keep_assignments()
@@ -804,8 +805,8 @@ class _Machine:
         #5070 = 1 if the probe tripped (touched, or lost contact), #5061..#5063 = where
         (work coordinates, program units).  G38.2 and G38.4 fail without the trip."""
         name, word = PROBE_CODES[mode], self._motion_word(words)
-        if self.comp is not None:               # (the probe's piece starts where the program is)
-            self._fail(word, f"{name} cannot be used with cutter compensation on (G40 and an exit move first)")
+        if self._compensating():
+            self._fail(word, f"{name} cannot be used with cutter compensation on (G40 first)")
         if words.has("@") or words.has("^"):
             self._fail(words.word("@" if words.has("@") else "^"), f"polar coordinates cannot be used with {name}")
         target = self._target(words)
