@@ -132,8 +132,8 @@ def _sweep(arc: Arc) -> float:
 class Compensator:
     """Compensation from one G41 / G42 to its exit move (see the module's text)."""
 
-    def __init__(self, side: str, radius: float, tool_xy, line: int, plane: str = "XY"):
-        self.side, self.radius, self.line, self.plane = side, radius, line, plane
+    def __init__(self, side: str, radius: float, tool_xy, plane: str = "XY"):
+        self.side, self.radius, self.plane = side, radius, plane
         self.axes = PLANES[plane]
         self.sign = 1.0 if side == "left" else -1.0
         self.tool = tuple(tool_xy)      # (u, v) where the tool is (the end of the moves handed back)

@@ -406,8 +406,7 @@ class _Machine:
             return
         u, v, _ = PLANES[self.plane]
         tool = self.comp.tool if self.comp is not None else (self.position[u], self.position[v])
-        self.comp = Compensator("left" if code in (410, 411) else "right", diameter / 2, tool, self._line,
-                                self.plane)
+        self.comp = Compensator("left" if code in (410, 411) else "right", diameter / 2, tool, self.plane)
 
     def _event(self, name: str, value: float, line: int) -> None:
         self._add(Event(name, float(value), line))
