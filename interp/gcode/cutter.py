@@ -300,9 +300,10 @@ class Compensator:
     def _join(self, move) -> list:
         """The corner between the pending move and the next move in the plane, as LinuxCNC
         takes it: a bend of less than BEND (rad) either way joins the moves as they are; a
-        larger outside bend (or a reversal) gets a corner, an inside one moves the end of the
-        one and the start of the other to where their paths meet."""
-        before, after = self.pending, self.shifted(move)
+        larger outside bend (or a turn within BEND of a reversal) gets a corner, an inside one
+        moves the end of the one and the start of the other to where their paths meet."""
+        shifted = self.shifted(move)
+        before, after = self.pending, shifted
         turn_in, turn_out = self.pending_turn, tangent(move, False)
         angle = math.atan2(_cross(turn_in, turn_out), _dot(turn_in, turn_out))
         bend = -self.sign * angle                   # > 0: an outside corner
@@ -331,7 +332,7 @@ class Compensator:
             [(made, 2) for made in ([before] if self.entered else []) + ([corner_move] if corner_move else [])]
         self.entered = True
         out = self._settle(before)
-        self.pending, self.pending_shifted, self.trimmed = after, self.shifted(move), trimmed
+        self.pending, self.pending_shifted, self.trimmed = after, shifted, trimmed
         self.pending_turn = tangent(move, True)
         self.pending_corner = _xy(move.end)
         if corner_move is not None:
