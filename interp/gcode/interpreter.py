@@ -320,16 +320,20 @@ class _Machine:
     def _add(self, move) -> None:
         """Append a move (an arc's turns count as moves towards MAX_MOVES); under cutter
         compensation, the tool's moves the compensator settles with it."""
-        moves = [move]
-        if self.comp is not None:
-            comp = self.comp
-            try:
-                moves = comp.take(move)
-            except CompensationError as error:
-                self._fail(None, error.text, line=error.line)
-            self._comp_warnings(comp)
-            if comp.state == "done":
-                self.comp = None
+        if self.comp is None:
+            self._append([move])
+            return
+        comp = self.comp
+        try:
+            moves = comp.take(move)
+        except CompensationError as error:
+            self._fail(None, error.text, line=error.line)
+        self._comp_warnings(comp)
+        if comp.state == "done":
+            self.comp = None
+        self._append(moves)
+
+    def _append(self, moves) -> None:
         for move in moves:
             self.moves_made += move.turns if isinstance(move, Arc) else 1
             if self.moves_made > MAX_MOVES:
@@ -348,9 +352,7 @@ class _Machine:
         except CompensationError as error:
             self._fail(None, error.text, line=error.line)
         self._comp_warnings(comp)
-        self.comp = None                        # (settled moves go out as they are)
-        for move in settled:
-            self._add(move)
+        self._append(settled)
         self.comp = None if tool_stays or comp.state == "done" else comp
         if tool_stays:
             u, v, _ = PLANES[comp.plane]
