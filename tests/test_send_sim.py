@@ -330,6 +330,38 @@ def test_send_sim_equals_gcode(files, gcode_steps, capsys):
     assert steps.read_text() == gcode_steps
 
 
+RESTART = """G21 G90
+G0 Z1
+M3 S1000
+M8
+G0 X0.5 Y0.2
+G1 Z-0.3 F600
+G1 X1 F3000
+G1 Y0.6
+G0 Z1
+M5 M9
+M2
+"""
+
+
+def test_start_line_on_the_rtl(files, capsys):
+    """`interp send --sim --start-line 8`: the spindle and flood the lines
+    before it switched on, the approach (up to Z1, across, down at line 6's F600 to Z-0.3),
+    then line 8 on: the steps equal `interp gcode --start-line 8`'s, the end the program's."""
+    program = files / "restart.nc"
+    program.write_text(RESTART)
+    machine = str(files / "machine.toml")
+    expected, steps = files / "restart_gcode.csv", files / "restart_send.csv"
+    assert main(["gcode", str(program), "--machine", machine, "--start-line", "8", "--steps", str(expected)]) == 0
+    capsys.readouterr()
+    assert main(["send", str(program), "--sim", "--machine", machine, "--start-line", "8", "--steps", str(steps)]) == 0
+    out, err = capsys.readouterr()
+    assert err.startswith("interp: starting at line 8: spindle M3 S1000; coolant flood; approach in 3 moves to "
+                          "X1 Y0.2 Z-0.3 (machine mm) at F600"), err
+    assert end_steps(out) == (100, 60, 100), out
+    assert steps.read_text() == expected.read_text()
+
+
 LASER = """G21 G90
 M3 S200
 G1 X1 Y0.5 F3000

@@ -16,6 +16,7 @@ motion monitor (interp.simulation.monitor) then checks the run's speeds.
 """
 from __future__ import annotations
 
+import argparse
 import csv
 import json
 import math
@@ -66,30 +67,33 @@ def saved_parameters(machine: Machine) -> dict[int, float]:
 
 
 def interpret_program(text: str, machine: Machine, start_steps=(0, 0, 0), saved=None, probes=None,
-                      program: str | None = None):
+                      program: str | None = None, start_line: int | None = None):
     """The program's moves in machine mm (interface 1), from start_steps (the machine's
     position), with the saved parameters (default: the machine's parameter file) and what its
     probe moves did (interpret's probes; None: each touches at its end).  program: the
-    program's file ("-": standard input), whose folder has its subroutine files."""
+    program's file ("-": standard input), whose folder has its subroutine files.  start_line:
+    run from that line (restart.start_at: the state before it restored, an approach to it)."""
     from ..gcode.compile import start_mm
     from ..gcode.interpreter import interpret
+    from ..gcode.restart import start_at
 
-    return interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools,
-                     start=start_mm(machine, start_steps),
-                     saved=saved_parameters(machine) if saved is None else saved, probes=probes,
-                     folders=machine.subroutine_folders(program))
+    here = start_mm(machine, start_steps)
+    moves = interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools, start=here,
+                      saved=saved_parameters(machine) if saved is None else saved, probes=probes,
+                      folders=machine.subroutine_folders(program))
+    return moves if start_line is None else start_at(moves, start_line, here)
 
 
 def compile_text(text: str, machine: Machine | None = None, pause_seconds: float = 0.0,
                  profile: str | None = None, costs: str = "true", start_steps=(0, 0, 0), saved=None,
-                 program: str | None = None):
-    """(Program, Compiled) of a program's text (program: its file, for its subroutine files), as
-    `interp gcode` makes them (default machine),
+                 program: str | None = None, start_line: int | None = None):
+    """(Program, Compiled) of a program's text (program: its file, for its subroutine files;
+    start_line: run from that line), as `interp gcode` makes them (default machine),
     from start_steps: the machine's position in steps (`interp send`: the controller's POS_X/Y/Z;
     a fresh controller is at 0), with the saved parameters (default: the machine's parameter
     file; `Program.saved` has the program's end values)."""
     machine = machine or load_machine()
-    moves = interpret_program(text, machine, start_steps, saved, program=program)
+    moves = interpret_program(text, machine, start_steps, saved, program=program, start_line=start_line)
     return moves, compile_program(moves, machine, pause_seconds, profile=profile, costs=costs,
                                   start_steps=start_steps)
 
@@ -129,6 +133,23 @@ def read_program(path: str) -> str:
     if len(data) > MAX_PROGRAM_BYTES:
         raise UsageError(f"{path}: a program of more than {MAX_PROGRAM_BYTES >> 20} MiB")
     return data.decode("utf-8", errors="surrogateescape")
+
+
+def show_restart(program) -> None:
+    """--start-line: what the start line found and the approach, one line for the operator."""
+    if program.restart is not None:
+        print(f"interp: {program.restart.describe()}", file=sys.stderr)
+
+
+def start_line(text: str) -> int:
+    """--start-line's value: a line number from 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a line number") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{value}: lines count from 1")
+    return value
 
 
 def fmt(value: float) -> str:
@@ -373,8 +394,9 @@ def cmd_gcode(args) -> int:
     if not args.check:
         check_outputs(args.steps, args.events, args.vcd, args.plot, args.plot_speed, inputs=(args.file, args.machine))
     program, compiled = compile_text(read_program(args.file), machine, args.pause_seconds, args.profile,
-                                     program=args.file)
+                                     program=args.file, start_line=args.start_line)
     compiled.settings["override"] = override
+    show_restart(program)
     for message in program.messages:
         print(f"interp: message: {message}", file=sys.stderr)
     for warning in program.warnings + compiled.warnings:
@@ -473,6 +495,9 @@ def add_parser(sub) -> None:
                    help="override one machine-file key, e.g. axis.x.steps_per_mm=80 (repeatable)")
     p.add_argument("--clock-hz", type=float, metavar="HZ", help="shorthand for --set controller.clock_hz=HZ")
     p.add_argument("--check", action="store_true", help="read and compile only; print a summary")
+    p.add_argument("--start-line", type=start_line, metavar="N",
+                   help="run from line N: the spindle, coolant and outputs the lines before it left, then up to "
+                        "the clearance, across and down to where the program stood there (docs/gcode-cli.md)")
     p.add_argument("--json", action="store_true", help="with --check: one JSON object")
     p.add_argument("--sim", choices=SIMS, default="verilator",
                    help="simulator: verilator (native harness, default) or icarus (cocotb)")

@@ -283,11 +283,13 @@ def probe_touches(words, machine: Machine) -> list[tuple[int, str, int]]:
     return touches
 
 
-def check_for_sim(text: str, machine: Machine, saved: dict, probe: bool = False, file: str | None = None) -> None:
+def check_for_sim(text: str, machine: Machine, saved: dict, probe: bool = False, file: str | None = None,
+                  start_line: int | None = None) -> None:
     """--sim: the program as the run will interpret and compile it (a fresh simulated
     controller stands at 0), so that a G-code error, or a probe move without a simulated
     touch (probe False: no --probe-at), is reported before the simulator is built and started."""
-    program = gcode_command.interpret_program(text, machine, (0, 0, 0), saved, probes=[], program=file)
+    program = gcode_command.interpret_program(text, machine, (0, 0, 0), saved, probes=[], program=file,
+                                              start_line=start_line)
     if program.probe_pending and not probe:
         refuse_probe(program.moves[-1])
     compile_program(program, machine, start_steps=(0, 0, 0))
@@ -302,7 +304,8 @@ def cmd_send(args) -> int:
     if touches and not args.sim:
         raise UsageError("--probe-at goes with --sim")
     if args.sim:
-        check_for_sim(text, machine, saved, probe=bool(touches), file=args.file)
+        check_for_sim(text, machine, saved, probe=bool(touches), file=args.file,
+                      start_line=getattr(args, "start_line", None))
     if machine.parameter_file is not None and not args.sim:
         check_writable(machine.parameter_file)      # before the machine moves
     opened = open_or_report(args, machine)
@@ -443,7 +446,8 @@ class ProgramRun:
             try:
                 self.program = program = gcode_command.interpret_program(self.text, self.machine, self.start,
                                                                          self.saved, probes=self.results,
-                                                                         program=self.args.file)
+                                                                         program=self.args.file,
+                                                                         start_line=getattr(self.args, "start_line", None))
             except GcodeError as err:           # an (ABORT, ...) after a probe: what it said before, once
                 self.show(getattr(err, "messages", []), "message")
                 err.messages = []
@@ -452,9 +456,11 @@ class ProgramRun:
             if program.probe_pending and not self.results:
                 # the whole program once (each touch at its move's end): G-code errors before anything moves
                 whole = gcode_command.interpret_program(self.text, self.machine, self.start, self.saved,
-                                                        program=self.args.file)
+                                                        program=self.args.file, start_line=getattr(self.args, "start_line", None))
             if self.machine.parameter_file is not None and (whole is not program or not program.probe_pending):
                 check_lengths(whole.saved)
+            if not self.results:
+                gcode_command.show_restart(program)
             self.show(program.messages, "message")
             self.show(program.warnings, "warning")
             moves = program.moves[done:]
@@ -646,4 +652,8 @@ def add_parser(sub) -> None:
     p_.add_argument("--pause-seconds", type=float, default=0.0, metavar="S",
                     help="a program pause (M0, M1, M6, M60) ends after S seconds when no terminal is attached to "
                          "resume it with ~ (default 0)")
+    p_.add_argument("--start-line", type=gcode_command.start_line, metavar="N",
+                    help="run from line N, as `interp gcode --start-line` does: the spindle, coolant and outputs "
+                         "the lines before it left, then up to the clearance, across and down to where the program "
+                         "stood there")
     p_.set_defaults(func=cmd_send)

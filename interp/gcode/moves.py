@@ -99,3 +99,5 @@ class Program:
     saved: dict[int, float] = field(default_factory=dict)
     # interpretation stopped after a probe move whose result is not known yet (interpret's probes)
     probe_pending: bool = False
+    # run from a line (restart.start_at): what the start line found and how it is reached
+    restart: object = None

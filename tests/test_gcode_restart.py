@@ -1,0 +1,192 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Run from a line (interp/gcode/restart.py; `interp gcode --start-line`, `interp send
+--start-line`): the state the dropped lines left, the approach, the moves from the start on,
+and the refusals as one line."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from interp.cli import main
+from interp.commands import send
+from interp.cores import UsageError
+from interp.gcode.interpreter import interpret
+from interp.gcode.moves import Arc, Event, Line
+from interp.gcode.restart import start_at
+from interp.link.devicemodel import DeviceModel
+
+CORPUS = Path(__file__).resolve().parents[1] / ".." / "shared" / "gcode"
+
+PROGRAM = """G21 G90 G17
+G0 Z10
+T2 M6
+M3 S12000
+M8
+M64 P1
+G0 X5 Y5
+G0 Z1
+G1 Z-1 F300
+G1 X20 F900
+G1 Y20
+G0 Z10
+S9000
+G0 X40 Y40
+G1 Z-2 F200
+G2 X60 Y40 I10 J0 F700
+G0 Z10
+M5 M9
+M65 P1
+M2
+"""
+
+
+def events(program):
+    return [(m.name, m.value) for m in program.moves if isinstance(m, Event)]
+
+
+def test_the_state_before_the_line_and_the_approach():
+    """Starting at line 11 (G1 Y20): the program stood at X20 Y5 Z-1 with the spindle on at
+    S12000, flood on, output 1 on and tool 2 changed to.  From the machine at X0 Y0 Z0: up to
+    the clearance Z10, across, down as a rapid to the last rapid's height (Z1, line 8) and at
+    the plunge feed (F300, line 9) to Z-1; then line 11's move."""
+    whole = interpret(PROGRAM)
+    run = start_at(whole, 11, (0.0, 0.0, 0.0))
+    assert events(run)[:3] == [("output_on", 1.0), ("spindle_cw", 12000.0), ("flood_on", 0.0)]
+    lines = [m for m in run.moves if isinstance(m, Line)]
+    assert [(m.end, m.feed) for m in lines[:4]] == [((0, 0, 10), None), ((20, 5, 10), None), ((20, 5, 1), None),
+                                                    ((20, 5, -1), 300.0)]
+    assert all(m.line == 11 for m in run.moves[:7])
+    assert lines[4] == Line((20, 5, -1), (20, 20, -1), 900.0, 11)
+    kept = whole.moves[[m.line for m in whole.moves].index(11):]
+    assert run.moves[7:] == kept
+    info = run.restart
+    assert (info.tool, info.spindle, info.speed, info.coolant, info.outputs) == (2, "M3", 12000.0, ("flood",),
+                                                                                 {1: True})
+    assert info.describe() == ("starting at line 11: tool 2 (the last M6 before it: load it first); spindle M3 "
+                               "S12000; coolant flood; outputs 1 on; approach in 4 moves to X20 Y5 Z-1 (machine mm) "
+                               "at F300")
+
+
+def test_a_later_s_word_and_the_plunge_feed():
+    """Line 16 (the arc): S9000 changed the running spindle's speed; the plunge is line 15's
+    F200, from Z10 (the last rapid, line 14, ran there); the arc itself is kept whole."""
+    run = start_at(interpret(PROGRAM), 16, (0.0, 0.0, 0.0))
+    assert ("spindle_cw", 9000.0) in events(run)
+    first_arc = next(k for k, m in enumerate(run.moves) if isinstance(m, Arc))
+    assert run.moves[first_arc - 1] == Line((40, 40, 10), (40, 40, -2), 200.0, 16)
+    assert run.moves[first_arc].start == (40, 40, -2)
+
+
+def test_the_machine_elsewhere_and_above():
+    """The machine stands at X50 Y0 Z30 (above everything the program reached): across at
+    Z30, down as a rapid to Z1, at F300 to Z-1."""
+    run = start_at(interpret(PROGRAM, start=(50.0, 0.0, 30.0)), 11, (50.0, 0.0, 30.0))
+    assert [m.end for m in run.moves if isinstance(m, Line)][:3] == [(20, 5, 30), (20, 5, 1), (20, 5, -1)]
+
+
+def test_line_one_is_the_whole_program():
+    whole = interpret(PROGRAM)
+    run = start_at(whole, 1, (0.0, 0.0, 0.0))
+    assert run.moves == whole.moves
+    assert run.restart.approach == () and run.restart.spindle is None
+
+
+def test_a_line_without_a_move_starts_at_the_next():
+    """Line 13 (S9000: no move, the spindle speed event is line 13's) and a line past a blank
+    one start at the first move at that line or after."""
+    run = start_at(interpret(PROGRAM), 13, (0.0, 0.0, 0.0))
+    assert ("spindle_speed", 9000.0) in events(run)
+    run = start_at(interpret("G21\n\nG1 X1 F100\n\n\nG1 X2\n"), 4, (0.0, 0.0, 0.0))
+    assert [m.end for m in run.moves if isinstance(m, Line)] == [(1, 0, 0), (2, 0, 0)]
+
+
+def test_a_loop_starts_at_its_first_pass():
+    text = "G21 G91\n#1 = 0\no1 while [#1 LT 3]\nG1 X1 F100\nG1 Y1\n#1 = [#1 + 1]\no1 endwhile\nG90 G0 X0 Y0\n"
+    run = start_at(interpret(text), 5, (0.0, 0.0, 0.0))
+    lines = [m for m in run.moves if isinstance(m, Line)]
+    assert lines[0].end == (1, 0, 0) and lines[1] == Line((1, 0, 0), (1, 1, 0), 100.0, 5)
+    assert len(lines) == 1 + 1 + 2 * 2 + 1            # approach, the first pass's Y, two passes, the G0
+
+
+def test_messages_before_the_line_are_dropped():
+    run = start_at(interpret("(MSG, one)\nG1 X1 F100\n(MSG, two)\nG1 X2\n"), 3, (0.0, 0.0, 0.0))
+    assert run.messages == ["line 3: two"]
+
+
+@pytest.mark.parametrize("line, text", [
+    (30, "--start-line 30: the program has no move or event there or after it (its last is at line 20)"),
+    (0, "--start-line 0: lines count from 1"),
+])
+def test_lines_refused(line, text):
+    with pytest.raises(UsageError) as error:
+        start_at(interpret(PROGRAM), line, (0.0, 0.0, 0.0))
+    assert str(error.value) == text
+
+
+def test_a_probe_before_the_line_is_refused():
+    """What a probe measured decides the moves after it: a start after one is refused (also
+    when the interpretation stopped at it for the machine's result)."""
+    text = "G21 G90\nG38.2 Z-10 F100\nG10 L20 P1 Z0\nG0 Z5\nG1 X5 F300\n"
+    expected = ("--start-line 5: line 2 probes (G38.2) before it, and what it measures decides the moves after "
+                "it; start at the probe or before it")
+    for probes in (None, []):
+        with pytest.raises(UsageError) as error:
+            start_at(interpret(text, probes=probes), 5, (0.0, 0.0, 0.0))
+        assert str(error.value) == expected
+    assert start_at(interpret(text), 2, (0.0, 0.0, 0.0)).moves[0].probe == 382
+
+
+def test_compensated_moves_start_on_the_offset_path():
+    """Cutter compensation's moves are the tool's: the approach meets the offset path (a 2 mm
+    tool left of a counter-clockwise square: line 6's move starts at the inside corner X9 Y1)."""
+    text = "G21 G90\nG0 X-5 Y-5\nG41.1 D2\nG1 X0 Y0 F300\nG1 X10\nG1 Y10\nG1 X0\nG40\nG0 X-5 Y-5\n"
+    whole = interpret(text)
+    run = start_at(whole, 6, (0.0, 0.0, 0.0))
+    kept = [m for m in whole.moves if m.line >= 6]
+    assert run.moves[-len(kept):] == kept and kept[0].start == pytest.approx((9.0, 1.0, 0.0))
+    assert run.moves[len(run.moves) - len(kept) - 1].end == kept[0].start
+
+
+@pytest.mark.skipif(not (CORPUS / "lcnc_3D_Chips.ngc").exists(), reason="the G-code corpus is not beside the repository")
+@settings(max_examples=25, deadline=None)
+@given(st.integers(min_value=1, max_value=4706), st.tuples(*[st.integers(-20, 20)] * 3))
+def test_every_start_joins_the_path(line, here):
+    """From any line of a CAM program and anywhere the machine is: the moves join end to
+    start, and they end where the whole program ends."""
+    here = tuple(float(v) for v in here)
+    whole = interpret((CORPUS / "lcnc_3D_Chips.ngc").read_text(), start=here)
+    run = start_at(whole, line, here)
+    at = here
+    for move in run.moves:
+        if isinstance(move, (Line, Arc)):
+            assert move.start == at, move
+            at = move.end
+    assert at == whole.end_machine
+
+
+def test_the_command_lines(capsys, tmp_path, monkeypatch):
+    """`interp gcode --start-line` prints what it restored and ends where the program ends;
+    `interp send --start-line` runs the same commands (the controller's model); a bad value is
+    one line, exit status 2."""
+    path = tmp_path / "job.ngc"
+    path.write_text(PROGRAM)
+    assert main(["gcode", str(path), "--check", "--start-line", "14"]) == 0
+    out, err = capsys.readouterr()
+    assert err.startswith("interp: starting at line 14: tool 2 (the last M6") and "end X60 Y40 Z10 mm" in out
+    device = DeviceModel()
+    monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
+    assert main(["send", str(path), "--sim-model"]) == 0
+    whole = capsys.readouterr().out.rstrip()
+    device.__init__()
+    assert main(["send", str(path), "--sim-model", "--start-line", "14"]) == 0
+    out, err = capsys.readouterr()
+    assert "interp: starting at line 14:" in err and out.rstrip()[-24:] == whole[-24:]
+    assert main(["gcode", str(path), "--check", "--start-line", "99"]) == 2
+    assert capsys.readouterr().err.strip() == ("interp: error: --start-line 99: the program has no move or event "
+                                               "there or after it (its last is at line 20)")
+    for bad, why in (("0", "0: lines count from 1"), ("x", "'x' is not a line number")):
+        assert main(["send", str(path), "--sim-model", "--start-line", bad]) == 2
+        assert capsys.readouterr().err.strip() == f"interp: error: interp send: argument --start-line: {why}"
