@@ -55,6 +55,16 @@ def test_send_corpus_program(capsys):
     assert code == 0 and out.startswith(f"sent 101 records ({len(encode_program(compiled.commands))} bytes)")
 
 
+def test_the_model_follows_arcs_in_every_plane(capsys, tmp_path):
+    """The controller's model moves arcs (G17, G18, G19, a helix of three turns) to their ends:
+    the run ends where `interp gcode` ends."""
+    path = tmp_path / "arcs.nc"
+    path.write_text("G21 G90\nG1 X10 F1000\nG2 X20 Y0 I5 J0\nG3 X10 Y0 R5\nG18 G2 X0 Z0 I-5 K0\n"
+                    "G19 G3 Y5 Z5 J2.5 K2.5\nG17 G2 X2 Y5 Z1 I1 J1 P3\nM2\n")
+    code, out, err = run(capsys, "send", str(path), "--sim-model")
+    assert code == 0 and err == "" and out.rstrip().endswith("end (200, 500, 100) steps"), (out, err)
+
+
 def test_program_from_standard_input(capsys, monkeypatch):
     """FILE -: a jog or an MDI line piped in."""
     monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BytesIO(b"G21 G91\nG0 X2 Y-1\n")))

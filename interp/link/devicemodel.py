@@ -2,7 +2,8 @@
 """A Python model of the controller as the link sees it, for the driver's tests: the
 frame layer (sequence numbers, credits, coalesced replies, frame timeout), the register
 file, the segment queue and a fake executor that takes one whole record every
-1 / records_per_second seconds.  The same transport API as interp.link.simlink.SimLink:
+1 / records_per_second seconds (lines and arcs move the position to their ends; the
+switches and the probe are checked on lines only).  The same transport API as interp.link.simlink.SimLink:
 write(bytes), read(size) honouring .timeout, in_waiting, now() (SIMULATED seconds:
 time moves only while the host waits in read), close() -> dict.
 
@@ -344,6 +345,8 @@ class DeviceModel:
                 self.error = 18
             elif record["kind"] == 3 and not self.curves:
                 self.error = 1
+            elif record["kind"] in (1, 2) and record["plane"] == 3:
+                self.error = 7
             elif self.fail_at is not None and n == self.fail_at:
                 self.error = self.fail_code
                 if self.fail_code == 17:
@@ -353,6 +356,8 @@ class DeviceModel:
                 self.queue.clear()
                 self.reader = RecordReader(self.build)
                 return
+            if record["kind"] in (1, 2):            # an arc: from its start to its end (no switch or probe on the way)
+                self._arc(record)
             if record["kind"] == 0 and self._line(record):
                 self.busy = False
                 self.queue.clear()
@@ -392,6 +397,13 @@ class DeviceModel:
         if toward and not active and abs(at - self.position[axis]) <= abs(delta[axis]):
             return (at - self.position[axis]) / delta[axis]
         return None
+
+    def _arc(self, record: dict) -> None:
+        """Move to an arc record's end: (x, y) in its plane from the start, z along the plane's
+        normal (motion_top's planes: XY, ZX, YZ)."""
+        u, v, w = ((0, 1, 2), (2, 0, 1), (1, 2, 0))[record["plane"]]
+        for axis, name in ((u, "x"), (v, "y"), (w, "z")):
+            self.position[axis] += record[name]
 
     def _line(self, record: dict) -> bool:
         """Move along a line record; True if a limit switch stopped it (position at the switch).
