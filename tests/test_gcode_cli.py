@@ -71,7 +71,8 @@ def fake_harness(commands_path, sim, *, steps_path, timing, max_cycles, progress
 
 @pytest.fixture
 def fakes(monkeypatch):
-    monkeypatch.setattr(gcode, "interpret_program", lambda text, machine, start_steps=(0, 0, 0), saved=None, program=None: PROGRAM)
+    monkeypatch.setattr(gcode, "interpret_program", lambda text, machine, start_steps=(0, 0, 0), saved=None, program=None,
+                        start_line=None: PROGRAM)
     monkeypatch.setattr(gcode, "run_simulation", fake_harness)
     return monkeypatch
 
@@ -289,7 +290,7 @@ def test_soft_limit_error_one_line(fakes, nc, capsys):
 def test_bad_bytes_reach_the_interpreter_as_surrogates(monkeypatch, tmp_path, capsys):
     seen = {}
 
-    def interpret(text, machine, start_steps=(0, 0, 0), saved=None, program=None):
+    def interpret(text, machine, start_steps=(0, 0, 0), saved=None, program=None, start_line=None):
         seen["text"] = text
         return Program()
 
@@ -408,7 +409,8 @@ def test_hold_lines_follow_the_steps_csv():
 def test_empty_program_no_numpy_warning(fakes, nc, tmp_path, capsys):
     import warnings
 
-    fakes.setattr(gcode, "interpret_program", lambda text, machine, start_steps=(0, 0, 0), saved=None, program=None: Program(
+    fakes.setattr(gcode, "interpret_program", lambda text, machine, start_steps=(0, 0, 0), saved=None, program=None,
+                  start_line=None: Program(
         moves=[], warnings=[], end_work=(0.0, 0.0, 0.0), units="mm", end_machine=(0.0, 0.0, 0.0)))
     with warnings.catch_warnings():
         warnings.simplefilter("error")
