@@ -14,7 +14,7 @@ from interp.cli import main
 from interp.commands import send
 from interp.cores import UsageError
 from interp.gcode.interpreter import interpret
-from interp.gcode.moves import Arc, Event, Line
+from interp.gcode.moves import Arc, Dwell, Event, Line
 from interp.gcode.restart import start_at
 from interp.link.devicemodel import DeviceModel
 
@@ -48,26 +48,43 @@ def events(program):
 
 
 def test_the_state_before_the_line_and_the_approach():
-    """Starting at line 11 (G1 Y20): the program stood at X20 Y5 Z-1 with the spindle on at
-    S12000, flood on, output 1 on and tool 2 changed to.  From the machine at X0 Y0 Z0: up to
-    the clearance Z10, across, down as a rapid to the last rapid's height (Z1, line 8) and at
-    the plunge feed (F300, line 9) to Z-1; then line 11's move."""
+    """Starting at line 11 (G1 Y20): the program stood at X20 Y5 Z-1 with tool 2 changed to,
+    the spindle on at S12000, flood and output 1 on.  From the machine at X0 Y0 Z0: the
+    output, the M6's pause, up to the clearance Z10 and across, the spindle and flood, down as
+    a rapid to the last rapid's height (Z1, line 8) and at the plunge feed (F300, line 9) to
+    Z-1; then line 11's move, everything from there as the whole program runs it."""
     whole = interpret(PROGRAM)
     run = start_at(whole, 11, (0.0, 0.0, 0.0))
-    assert events(run)[:3] == [("output_on", 1.0), ("spindle_cw", 12000.0), ("flood_on", 0.0)]
-    lines = [m for m in run.moves if isinstance(m, Line)]
-    assert [(m.end, m.feed) for m in lines[:4]] == [((0, 0, 10), None), ((20, 5, 10), None), ((20, 5, 1), None),
-                                                    ((20, 5, -1), 300.0)]
-    assert all(m.line == 11 for m in run.moves[:7])
-    assert lines[4] == Line((20, 5, -1), (20, 20, -1), 900.0, 11)
+    shown = [(m.name, m.value) if isinstance(m, Event) else (m.end, m.feed) for m in run.moves[:9]]
+    assert shown == [("output_on", 1.0), ("tool_change", 2.0), ("pause", 6.0), ((0, 0, 10), None),
+                     ((20, 5, 10), None), ("spindle_cw", 12000.0), ("flood_on", 0.0), ((20, 5, 1), None),
+                     ((20, 5, -1), 300.0)]
+    assert all(m.line == 11 for m in run.moves[:9]) and run.origins[:9] == [11] * 9
     kept = whole.moves[[m.line for m in whole.moves].index(11):]
-    assert run.moves[7:] == kept
+    assert run.moves[9:] == kept and run.moves[9] == Line((20, 5, -1), (20, 20, -1), 900.0, 11)
     info = run.restart
     assert (info.tool, info.spindle, info.speed, info.coolant, info.outputs) == (2, "M3", 12000.0, ("flood",),
                                                                                  {1: True})
-    assert info.describe() == ("starting at line 11: tool 2 (the last M6 before it: load it first); spindle M3 "
-                               "S12000; coolant flood; outputs 1 on; approach in 4 moves to X20 Y5 Z-1 (machine mm) "
-                               "at F300")
+    assert info.describe() == ("starting at line 11: tool 2: the program pauses first for its M6; spindle M3 "
+                               "S12000; coolant flood; outputs 1 on; approach in 4 moves to X20 Y5 Z-1 (machine mm), "
+                               "the last at F300")
+
+
+def test_the_spin_up_dwell_and_a_laser():
+    """A dwell right after M3 is its spin-up: restored after the spindle, before the descent.
+    On a laser no dwell is kept and the beam's M3 comes after the approach (the rapids keep it
+    dark), before the first move or spindle word of the run; a kept dwell before it stays dark."""
+    text = "G21 G90\nG0 X5 Y0 Z1\nM3 S500\nG4 P2\nG0 X0\nG1 Z-1 F100\nG4 P1\nG1 X10 F1000\nM5\n"
+    mill = start_at(interpret(text, start=(3.0, 0.0, 5.0)), 7, (3.0, 0.0, 5.0))
+    order = [type(m).__name__ if not isinstance(m, Event) else m.name for m in mill.moves]
+    assert order == ["Line", "spindle_cw", "Dwell", "Line", "Line", "Dwell", "Line", "spindle_off"]
+    assert mill.moves[2] == Dwell(2.0, 7) and mill.restart.spin_up == 2.0
+    laser = start_at(interpret(text, start=(3.0, 0.0, 5.0)), 7, (3.0, 0.0, 5.0), laser=True)
+    order = [type(m).__name__ if not isinstance(m, Event) else m.name for m in laser.moves]
+    assert order == ["Line", "Line", "Line", "Dwell", "spindle_cw", "Line", "spindle_off"]
+    assert laser.restart.spin_up == 0.0
+    at_m5 = start_at(interpret(text), 9, (0.0, 0.0, 5.0), laser=True)     # the run's own M5 first
+    assert [m.name for m in at_m5.moves if isinstance(m, Event)] == ["spindle_cw", "spindle_off"]
 
 
 def test_a_later_s_word_and_the_plunge_feed():
@@ -111,9 +128,49 @@ def test_a_loop_starts_at_its_first_pass():
     assert len(lines) == 1 + 1 + 2 * 2 + 1            # approach, the first pass's Y, two passes, the G0
 
 
-def test_messages_before_the_line_are_dropped():
-    run = start_at(interpret("(MSG, one)\nG1 X1 F100\n(MSG, two)\nG1 X2\n"), 3, (0.0, 0.0, 0.0))
-    assert run.messages == ["line 3: two"]
+def test_messages_by_the_order_they_run_in():
+    """A message shows when the run from the line runs it: one in a subroutine called after
+    the start (its body is on an earlier line) shows, one before the start does not."""
+    text = "o1 sub\n(MSG, in sub)\nG1 X1 F100\no1 endsub\n(MSG, before)\nG1 Y5 F100\nG1 Y6\no1 call\nM2\n"
+    run = start_at(interpret(text), 7, (0.0, 0.0, 0.0))
+    assert run.messages == ["line 2: in sub"]
+
+
+def test_a_subroutine_counts_with_its_calls_line():
+    """Subroutines after M2 (their bodies on later lines): a call before the start is dropped
+    (the approach goes where it left the machine), one at the start runs; a line inside a
+    subroutine's body is refused."""
+    text = ("G21 G90\nG0 Z5\no100 call [1]\nG0 X0 Y0\no100 call [2]\nG0 X0 Y0\nM2\n"
+            "o100 sub\nG1 X#1 F300\nG1 Y#1\no100 endsub\n")
+    whole = interpret(text)
+    assert whole.origins == [2, 3, 3, 4, 5, 5, 6, 7]
+    run = start_at(whole, 4, (0.0, 0.0, 5.0))
+    assert [m.end for m in run.moves if isinstance(m, Line)] == [(1, 1, 5), (0, 0, 5), (2, 0, 5), (2, 2, 5), (0, 0, 5)]
+    run = start_at(whole, 5, (0.0, 0.0, 5.0))
+    assert [m.end for m in run.moves if isinstance(m, Line)][:2] == [(2, 0, 5), (2, 2, 5)]
+    with pytest.raises(UsageError) as error:
+        start_at(whole, 9, (0.0, 0.0, 5.0))
+    assert str(error.value) == ("--start-line 9: the line is in subroutine o100 (lines 8 .. 11); start at a line "
+                                "outside it (a call runs it from its first line)")
+
+
+@pytest.mark.parametrize("text", [
+    "G21 G90\nG92 X0 Y0 Z0\nG0 Z5\nG0 X10\nG1 Z-1 F100\nG1 X20\nG1 Y10\n",       # the origin where it started
+    "G21 G91\nG0 Z5\nG0 X10\nG1 Z-6 F100\nG1 X10\nG1 Y10\n",                      # incremental from its start
+    "G21 G90\nG10 L20 P1 X0 Y0\nG0 X10 Z5\nG1 Z-1 F100\nG1 X20\nG1 Y10\n",        # an offset from there
+])
+def test_a_program_anchored_where_it_started_is_refused(tmp_path, capsys, text):
+    """Moves from the start line that depend on where the program started would run shifted
+    by where the machine is now: one line, exit status 2.  From its first line it runs."""
+    path = tmp_path / "anchored.ngc"
+    path.write_text(text)
+    assert main(["gcode", str(path), "--check", "--start-line", "6"]) == 2
+    assert capsys.readouterr().err.strip() == (
+        "interp: error: --start-line 6: the moves from there depend on where the program started (G92 or G10 L20 "
+        "from where the machine stood, or incremental moves from its start): run from here they would be shifted; "
+        "run it from its first line where it started")
+    assert main(["gcode", str(path), "--check", "--start-line", "1"]) == 0
+    capsys.readouterr()
 
 
 @pytest.mark.parametrize("line, text", [
@@ -137,6 +194,30 @@ def test_a_probe_before_the_line_is_refused():
             start_at(interpret(text, probes=probes), 5, (0.0, 0.0, 0.0))
         assert str(error.value) == expected
     assert start_at(interpret(text), 2, (0.0, 0.0, 0.0)).moves[0].probe == 382
+
+
+def test_an_axis_not_programmed_yet_stays_where_the_machine_is(tmp_path, capsys):
+    """Y is first programmed after the start line, Z never: they stay where the machine is,
+    as a run from the first line would leave them, so the start is not refused."""
+    path = tmp_path / "late_y.ngc"
+    path.write_text("G21 G90\nG0 X5\nG1 X8 F100\nG1 X9\nG1 Y3\n")
+    assert main(["gcode", str(path), "--check", "--start-line", "4"]) == 0
+    assert "end X9 Y3 Z0 mm" in capsys.readouterr().out
+
+
+def test_a_probe_after_the_start_runs_on_the_controller(tmp_path, capsys, monkeypatch):
+    """`interp send --start-line` before a probe move: the pieces run as in the whole program
+    (the probe's touch, its G10 L20, the moves after it) and the run ends where it ends."""
+    path = tmp_path / "probe.ngc"
+    path.write_text("G21 G90\nG0 Z5\nM3 S1000\nG0 X5\nG1 Z-1 F100\nG1 X8 F300\nM5\nG38.2 Z-10 F50\n"
+                    "G10 L20 P1 Z1.5\nG0 Z5\nG1 X10 F300\nG1 Z0 F80\nG1 Y3\nM2\n")
+    ends = []
+    for line in (None, 6):
+        device = DeviceModel(probe=(2, "min", -320))
+        monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
+        assert main(["send", str(path), "--sim-model"] + (["--start-line", str(line)] if line else [])) == 0
+        ends.append(capsys.readouterr().out.rstrip().rsplit("end ", 1)[1])
+    assert ends[0] == ends[1] == "(1000, 300, -473) steps"
 
 
 def test_compensated_moves_start_on_the_offset_path():
@@ -175,7 +256,7 @@ def test_the_command_lines(capsys, tmp_path, monkeypatch):
     path.write_text(PROGRAM)
     assert main(["gcode", str(path), "--check", "--start-line", "14"]) == 0
     out, err = capsys.readouterr()
-    assert err.startswith("interp: starting at line 14: tool 2 (the last M6") and "end X60 Y40 Z10 mm" in out
+    assert err.startswith("interp: starting at line 14: tool 2: the program pauses first") and "end X60 Y40 Z10" in out
     device = DeviceModel()
     monkeypatch.setattr(send, "open_transport", lambda args, machine: (device, 115200))
     assert main(["send", str(path), "--sim-model", "--start-line", "14"]) == 0

@@ -357,7 +357,7 @@ def test_start_line_on_the_rtl(files, capsys):
     assert main(["send", str(program), "--sim", "--machine", machine, "--start-line", "8", "--steps", str(steps)]) == 0
     out, err = capsys.readouterr()
     assert err.startswith("interp: starting at line 8: spindle M3 S1000; coolant flood; approach in 3 moves to "
-                          "X1 Y0.2 Z-0.3 (machine mm) at F600"), err
+                          "X1 Y0.2 Z-0.3 (machine mm), the last at F600"), err
     assert end_steps(out) == (100, 60, 100), out
     assert steps.read_text() == expected.read_text()
 

@@ -74,14 +74,33 @@ def interpret_program(text: str, machine: Machine, start_steps=(0, 0, 0), saved=
     program's file ("-": standard input), whose folder has its subroutine files.  start_line:
     run from that line (restart.start_at: the state before it restored, an approach to it)."""
     from ..gcode.compile import start_mm
+    from ..gcode.errors import GcodeError
     from ..gcode.interpreter import interpret
-    from ..gcode.restart import start_at
+    from ..gcode.restart import same_from, start_at
+
+    def run(at):
+        return interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools, start=at,
+                         saved=saved_parameters(machine) if saved is None else saved, probes=probes,
+                         folders=machine.subroutine_folders(program))
 
     here = start_mm(machine, start_steps)
-    moves = interpret(text, g28=machine.g28, g30=machine.g30, tools=machine.tools, start=here,
-                      saved=saved_parameters(machine) if saved is None else saved, probes=probes,
-                      folders=machine.subroutine_folders(program))
-    return moves if start_line is None else start_at(moves, start_line, here)
+    moves = run(here)
+    if start_line is None:
+        return moves
+    restarted = start_at(moves, start_line, here, laser=bool(machine.values["spindle"]["laser"]))
+    there = tuple(v + shift for v, shift in zip(here, ANCHOR_SHIFT_MM))
+    try:
+        other = run(there)
+    except GcodeError:
+        other = None
+    if other is None or not same_from(moves, other, start_line, here, there):
+        raise UsageError(f"--start-line {start_line}: the moves from there depend on where the program started "
+                         "(G92 or G10 L20 from where the machine stood, or incremental moves from its start): "
+                         "run from here they would be shifted; run it from its first line where it started")
+    return restarted
+
+
+ANCHOR_SHIFT_MM = (1.0, 2.0, 4.0)   # --start-line: the second interpretation's start, from the machine's
 
 
 def compile_text(text: str, machine: Machine | None = None, pause_seconds: float = 0.0,

@@ -149,6 +149,7 @@ def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0
     program.end_work = machine.work_position()
     program.units = machine.units
     program.saved = machine.saved_parameters()
+    program.subroutines = params.subroutines
     return program
 
 
@@ -215,6 +216,8 @@ class _Machine:
         self.probes_made = 0
         self.touch_assumed = False                # a probe move took its touch at its end (no machine)
         self.comp: Compensator | None = None      # cutter compensation (G41 / G42, until its exit move)
+        self.block_top = 0                        # the running block's line outside any subroutine
+        self.top_of: dict[int, int] = {}          # ... by block line, for the moves settled later
         self._restore(saved or {})
         self._write_parameters()
 
@@ -340,6 +343,7 @@ class _Machine:
                 self._fail(None, f"the program makes more than {MAX_MOVES} moves (an arc's turns counted): "
                                  "split it")
             self.program.moves.append(move)
+            self.program.origins.append(self.top_of.get(move.line, self.block_top))
 
     def compensation_off(self, tool_stays: bool = False) -> None:
         """G40: the pending compensated move ends; the next XY move starts where the tool is.
@@ -424,16 +428,21 @@ class _Machine:
         self.position = list(target)
 
     # ---- one block ------------------------------------------------------------------
+    def _message(self, block: Block, text: str) -> None:
+        self.program.messages.append(f"line {block.line}: {text}")
+        self.program.message_origins.append((len(self.program.moves), block.top))
+
     def run_block(self, block: Block) -> None:
+        self.top_of[block.line] = self.block_top = block.top
         for comment in block.comments:
             text = comment.lstrip()
             head, comma, rest = text.partition(",")
             kind = head.lower() if comma else ""           # (LinuxCNC: "msg," etc. at the start)
             if kind == "msg":
-                self.program.messages.append(f"line {block.line}: {without_controls(rest.strip())}")
+                self._message(block, without_controls(rest.strip()))
             elif kind in ("debug", "print") and (kind == "print" or self.params.get(DEBUG_FLAG) > 0.0):
                 shown = substitute_parameters(rest, self.params).strip()
-                self.program.messages.append(f"line {block.line}: {without_controls(shown)}")
+                self._message(block, without_controls(shown))
             elif kind == "abort":
                 shown = without_controls(substitute_parameters(rest, self.params).strip())
                 if self.touch_assumed:          # (it may depend on a touch only the machine knows)

@@ -62,6 +62,7 @@ class Block:
     comments: list[str] = field(default_factory=list)   # ( ) and ; texts, without delimiters
     file: str = ""              # the subroutine file it is in ("": the program)
     file_line: int = 0          # ... and its line there
+    top: int = 0                # the program's line outside any subroutine that runs it (run from a line)
 
 
 def _name(key: str) -> str:
@@ -99,7 +100,9 @@ class Parameters:
     Keys: an int (numbered) or a str name ("_global", "local"; "#<...>", case and spaces
     ignored).  Reading an unset numbered parameter gives 0; reading an undefined named
     parameter raises ExpressionError, as does a number out of range.
-    `warnings` collects the language layer's warnings, "line L: text" each.
+    `warnings` collects the language layer's warnings, "line L: text" each;
+    `subroutines` the program's own subroutines as (label, first line, last line), set
+    when its blocks are iterated.
     """
 
     def __init__(self):
@@ -108,6 +111,7 @@ class Parameters:
         self.frames: list[dict[str, float]] = [{}]          # named locals per call level
         self.saved: list[list[float]] = []                  # callers' #1..#30
         self.warnings: list[str] = []
+        self.subroutines: list[tuple[str, int, int]] = []
 
     @staticmethod
     def _index(key) -> int:
@@ -934,10 +938,14 @@ def iterate_blocks(text: str, params: Parameters, find_file=None) -> Iterator[Bl
     LinuxCNC does: find_file(name) -> (the file's name as shown, its text) or None.  The
     file is read and checked at the first such call; its subroutines (and those of the
     files it calls) are then defined for the rest of the run, and its lines outside them
-    are not run.  Its blocks carry the program's line of the call.
+    are not run.  Its blocks carry the program's line of the call.  Every block's `top` is
+    the program's line outside any subroutine that runs it (a call's line inside one).
     """
     main = _Unit(_read_program(text, params.warnings), {})
     main.subs = _structure(main.prog)
+    params.subroutines = [(label, main.prog[k].line, main.prog[main.prog[k].end].line)
+                          for label, k in main.subs.items()]
+    top = 0                                     # inside a call: the program's line of the outermost call
     defined = {label: main for label in main.subs}      # label -> the unit defining it
     unit, prog = main, main.prog
     called_at = 0                               # in a subroutine file: the program's line of the call
@@ -1006,7 +1014,8 @@ def iterate_blocks(text: str, params: Parameters, find_file=None) -> Iterator[Bl
                     params.set(key, value)
             except ExpressionError as e:
                 fail(rec, item, str(e))
-            yield Block(called_at if unit.file else rec.line, words, rec.delete, rec.comments, unit.file, rec.line)
+            yield Block(called_at if unit.file else rec.line, words, rec.delete, rec.comments, unit.file, rec.line,
+                        top if returns else rec.line)
             pc += 1
         elif kind == "sub":
             pc = rec.end + 1
@@ -1035,6 +1044,7 @@ def iterate_blocks(text: str, params: Parameters, find_file=None) -> Iterator[Bl
             if calls > MAX_CALLS:
                 fail(rec, None, f"more than {MAX_CALLS} subroutine calls: a runaway program?")
             params.push_call(args)
+            top = top if returns else rec.line
             returns.append((unit, pc + 1, repeats, called_at))
             repeats = {}
             called_at = called_at if unit.file else rec.line   # the program's line that leads there

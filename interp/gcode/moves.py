@@ -99,5 +99,10 @@ class Program:
     saved: dict[int, float] = field(default_factory=dict)
     # interpretation stopped after a probe move whose result is not known yet (interpret's probes)
     probe_pending: bool = False
-    # run from a line (restart.start_at): what the start line found and how it is reached
+    # run from a line (restart.start_at): for each move and each message, the program's line
+    # outside any subroutine that ran it (a call's line for a subroutine's); the program's
+    # own subroutines as (label, first line, last line); what the start line found
+    origins: list[int] = field(default_factory=list)
+    message_origins: list[tuple[int, int]] = field(default_factory=list)    # (moves before it, line)
+    subroutines: list[tuple[str, int, int]] = field(default_factory=list)
     restart: object = None
