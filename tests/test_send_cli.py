@@ -74,12 +74,19 @@ def test_program_from_standard_input(capsys, monkeypatch):
 
 
 def test_machine_error_line(capsys, program):
+    """A machine error names the record and the program line, and says how to run on from that
+    line (run from a line); that run ends where the program ends."""
     _, compiled = gcode.compile_text(PROGRAM)
     line = compiled.commands[2].source
     code, out, err = run(capsys, "send", program, "--sim-model", "--sim-model-fail", "3")
     assert code == 1
-    assert err.strip() == (f"interp: error: controller error 17 (limit switch, x limit) at record 3 of "
-                           f"{len(compiled.commands)}, line {line}")
+    assert err.strip().splitlines() == [
+        f"interp: error: controller error 17 (limit switch, x limit) at record 3 of {len(compiled.commands)}, "
+        f"line {line}",
+        f"interp send: to run on from that line once the machine is ready: interp send {program} --start-line "
+        f"{line} ..."]
+    code, out, err = run(capsys, "send", program, "--sim-model", "--start-line", str(line))
+    assert code == 0 and out.rstrip().endswith("end (0, 0, 0) steps"), (out, err)
 
 
 def test_a_board_reports_its_end_position(capsys, tmp_path, monkeypatch):

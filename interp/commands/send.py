@@ -20,6 +20,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
+import shlex
 import sys
 
 from ..cores import UsageError
@@ -373,16 +374,19 @@ def cmd_send(args) -> int:
         print(f"interp: error: {run.failure}", file=sys.stderr)
         return 1
     outcome, compiled, records = run.outcome, run.compiled, run.records
-    where = f"record {run.records_before + outcome.executed} of {records}, line {line_of(compiled, outcome.executed)}"
+    stopped_at = line_of(compiled, outcome.executed)
+    where = f"record {run.records_before + outcome.executed} of {records}, line {stopped_at}"
     if outcome.status == "error":
         error = MachineError(outcome.error, outcome.limits, outcome.executed, "")
         extra = f", {limit_names(error.limits)}" if error.limits else ""
         print(f"interp: error: controller error {error.code} ({p.error_text(error.code)}{extra}) at {where}",
               file=sys.stderr)
+        restart_hint(args, run, stopped_at)
         return 1
     if outcome.status == "aborted":
         how = f" ({outcome.message})" if outcome.message else ""
         print(f"interp: aborted at {where}{how}", file=sys.stderr)
+        restart_hint(args, run, stopped_at)
         return 1
     if outcome.status != "done":
         print(f"interp: error: the run did not end ({where})", file=sys.stderr)
@@ -398,6 +402,17 @@ def cmd_send(args) -> int:
         print(f"interp: error: {err}; the offsets were: {describe(run.program.saved) or 'none'}", file=sys.stderr)
         return 1
     return 0
+
+
+def restart_hint(args, run, line: int) -> None:
+    """After a stop mid-program: how to run on from the line that was running (run from a
+    line), unless that cannot be (standard input, a probe run, a line in a subroutine)."""
+    program = run.program
+    if args.file == "-" or run.results or program is None or line < 1 or \
+            any(begin <= line <= end for _, begin, end in program.subroutines):
+        return
+    print(f"interp send: to run on from that line once the machine is ready: "
+          f"interp send {shlex.quote(args.file)} --start-line {line} ...", file=sys.stderr)
 
 
 class ProgramRun:
