@@ -67,7 +67,8 @@ class Restart:
         if self.approach:
             x, y, z = self.approach[-1]
             how = f"the last at F{self.feed:g}" if self.feed is not None else "as rapids"
-            parts.append(f"approach in {len(self.approach)} moves to X{x:g} Y{y:g} Z{z:g} (machine mm), {how}")
+            count = f"{len(self.approach)} move{'s' if len(self.approach) > 1 else ''}"
+            parts.append(f"approach in {count} to X{x:g} Y{y:g} Z{z:g} (machine mm), {how}")
         else:
             parts.append("no approach (the machine is there)")
         return f"starting at line {self.line}: " + "; ".join(parts)
