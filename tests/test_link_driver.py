@@ -484,3 +484,36 @@ def test_a_controller_reset_during_a_run_is_a_link_error(reset_at, earlier, hold
     with pytest.raises(LinkError, match=why):
         run(model, commands(60), max_seconds=30.0, keys=(lambda: next(keys, "")) if hold else None)
     assert model.reset_at is None and model.t < 5.0 + earlier        # (it happened, and soon after)
+
+
+def test_a_hold_in_the_moment_of_a_pause_is_the_pause():
+    """'!' typed just as the controller paused by itself (M0), before a poll round saw it: the
+    held machine stands where the pause runs (at_pause), so it is told as the program's pause
+    and one '~' releases both.  Without at_pause the pause passes untold."""
+    from interp.commands.gcode import compile_text
+    from interp.commands.send import compile_build, pause_positions, pause_record
+
+    _, compiled = compile_text("G21 G91\nG1 X1 F600\nM0\nG1 X1\nM2\n")
+    stream = encode_program(compiled.commands, compile_build())
+    where = pause_positions(compiled, (0, 0, 0))
+    assert list(where.values()) == [(100, 0, 0)]
+    told = {}
+    for name, at_pause in (("without", None),
+                           ("with", lambda snap: where.get(pause_record(compiled, snap.executed)) == tuple(snap.position))):
+        model, typed, pauses = DeviceModel(records_per_second=100), [], []
+
+        def keys():
+            if model.hold and not typed:
+                typed.append("!")
+                return "!"
+            if typed == ["!"] and (pauses or model.now() > 1.0):
+                typed.append("~")
+                return "~"
+            return ""
+        driver = Driver(model, baud=model.baud)
+        driver.connect()
+        outcome = run_program(driver, stream, len(compiled.commands), keys=keys, pause_resume=None, max_seconds=3.0,
+                              on_pause=lambda snap: pauses.append(snap.executed), at_pause=at_pause)
+        assert outcome.status == "done" and typed == ["!", "~"], name
+        told[name] = pauses
+    assert told == {"without": [], "with": [2]}

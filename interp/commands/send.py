@@ -252,6 +252,24 @@ def pause_record(compiled, executed: int, after: int = 0) -> int:
     return next((n for n in range(after + 1, min(executed, len(cmds)) + 1) if is_pause(n)), 0)
 
 
+def pause_positions(compiled, start) -> dict[int, tuple[int, int, int]]:
+    """Where the machine stands (steps) when each pause record (1-based number) runs, the
+    program started at `start`: the ends of the lines and arcs before it (none after a
+    curve, whose end is not its record's)."""
+    at, out = list(start), {}
+    for n, cmd in enumerate(compiled.commands, 1):
+        if cmd.kind == CURVE:
+            break
+        if cmd.kind == gc.LINE:
+            at = [a + d for a, d in zip(at, (cmd.x, cmd.y, cmd.z))]
+        elif cmd.kind in (gc.ARC_CW, gc.ARC_CCW):
+            for axis, d in zip(gc.PLANES[("XY", "ZX", "YZ")[cmd.plane]], (cmd.x, cmd.y, cmd.z)):
+                at[axis] += d
+        elif cmd.kind == gc.EVENT and cmd.x == gc.EVENT_CODES["pause"]:
+            out[n] = tuple(at)
+    return out
+
+
 def limit_names(limits: int) -> str:
     return ", ".join(f"{a} limit" for n, a in enumerate("xyz") if limits >> n & 1)
 
@@ -512,6 +530,11 @@ class ProgramRun:
         self.progress = Progress(compiled, self.machine, sys.stderr.isatty())
 
         last = [0]                              # the record of the pause reported last
+        pauses = pause_positions(compiled, here)
+
+        def at_pause(snap) -> bool:             # held by '!', and standing where a pause runs
+            n = pause_record(compiled, snap.executed, last[0])
+            return n in pauses and pauses[n] == tuple(snap.position)
 
         def on_pause(snap) -> None:
             how = "press ~ to resume" if self.interactive else f"resuming after {self.args.pause_seconds:g} s"
@@ -525,7 +548,8 @@ class ProgramRun:
         if self.override is None:               # from the settings' percent
             self.override = FeedOverride(compiled.settings.get("override", 100))
         self.outcome = run_program(self.driver, stream, len(compiled.commands), progress=self.progress,
-                                   keys=lambda: typed_keys(self.keyboard()), on_pause=on_pause, probe=probe,
+                                   keys=lambda: typed_keys(self.keyboard()), on_pause=on_pause, at_pause=at_pause,
+                                   probe=probe,
                                    override=self.override, spindle=self.spindle,
                                    pause_resume=None if self.interactive else self.args.pause_seconds)
         self.records += len(compiled.commands)

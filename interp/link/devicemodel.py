@@ -3,7 +3,8 @@
 frame layer (sequence numbers, credits, coalesced replies, frame timeout), the register
 file, the segment queue and a fake executor that takes one whole record every
 1 / records_per_second seconds (lines and arcs move the position to their ends; the
-switches and the probe are checked on lines only).  The same transport API as interp.link.simlink.SimLink:
+switches and the probe are checked on lines only; a pause event holds, as
+CONTROL.hold).  The same transport API as interp.link.simlink.SimLink:
 write(bytes), read(size) honouring .timeout, in_waiting, now() (SIMULATED seconds:
 time moves only while the host waits in read), close() -> dict.
 
@@ -28,6 +29,7 @@ from .records import DEFAULT_BUILD, Build, RecordReader, decode, record_bytes
 
 
 PROBE_OVERSHOOT = 3         # steps the machine runs past the probe's touch while it stops
+PAUSE_EVENT = 10            # the event code of a program pause (interp.gcode.compile's EVENT_CODES)
 
 
 class DeviceModel:
@@ -365,6 +367,10 @@ class DeviceModel:
                 return
             self.busy, self.moving = True, record["kind"] < 4       # (a dwell or event does not move)
             self.running_until = self.t + self.record_time
+            if record["kind"] == 5 and record["x"] & 0xFF == PAUSE_EVENT and not record["plane"] & 1:
+                # a program pause (M0, M6): the controller sets CONTROL.hold itself, at rest
+                self.hold, self.hold_since, self.hold_moving = True, self.t, False
+                return
 
     def switch_active(self, axis: int) -> bool:
         if axis not in self.switches:

@@ -595,7 +595,7 @@ class Outcome:
 
 def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, keys=None,
                 max_seconds: float | None = None, pause_resume: float | None = 0.0,
-                on_pause=None, probe: bool = False, override: FeedOverride | None = None,
+                on_pause=None, at_pause=None, probe: bool = False, override: FeedOverride | None = None,
                 spindle: SpindleOverride | None = None) -> Outcome:
     """Stream the records and follow the run to its end: all records executed and the
     controller not busy.  progress(Snapshot) after every poll round; keys() -> the keys
@@ -610,7 +610,10 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
     position counters have counted).
     A program pause (M0, M1, M6: the controller holds by itself) is released
     pause_resume seconds after the machine has stopped, or, with None, by the '~' key;
-    on_pause(Snapshot) is told once per pause.
+    on_pause(Snapshot) is told once per pause.  A hold by '!' in the moment the controller
+    paused by itself looks like the user's: at_pause(Snapshot) -> True says the held machine
+    stands where a pause not told yet runs, so it is told as the program's pause (and one '~'
+    releases both).
     The run starts from a filled queue: CONTROL.fill is set while the first bytes go out
     (the whole program, or all but LMAX bytes of the queue's room) and cleared by a
     WRITE sequenced after them, so motion_top starts as from a reset with its records
@@ -722,9 +725,10 @@ def run_program(driver: Driver, stream: bytes, records: int, *, progress=None, k
             aborted = True
         if touched and aborted and not busy:
             return Outcome("probed", snap.executed, seconds)
-        if snap.state in (p.HOLDING, p.HELD) and not held and not aborted and not paused and stopping is None \
+        ours = not held or (snap.state == p.HELD and at_pause is not None and at_pause(snap))
+        if snap.state in (p.HOLDING, p.HELD) and ours and not aborted and not paused and stopping is None \
                 and not touched and after_release:  # (a round from before a release still shows its hold)
-            paused = True                       # the program's own pause: the controller held
+            paused, held = True, False          # the program's own pause: the controller held
             # EXECUTED now, at rest (the round's value may be older): which pause it is
             snap.executed = executed_now()
             if on_pause is not None:
