@@ -156,6 +156,8 @@ def test_a_subroutine_counts_with_its_calls_line():
 
 @pytest.mark.parametrize("text", [
     "G21 G90\nG92 X0 Y0 Z0\nG0 Z5\nG0 X10\nG1 Z-1 F100\nG1 X20\nG1 Y10\n",       # the origin where it started
+    "G21 G90\nG0 Z5\nG91 G0 X10 Y10\nG90 G1 Z-1 F100\nG1 Z-2\nG1 X50 Y10 F300\n",  # G91 from the start, then G90
+    "G21 G90\nG28.1\nG0 Z5\nG0 X10 Y10\nG1 Z-1 F100\nG1 X20 F300\nG28\n",        # G28 back where it started
     "G21 G91\nG0 Z5\nG0 X10\nG1 Z-6 F100\nG1 X10\nG1 Y10\n",                      # incremental from its start
     "G21 G90\nG10 L20 P1 X0 Y0\nG0 X10 Z5\nG1 Z-1 F100\nG1 X20\nG1 Y10\n",        # an offset from there
 ])
@@ -218,6 +220,55 @@ def test_a_probe_after_the_start_runs_on_the_controller(tmp_path, capsys, monkey
         assert main(["send", str(path), "--sim-model"] + (["--start-line", str(line)] if line else [])) == 0
         ends.append(capsys.readouterr().out.rstrip().rsplit("end ", 1)[1])
     assert ends[0] == ends[1] == "(1000, 300, -473) steps"
+
+
+@pytest.mark.parametrize("text, line", [
+    ("G21 G90\nG0 Z5\nM3 S1000\nG0 X0 Y0\nG1 Z-1 F100\nG1 X10\nM5\n", 3),      # G0 X0 Y0: no move from 0
+    ("G21 G90\nG0 Z5\nM3 S1000\nG0 X0 Y0\nG1 Z-1 F100\nG1 X10\nM5\n", 4),
+    ("M3 S1000\nG0 X10 Y10\nG0 Z4\nG1 Z-1 F100\nG1 X20 F300\nM5\n", 3),
+])
+def test_ordinary_programs_are_not_taken_for_anchored(tmp_path, capsys, text, line):
+    """A move that has no length from where the machine stands, but has from another start, does
+    not make a program look anchored where it started."""
+    path = tmp_path / "plain.ngc"
+    path.write_text(text)
+    assert main(["gcode", str(path), "--check", "--start-line", str(line)]) == 0, capsys.readouterr().err
+    capsys.readouterr()
+
+
+def test_a_run_from_a_tool_change_changes_the_tool_once():
+    """Starting at an operation's T2 M6: the dropped T1 M6 is not asked for as well."""
+    text = "G21 G90\nT1 M6\nM3 S1000\nG0 X10 Z5\nG1 Z-1 F100\nM5\nT2 M6\nM3 S500\nG1 X20 F300\nM5\n"
+    run = start_at(interpret(text), 7, (0.0, 0.0, 0.0))
+    assert [(m.name, m.value) for m in run.moves if isinstance(m, Event) and m.name in ("tool_change", "pause")] \
+        == [("tool_change", 2.0), ("pause", 6.0)]
+    assert run.restart.tool is None and "tool" not in run.restart.describe()
+
+
+def test_the_longest_spin_up_after_a_start_or_a_new_speed():
+    """M3 S1000 G4 P3, then M3 S12000 (a new speed, no dwell): the 3 s spin-up is kept; a later
+    S with a longer dwell after it takes that one."""
+    text = "G21 G90\nM3 S1000\nG4 P3\nG0 X5 Z1\nM3 S12000\nG1 Z-1 F100\nG1 X10\nS600\nG4 P5\nG1 X20\n"
+    assert start_at(interpret(text), 7, (0.0, 0.0, 0.0)).restart.spin_up == 3.0
+    assert start_at(interpret(text), 10, (0.0, 0.0, 0.0)).restart.spin_up == 5.0
+
+
+def test_a_laser_approaches_with_rapids():
+    """On a laser the approach is all rapids (the beam's M3 after it stays dark until the first
+    feed move), even where the program stood below its last rapid's height."""
+    text = "G21 G90\nG0 X5 Z3\nM3 S500\nG1 Z0 F100\nG1 X10 F1000\nG1 Y10\nM5\n"
+    run = start_at(interpret(text), 6, (0.0, 0.0, 0.0), laser=True)
+    assert [m.feed for m in run.moves if isinstance(m, Line) and m.line == 6][:-1] == [None, None, None]
+
+
+def test_origins_under_cutter_compensation():
+    """A subroutine's move under compensation settles after its call line ran again: it keeps the
+    line of its own call, and a message on the start line shows."""
+    text = ("G21 G90\nG0 X-5 Y-5\nG41.1 D2\no100 call\no100 call\no100 call\nG40\nG0 X-5 Y-5\nM2\n"
+            "o100 sub\nG91 G1 X10 F300\nG90\no100 endsub\n")
+    assert interpret(text).origins == [2, 4, 5, 6, 8, 9]
+    text = "G21 G90\nG0 X-5 Y-5\nG41.1 D2\nG1 X0 Y0 F300\nG1 X10\n(MSG, at six)\nG1 Y10\nG1 X0\nG40\n"
+    assert start_at(interpret(text), 6, (0.0, 0.0, 0.0)).messages == ["line 6: at six"]
 
 
 def test_compensated_moves_start_on_the_offset_path():

@@ -89,6 +89,15 @@ def test_machine_error_line(capsys, program):
     assert code == 0 and out.rstrip().endswith("end (0, 0, 0) steps"), (out, err)
 
 
+def test_no_run_on_hint_for_a_program_run_from_its_start(capsys, tmp_path):
+    """A G91 program runs from where it started: the run from a line would be refused, so the
+    error gives no hint."""
+    path = tmp_path / "g91.nc"
+    path.write_text("G21 G91\nG1 X1 F600\nG1 Y1\nG1 X-1\nG1 Y-1\nM2\n")
+    code, out, err = run(capsys, "send", str(path), "--sim-model", "--sim-model-fail", "3")
+    assert code == 1 and len(err.strip().splitlines()) == 1 and "controller error 17" in err, err
+
+
 def test_a_board_reports_its_end_position(capsys, tmp_path, monkeypatch):
     """A serial port says nothing when it closes: the summary's end position comes from the
     controller's POS_X/Y/Z, read once the program is done."""

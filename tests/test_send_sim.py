@@ -404,6 +404,7 @@ def test_program_pause_is_released(files, capsys):
     assert "end (30, 0, 0) steps" in captured.out, captured
     assert captured.err.count("program paused at line") == 2, captured.err
     assert "line 3: resuming after 0.01 s" in captured.err, captured.err
+    assert "line 5, tool change to T2: resuming after 0.01 s" in captured.err, captured.err
 
 
 def test_pauses_in_a_row_each_hold_once(files, capsys):
@@ -419,7 +420,7 @@ def test_pauses_in_a_row_each_hold_once(files, capsys):
         assert main(["send", str(program), "--sim", "--pause-seconds", pause, "--line-noise", "0.01",
                      "--machine", str(files / "machine.toml")]) == 0
         captured = capsys.readouterr()
-        lines = [int(w.split(":")[0]) for w in captured.err.split("program paused at line ")[1:]]
+        lines = [int(re.match(r"\d+", w).group()) for w in captured.err.split("program paused at line ")[1:]]
         assert lines == [3, 4, 6, 8], captured.err
         assert "end (20, 0, 0) steps" in captured.out
         seconds.append(float(captured.out.split(" s link time")[0].split(" in ")[-1]))

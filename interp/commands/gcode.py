@@ -88,19 +88,22 @@ def interpret_program(text: str, machine: Machine, start_steps=(0, 0, 0), saved=
     if start_line is None:
         return moves
     restarted = start_at(moves, start_line, here, laser=bool(machine.values["spindle"]["laser"]))
-    there = tuple(v + shift for v, shift in zip(here, ANCHOR_SHIFT_MM))
+    starts = tuple(tuple(v + shift for v, shift in zip(here, away)) for away in ANCHOR_SHIFTS_MM)
     try:
-        other = run(there)
-    except GcodeError:
-        other = None
-    if other is None or not same_from(moves, other, start_line, here, there):
+        anchored = not same_from(run(starts[0]), run(starts[1]), start_line, starts)
+        why = ""
+    except GcodeError as err:
+        anchored, why = True, f" (from another start it fails: {err})"
+    if anchored:
         raise UsageError(f"--start-line {start_line}: the moves from there depend on where the program started "
                          "(G92 or G10 L20 from where the machine stood, or incremental moves from its start): "
-                         "run from here they would be shifted; run it from its first line where it started")
+                         f"run from here they would be shifted; run it from its first line where it started{why}")
     return restarted
 
 
-ANCHOR_SHIFT_MM = (1.0, 2.0, 4.0)   # --start-line: the second interpretation's start, from the machine's
+# --start-line: two more interpretations from these starts, from the machine's (odd values that
+# no program's word meets, so that an axis it programs is never taken for one still at its start)
+ANCHOR_SHIFTS_MM = ((0.0123457, 0.0234571, 0.0345713), (-0.0457131, 0.0571313, -0.0713137))
 
 
 def compile_text(text: str, machine: Machine | None = None, pause_seconds: float = 0.0,

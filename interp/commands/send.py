@@ -252,6 +252,15 @@ def pause_record(compiled, executed: int, after: int = 0) -> int:
     return next((n for n in range(after + 1, min(executed, len(cmds)) + 1) if is_pause(n)), 0)
 
 
+def tool_of_pause(compiled, n: int) -> str:
+    """", tool change to T4" when pause record n is an M6's (its tool change record before it)."""
+    cmds = compiled.commands
+    before = cmds[n - 2] if 2 <= n <= len(cmds) else None
+    if before is not None and before.kind == gc.EVENT and before.x == gc.EVENT_CODES["tool_change"]:
+        return f", tool change to T{before.y}"
+    return ""
+
+
 def pause_positions(compiled, start) -> dict[int, tuple[int, int, int]]:
     """Where the machine stands (steps) when each pause record (1-based number) runs, the
     program started at `start`: the ends of the lines and arcs before it (none after a
@@ -424,10 +433,16 @@ def cmd_send(args) -> int:
 
 def restart_hint(args, run, line: int) -> None:
     """After a stop mid-program: how to run on from the line that was running (run from a
-    line), unless that cannot be (standard input, a probe run, a line in a subroutine)."""
+    line), unless that cannot be (standard input, a probe run, a line in a subroutine, a
+    program the run from there refuses)."""
     program = run.program
     if args.file == "-" or run.results or program is None or line < 1 or \
             any(begin <= line <= end for _, begin, end in program.subroutines):
+        return
+    try:
+        gcode_command.interpret_program(run.text, run.machine, run.start, run.saved, program=args.file,
+                                        start_line=line)
+    except UsageError:
         return
     print(f"interp send: to run on from that line once the machine is ready: "
           f"interp send {shlex.quote(args.file)} --start-line {line} ...", file=sys.stderr)
@@ -541,7 +556,8 @@ class ProgramRun:
             last[0] = pause_record(compiled, snap.executed, last[0]) or last[0]
             line = compiled.commands[last[0] - 1].source if last[0] else line_of(compiled, snap.executed)
             lead = "\n" if self.progress.bar is not None else ""      # (below the progress bar)
-            print(f"{lead}interp send: program paused at line {line}: {how}", file=sys.stderr)
+            tool = tool_of_pause(compiled, last[0])
+            print(f"{lead}interp send: program paused at line {line}{tool}: {how}", file=sys.stderr)
 
         self.records_before = self.records
         self.compiled = compiled

@@ -266,6 +266,10 @@ class Compensator:
                        plane="XY" if inward else self.plane)
 
     # ---- the moves ---------------------------------------------------------------
+    def held(self) -> int:
+        """Moves taken and not handed back yet: the pending move and what waits after it."""
+        return (self.pending is not None) + len(self.after)
+
     def take(self, move) -> list:
         """A move the interpreter made -> the tool's moves that are settled now."""
         return [self._frame(m, False) for m in self._take(self._frame(move, True))]
@@ -320,7 +324,8 @@ class Compensator:
             if isinstance(after, Line):
                 after = replace(after, start=(*_xy(before.end), after.start[2]))
             else:
-                corner_move = Line((*_xy(before.end), after.start[2]), after.start, move.feed, move.line)
+                corner_move = Line((*_xy(before.end), after.start[2]), after.start, move.feed, move.line,
+                                   origin=move.origin)
         self._curvature(move, -bend if abs(bend) <= BEND else 0.0)
         if trimmed or self.trimmed:
             self._check_forward(before, move.line)
@@ -373,8 +378,9 @@ class Compensator:
         z = after.start[2]
         start, end = (*_xy(before.end), z), after.start
         if move.feed is None or math.dist(_xy(start), _xy(end)) < CHORD:
-            return Line(start, end, move.feed, move.line)
-        return Arc(start, end, (*self.pending_corner, z), "XY", self.side == "right", 1, move.feed, move.line)
+            return Line(start, end, move.feed, move.line, origin=move.origin)
+        return Arc(start, end, (*self.pending_corner, z), "XY", self.side == "right", 1, move.feed, move.line,
+                   origin=move.origin)
 
     def _curvature(self, move, inside: float) -> None:
         """Bends joined as they are (`inside`: the bend at this move's start towards the tool,

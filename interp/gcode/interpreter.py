@@ -18,7 +18,7 @@ LinuxCNC and Grbl.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Sequence
 
@@ -217,7 +217,6 @@ class _Machine:
         self.touch_assumed = False                # a probe move took its touch at its end (no machine)
         self.comp: Compensator | None = None      # cutter compensation (G41 / G42, until its exit move)
         self.block_top = 0                        # the running block's line outside any subroutine
-        self.top_of: dict[int, int] = {}          # ... by block line, for the moves settled later
         self._restore(saved or {})
         self._write_parameters()
 
@@ -322,11 +321,13 @@ class _Machine:
     # ---- output ---------------------------------------------------------------------
     def _add(self, move) -> None:
         """Append a move (an arc's turns count as moves towards MAX_MOVES); under cutter
-        compensation, the tool's moves the compensator settles with it."""
+        compensation, the tool's moves the compensator settles with it, each carrying the
+        line outside any subroutine that made it (its origin: they settle later)."""
         if self.comp is None:
             self._append([move])
             return
         comp = self.comp
+        move = replace(move, origin=self.block_top)
         try:
             moves = comp.take(move)
         except CompensationError as error:
@@ -343,7 +344,7 @@ class _Machine:
                 self._fail(None, f"the program makes more than {MAX_MOVES} moves (an arc's turns counted): "
                                  "split it")
             self.program.moves.append(move)
-            self.program.origins.append(self.top_of.get(move.line, self.block_top))
+            self.program.origins.append(move.origin or self.block_top)
 
     def compensation_off(self, tool_stays: bool = False) -> None:
         """G40: the pending compensated move ends; the next XY move starts where the tool is.
@@ -430,10 +431,11 @@ class _Machine:
     # ---- one block ------------------------------------------------------------------
     def _message(self, block: Block, text: str) -> None:
         self.program.messages.append(f"line {block.line}: {text}")
-        self.program.message_origins.append((len(self.program.moves), block.top))
+        held = self.comp.held() if self.comp is not None else 0     # (moves made before it, not settled yet)
+        self.program.message_origins.append((len(self.program.moves) + held, block.top))
 
     def run_block(self, block: Block) -> None:
-        self.top_of[block.line] = self.block_top = block.top
+        self.block_top = block.top
         for comment in block.comments:
             text = comment.lstrip()
             head, comma, rest = text.partition(",")

@@ -12,6 +12,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 Point = tuple[float, float, float]
+# a move's origin: the program's line outside any subroutine that made it (run from a line);
+# not part of a move's value (equality, hash, repr)
+def _origin():
+    return field(default=0, compare=False, repr=False)
+
 
 # Arc planes as RS274NGC defines them: (u, v) is the plane, w its normal;
 # counter-clockwise turns from +u towards +v.
@@ -25,6 +30,7 @@ class Line:
     feed: float | None          # mm/min; None = rapid
     line: int
     probe: int = 0              # 382 .. 385: a G38.2 .. G38.5 probe move (stops where the probe trips)
+    origin: int = _origin()     # (all moves) the program's line outside any subroutine that made it
 
 
 @dataclass(frozen=True)
@@ -47,12 +53,14 @@ class Arc:
     turns: int                  # P word: 1 = up to one revolution; n > 1 adds n - 1 full turns
     feed: float
     line: int
+    origin: int = _origin()
 
 
 @dataclass(frozen=True)
 class Dwell:
     seconds: float
     line: int
+    origin: int = _origin()
 
 
 # Event names and what their value is (the compiler gives each a hardware code):
@@ -78,6 +86,7 @@ class Event:
     name: str                   # a key of EVENTS
     value: float
     line: int
+    origin: int = _origin()
 
 
 Move = Line | Arc | Dwell | Event

@@ -8,17 +8,19 @@ interpreted (so modes, offsets, tool length, cutter compensation and loops are a
 were); the moves before the start are dropped, and in their place come:
 
 1. the digital outputs they set (M62 .. M65), and, if they changed the tool (M6), that
-   tool change's pause, so that the operator loads the tool before anything moves;
+   tool change's pause, so that the operator loads the tool before anything moves (not
+   when the run itself starts with a tool change);
 2. the approach from where the machine is to where the program stood when it reached the
    start, each leg only where it moves: straight up to the clearance (the highest Z the
    machine or the dropped moves reached) and across at that height, as rapids; then the
-   spindle (M3 / M4 at its last S) and coolant they left, with the dwell that followed the
-   spindle's start (its spin-up); then down as a rapid to the height of the last rapid
+   spindle (M3 / M4 at its last S) and coolant they left, with the longest dwell that
+   followed the spindle's start or a new S (its spin-up); then down as a rapid to the height of the last rapid
    before the start (the program's retract height), and from there at the program's plunge
    feed: its last straight feed move down before the start, else the first feed move from
-   the start on, else the last feed move before it.  On a laser (laser mode) the beam's
-   M3 / M4 comes after the approach, just before the first move or spindle word from the
-   start on, and no spin-up dwell is kept, so the beam never stands still at power.
+   the start on, else the last feed move before it.  On a laser (laser mode) the approach
+   is all rapids and the beam's M3 / M4 comes after it, just before the first move or
+   spindle word from the start on, and no spin-up dwell is kept: the beam stays dark until
+   the first feed move.
 
 The run starts at the first move or event that the program's line `line` runs, or a later
 one: in the order the program runs them, the first whose line outside any subroutine is
@@ -26,7 +28,8 @@ one: in the order the program runs them, the first whose line outside any subrou
 first pass).  Refused with one line: a line inside a subroutine's body, a probe move
 before the start (what it measured decides the moves after it), and a program whose moves
 from the start on depend on where it started (G92 or G10 L20 from where the machine
-stood, incremental moves from the start: interpret_program checks that with same_from).
+stood, incremental moves from the start: interpret_program checks that with same_from,
+interpreting the program from two other starts).
 """
 from __future__ import annotations
 
@@ -114,7 +117,7 @@ def start_at(program: Program, line: int, here: Point, laser: bool = False) -> P
     top = max(state.top, position[2])
     floor = top if state.retract is None else min(top, max(state.retract, position[2]))
     legs = [((here[0], here[1], top), None), ((position[0], position[1], top), None),
-            ((position[0], position[1], floor), None), (position, feed)]
+            ((position[0], position[1], floor), None), (position, None if laser else feed)]
     approach, at = [], tuple(here)
     for point, rate in legs:
         if point != at:
@@ -130,16 +133,18 @@ def start_at(program: Program, line: int, here: Point, laser: bool = False) -> P
     if spin_up:
         spin.append(Dwell(spin_up, line))
     restored = [Event(f"output_{'on' if on else 'off'}", p, line) for p, on in sorted(state.outputs.items())]
-    if state.tool is not None:
-        restored += [Event("tool_change", float(state.tool), line), Event("pause", 6.0, line)]
     kept = list(moves[first:])
+    changes = next((isinstance(m, Event) and m.name == "tool_change" for m in kept
+                    if _motion(m) or isinstance(m, Event) and m.name == "tool_change"), False)
+    if state.tool is not None and not changes:  # (a run from an M6 line changes the tool itself)
+        restored += [Event("tool_change", float(state.tool), line), Event("pause", 6.0, line)]
     if laser:                               # the beam on where the run moves on from
         at_spin = next((k for k, m in enumerate(kept) if _motion(m) or (isinstance(m, Event)
                                                                           and m.name in SPINDLE_EVENTS)), len(kept))
         run = restored + approach + kept[:at_spin] + spin + kept[at_spin:]
     else:
         run = restored + approach[:ups] + spin + approach[ups:] + kept
-    info = Restart(line, state.tool, spindle, state.speed, spin_up, coolant, state.outputs,
+    info = Restart(line, None if changes else state.tool, spindle, state.speed, spin_up, coolant, state.outputs,
                    tuple(move.end for move in approach),
                    next((move.feed for move in approach if move.feed is not None), None))
     messages = program.messages
@@ -150,29 +155,45 @@ def start_at(program: Program, line: int, here: Point, laser: bool = False) -> P
                    origins=[line] * (len(run) - len(kept)) + program.origins[first:])
 
 
-def same_from(program: Program, other: Program, line: int, here: Point, there: Point) -> bool:
-    """Whether two interpretations of a program, from `here` and from `there`, run the same
-    path from `line` on (moves ending at the same points, arcs about the same centres),
-    given that the run from `line` drops something: else the run from there depends on where
-    the program started.  An axis still at its start in both (one the program has not
+def same_from(one: Program, other: Program, line: int, starts: tuple[Point, Point]) -> bool:
+    """Whether two interpretations of a program, from the two `starts`, run the same path from
+    `line` on: the same point where the run from `line` begins, then the same ends (and arc
+    centres), zero-length moves aside; else the run from there depends on where the program
+    started.  An axis the program has not yet taken away from its start (one it has not
     programmed yet, a laser's Z) stays where the machine is, as a run from the first line
-    would leave it: that difference does not count."""
-    first, again = start_index(program, line), start_index(other, line)
-    if not first:                           # nothing dropped: a run from the first line
+    would leave it: it is not compared.  True when the run from `line` drops nothing."""
+    first = start_index(one, line)
+    if not first:
         return True
-    if again is None:
-        return False
-    ours = [m for m in program.moves[first:] if _motion(m)]
-    theirs = [m for m in other.moves[again:] if _motion(m)]
+    return _path(one, line, starts[0]) == _path(other, line, starts[1])
 
-    def same(p: Point, q: Point) -> bool:
-        return all(a == b or (a == h and b == t) for a, b, h, t in zip(p, q, here, there))
-    return len(ours) == len(theirs) and all(
-        same(a.end, b.end) and (not isinstance(a, Arc) or same(a.centre, b.centre)) for a, b in zip(ours, theirs))
+
+def _path(program: Program, line: int, start: Point) -> list | None:
+    """The points the run from `line` passes through (see same_from), or None without one."""
+    first = start_index(program, line)
+    if first is None:
+        return None
+    moved, at, points = [False, False, False], (None, None, None), []
+    for k, move in enumerate(program.moves):
+        if not _motion(move):
+            continue
+        moved = [was or end != begin for was, end, begin in zip(moved, move.end, start)]
+        end = tuple(value if was else None for value, was in zip(move.end, moved))
+        if k < first:
+            at = end
+            continue
+        centre = tuple(value if was else None for value, was in zip(move.centre, moved)) \
+            if isinstance(move, Arc) else None
+        if not points:
+            points.append((at, None))
+        if centre is not None or end != points[-1][0]:
+            points.append((end, centre))
+    return points or [(at, None)]
 
 
 class _Dropped:
-    """What the dropped moves leave: tool, spindle and its spin-up dwell, coolant, outputs,
+    """What the dropped moves leave: tool, spindle and its spin-up dwell (the longest dwell
+    right after its start or a new S since it started), coolant, outputs,
     and for the approach the highest Z, the last point, the last rapid's height, the last
     straight feed move down's feed and the last feed."""
 
@@ -192,15 +213,17 @@ class _Dropped:
             if isinstance(move, Line) and move.feed is not None and move.end[2] < move.start[2]:
                 self.plunge = move.feed
         elif isinstance(move, Dwell):
-            if self.spinning:
-                self.spin_up, self.spinning = move.seconds, False
+            if self.spinning:                       # the longest wait after a start or a new S
+                self.spin_up, self.spinning = max(self.spin_up, move.seconds), False
         elif isinstance(move, Event):
             name, value = move.name, move.value
             if name in ("spindle_cw", "spindle_ccw"):
-                self.spindle, self.speed = ("M3" if name == "spindle_cw" else "M4"), value
-                self.spin_up, self.spinning = 0.0, True
+                turning = "M3" if name == "spindle_cw" else "M4"
+                if self.spindle != turning:         # a start (not a new S while it turns that way)
+                    self.spin_up = 0.0
+                self.spindle, self.speed, self.spinning = turning, value, True
             elif name == "spindle_speed":
-                self.speed = value
+                self.speed, self.spinning = value, self.spindle is not None
             elif name == "spindle_off":
                 self.spindle, self.spinning = None, False
             elif name in ("mist_on", "flood_on"):
