@@ -461,6 +461,7 @@ class ProgramRun:
                  interactive: bool):
         self.args, self.driver, self.machine, self.text = args, driver, machine, text
         self.start, self.saved, self.keyboard, self.interactive = start, saved, keyboard, interactive
+        self.start_line = getattr(args, "start_line", None)      # --start-line (run from a line)
         self.results: list = []                 # ProbeResult of each probe move run
         self.shown: set[str] = set()            # warnings printed
         self.messages = 0                       # (MSG, ...) messages printed: the first n of the run
@@ -495,7 +496,7 @@ class ProgramRun:
                 self.program = program = gcode_command.interpret_program(self.text, self.machine, self.start,
                                                                          self.saved, probes=self.results,
                                                                          program=self.args.file,
-                                                                         start_line=getattr(self.args, "start_line", None))
+                                                                         start_line=self.start_line)
             except GcodeError as err:           # an (ABORT, ...) after a probe: what it said before, once
                 self.show(getattr(err, "messages", []), "message")
                 err.messages = []
@@ -504,7 +505,7 @@ class ProgramRun:
             if program.probe_pending and not self.results:
                 # the whole program once (each touch at its move's end): G-code errors before anything moves
                 whole = gcode_command.interpret_program(self.text, self.machine, self.start, self.saved,
-                                                        program=self.args.file, start_line=getattr(self.args, "start_line", None))
+                                                        program=self.args.file, start_line=self.start_line)
             if self.machine.parameter_file is not None and (whole is not program or not program.probe_pending):
                 check_lengths(whole.saved)
             if not self.results:
