@@ -36,6 +36,7 @@ from ..link.driver import (Driver, FeedOverride, LinkError, MachineError, Mismat
                            apply_pin_settings, check_controller, check_idle, configure, read_position, run_program,
                            signed32)
 from ..link.records import DEFAULT_BUILD, Build, encode_program
+from ..models.motion import to_machine
 from ..simulation.output import check_outputs
 from . import gcode as gcode_command          # (its interpret_program looked up at each call)
 from .gcode import read_program, saved_parameters
@@ -272,8 +273,7 @@ def pause_positions(compiled, start) -> dict[int, tuple[int, int, int]]:
         if cmd.kind == gc.LINE:
             at = [a + d for a, d in zip(at, (cmd.x, cmd.y, cmd.z))]
         elif cmd.kind in (gc.ARC_CW, gc.ARC_CCW):
-            for axis, d in zip(gc.PLANES[("XY", "ZX", "YZ")[cmd.plane]], (cmd.x, cmd.y, cmd.z)):
-                at[axis] += d
+            at = [a + d for a, d in zip(at, to_machine(cmd.plane, cmd.x, cmd.y, cmd.z))]
         elif cmd.kind == gc.EVENT and cmd.x == gc.EVENT_CODES["pause"]:
             out[n] = tuple(at)
     return out

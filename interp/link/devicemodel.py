@@ -25,11 +25,13 @@ import random
 from collections import deque
 
 from . import protocol as p
+from ..gcode.compile import EVENT_CODES
+from ..models.motion import to_machine
 from .records import DEFAULT_BUILD, Build, RecordReader, decode, record_bytes
 
 
 PROBE_OVERSHOOT = 3         # steps the machine runs past the probe's touch while it stops
-PAUSE_EVENT = 10            # the event code of a program pause (interp.gcode.compile's EVENT_CODES)
+PAUSE_EVENT = EVENT_CODES["pause"]      # the event code of a program pause (M0, M6)
 
 
 class DeviceModel:
@@ -407,9 +409,8 @@ class DeviceModel:
     def _arc(self, record: dict) -> None:
         """Move to an arc record's end: (x, y) in its plane from the start, z along the plane's
         normal (motion_top's planes: XY, ZX, YZ)."""
-        u, v, w = ((0, 1, 2), (2, 0, 1), (1, 2, 0))[record["plane"]]
-        for axis, name in ((u, "x"), (v, "y"), (w, "z")):
-            self.position[axis] += record[name]
+        travel = to_machine(record["plane"], record["x"], record["y"], record["z"])
+        self.position = [at + d for at, d in zip(self.position, travel)]
 
     def _line(self, record: dict) -> bool:
         """Move along a line record; True if a limit switch stopped it (position at the switch).
