@@ -183,6 +183,7 @@ def summary(program, compiled: Compiled, machine: Machine) -> dict:
     return {"end": [round(v, 6) for v in program.end_work], "units": program.units,
             "end_machine_mm": [round(v, 6) for v in program.end_machine],
             "end_steps": list(compiled.end_steps), "moves": compiled.moves, "arcs": compiled.arcs,
+            "joined_moves": compiled.joined,
             "chord_arcs": compiled.chords, "corrected_arcs": compiled.corrected,
             "events": len(compiled.events), "commands": len(compiled.commands),
             "machine_time_s": round(compiled.machine_time_s, 6), "clock_hz": machine.clock_hz,
@@ -428,7 +429,8 @@ def cmd_gcode(args) -> int:
         if args.json:
             print(json.dumps(info))
         else:
-            print(f"{Path(args.file).name}: {info['moves']} moves ({info['arcs']} arcs), {info['events']} events, "
+            joined = f", {compiled.joined} joined (G64 Q)" if compiled.joined else ""
+            print(f"{Path(args.file).name}: {info['moves']} moves ({info['arcs']} arcs{joined}), {info['events']} events, "
                   f"{info['commands']} commands, {info['step_events']} step events, {compiled.profile} profile, "
                   f"machine time {compiled.machine_time_s:.3f} s, end {where(program, compiled)}, "
                   f"{info['warning_count']} warnings")

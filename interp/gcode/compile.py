@@ -8,6 +8,9 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
     (round(mm x steps_per_mm)); a command moves from the previous rounded point
     to the next, so nothing drifts.  A line longer than 2^31 - 1 steps on an
     axis is split into equal pieces (integer arithmetic, exact).
+  * joined moves (machine file motion.naive_cam, off by default): runs of G1 moves
+    within G64's naive-CAM tolerance of a straight line run as that line
+    (interp.gcode.naivecam, LinuxCNC's naive CAM detector).
   * soft limits: a move that goes beyond an axis's min_mm .. max_mm (an arc's
     bulge included) is refused before anything runs.
   * arcs (plane mapping (u, v, w) of interface 2: XY (x, y, z), ZX (z, x, y),
@@ -64,6 +67,7 @@ from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command, command_steps
 from ..models.speed_ramp import BLOCK_SHIFT_MIN
 from .machine import AXES, Machine
 from .moves import EVENTS, PLANES, Arc, Dwell, Event, Line, Program
+from .naivecam import collapse
 from .stepcount import arc_count, arc_events, helix_count, line_count
 
 EVENT = 5
@@ -190,7 +194,8 @@ class Compiled:
     warning_count: int = 0          # the warnings, those an "N more warnings like the line above" stands for too
     end_steps: tuple[int, int, int] = (0, 0, 0)
     machine_time_s: float = 0.0
-    moves: int = 0              # lines and arcs of the program
+    moves: int = 0              # lines and arcs run (joined lines count once)
+    joined: int = 0             # straight feed moves joined into the one before them (G64 Q: naivecam)
     arcs: int = 0
     chords: int = 0             # arcs run as chords
     corrected: int = 0          # arcs whose end is off their circle (a correction: taken in or a line)
@@ -876,7 +881,10 @@ class Compiler:
         self.modes = sorted(program.path_modes, key=lambda mode: mode[0])
         if self.laser:
             self.emit_event("laser_mode", 1, 1, program.moves[0].line if program.moves else 0, inline_event=True)
-        for m in program.moves:
+        moves = program.moves
+        if self.machine.values["motion"]["naive_cam"]:
+            moves, self.out.joined = collapse(moves, self.modes)
+        for m in moves:
             self.first = True
             if isinstance(m, Line):
                 self.out.moves += 1

@@ -54,6 +54,7 @@ SCHEMA: dict[str, dict[str, tuple]] = {
         "junction_deviation_mm": ("float>", 0.01, 0, 1e3, "mm", "cornering tolerance (the planner's junction speeds)"),
         "profile": ("choice", "trapezoid", ("trapezoid", "scurve"), None, "", "speed profile of the hardware (--profile overrides it)"),
         "jerk_mm_s3": ("float>", 20000.0, 0, 1e12, "mm/s^3", "jerk limit of the S-curve profile (its filter window >= 2 accel / jerk)"),
+        "naive_cam": ("bool", False, None, None, "", "LinuxCNC's naive CAM detector: in G64 with a tolerance (Q, or P without Q), runs of G1 moves at one F that stay within it of a straight line run as that line (fewer records, sharper corners: usually a longer machine time); off: every move as programmed"),
     },
     "output": {
         "pulse_ns": ("float>", 1000.0, 0, 1e9, "ns", "step pulse width"),
