@@ -89,6 +89,21 @@ def test_machine_error_line(capsys, program):
     assert code == 0 and out.rstrip().endswith("end (0, 0, 0) steps"), (out, err)
 
 
+def test_run_on_hint_inside_a_subroutine_names_its_call(capsys, tmp_path):
+    """An error while a subroutine's body runs: the message names the body's line, the hint the
+    call's line (a run from a line inside a body is refused); that run ends where the program
+    ends."""
+    path = tmp_path / "sub.nc"
+    path.write_text("G21 G90\no100 sub\nG1 X[#1] F600\nG1 Y[#1]\no100 endsub\nG1 X1 F600\n"
+                    "o100 call [5]\nG1 X0 Y0\nM2\n")
+    code, out, err = run(capsys, "send", str(path), "--sim-model", "--sim-model-fail", "3")
+    assert code == 1 and err.strip().splitlines() == [
+        "interp: error: controller error 17 (limit switch, x limit) at record 3 of 5, line 4",
+        f"interp send: to run on from that line once the machine is ready: interp send {path} --start-line 7 ..."], err
+    code, out, err = run(capsys, "send", str(path), "--sim-model", "--start-line", "7")
+    assert code == 0 and out.rstrip().endswith("end (0, 0, 0) steps"), (out, err)
+
+
 def test_no_run_on_hint_for_a_program_run_from_its_start(capsys, tmp_path):
     """A G91 program runs from where it started: the run from a line would be refused, so the
     error gives no hint."""

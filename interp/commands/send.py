@@ -231,10 +231,14 @@ class Progress:
             self.bar.close()
 
 
-def line_of(compiled, executed: int) -> int:
-    """The G-code line of the record running when EXECUTED = executed (1-based count)."""
+def line_of(compiled, executed: int, outside: bool = False) -> int:
+    """The G-code line of the record running when EXECUTED = executed (1-based count);
+    outside: the program's line outside any subroutine that ran it (a call's line)."""
     cmds = compiled.commands
-    return cmds[min(max(executed, 1), len(cmds)) - 1].source if cmds else 0
+    if not cmds:
+        return 0
+    cmd = cmds[min(max(executed, 1), len(cmds)) - 1]
+    return (cmd.origin or cmd.source) if outside else cmd.source
 
 
 def pause_record(compiled, executed: int, after: int = 0) -> int:
@@ -408,12 +412,12 @@ def cmd_send(args) -> int:
         extra = f", {limit_names(error.limits)}" if error.limits else ""
         print(f"interp: error: controller error {error.code} ({p.error_text(error.code)}{extra}) at {where}",
               file=sys.stderr)
-        restart_hint(args, run, stopped_at)
+        restart_hint(args, run, line_of(compiled, outcome.executed, outside=True))
         return 1
     if outcome.status == "aborted":
         how = f" ({outcome.message})" if outcome.message else ""
         print(f"interp: aborted at {where}{how}", file=sys.stderr)
-        restart_hint(args, run, stopped_at)
+        restart_hint(args, run, line_of(compiled, outcome.executed, outside=True))
         return 1
     if outcome.status != "done":
         print(f"interp: error: the run did not end ({where})", file=sys.stderr)
@@ -433,8 +437,8 @@ def cmd_send(args) -> int:
 
 def restart_hint(args, run, line: int) -> None:
     """After a stop mid-program: how to run on from the line that was running (run from a
-    line), unless that cannot be (standard input, a probe run, a line in a subroutine, a
-    program the run from there refuses)."""
+    line; in a subroutine, from its call's line), unless that cannot be (standard input, a
+    probe run, a program the run from there refuses)."""
     program = run.program
     if args.file == "-" or run.results or program is None or line < 1 or \
             any(begin <= line <= end for _, begin, end in program.subroutines):

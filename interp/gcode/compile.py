@@ -59,7 +59,7 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from ..cores import UsageError
 from ..models.lecture import within_half_step
@@ -178,6 +178,9 @@ class Cmd(Command):
     Command's), with what the planner needs of a move."""
 
     motion: Motion | None = field(default=None, compare=False, repr=False)
+    # the program's line outside any subroutine that made it (a subroutine's call line), for
+    # a run from a line after a stop; 0 where the program does not say (Program.origins)
+    origin: int = field(default=0, compare=False, repr=False)
 
     def fields(self) -> tuple[int, ...]:
         """The command file's 16 integers: kind plane feed x y z i j k l limit exit rate cost
@@ -264,6 +267,7 @@ class Compiler:
         self.laser = bool(machine.values["spindle"]["laser"])
         self.power, self.beam_on, self.dark = 0, False, False
         self.modes: list = []           # the program's path-control modes (line, mode, P, Q)
+        self.origin = 0                 # the origin of the move being compiled (Cmd.origin)
         self._warnings: dict[str, list[str]] = {}
         self._more: dict[str, int] = {}
 
@@ -318,6 +322,7 @@ class Compiler:
         self.room(1, cmd.source)
         if cmd.motion is None and not inline(cmd):  # a dwell or an event: a barrier, a stop after it
             self.stop_next = True
+        cmd.origin = self.origin
         self.out.commands.append(cmd)
 
     def emit_event(self, name: str, value: int, shown: float, line: int, inline_event: bool = False) -> None:
@@ -356,6 +361,7 @@ class Compiler:
                             plane_axes, stop_before=self.stop_next or exact, tolerance_mm=tolerance)
         self.stop_next = False
         self.first = self.first and piece
+        cmd.origin = self.origin
         self.out.commands.append(cmd)
 
     def path_mode(self, line: int) -> tuple[str, float | None]:
@@ -881,11 +887,13 @@ class Compiler:
         self.modes = sorted(program.path_modes, key=lambda mode: mode[0])
         if self.laser:
             self.emit_event("laser_mode", 1, 1, program.moves[0].line if program.moves else 0, inline_event=True)
-        moves = program.moves
+        origins = program.origins if len(program.origins) == len(program.moves) else [0] * len(program.moves)
+        moves = [m if m.origin == o else replace(m, origin=o) for m, o in zip(program.moves, origins)]
         if self.machine.values["motion"]["naive_cam"]:
             moves, self.out.joined = collapse(moves, self.modes)
         for m in moves:
             self.first = True
+            self.origin = m.origin
             if isinstance(m, Line):
                 self.out.moves += 1
                 self.laser_rapid(m.feed is None, m.line)
