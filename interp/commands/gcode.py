@@ -429,7 +429,7 @@ def cmd_gcode(args) -> int:
         if args.json:
             print(json.dumps(info))
         else:
-            joined = f", {compiled.joined} joined (G64 Q)" if compiled.joined else ""
+            joined = f", {compiled.joined} joined (naive CAM)" if compiled.joined else ""
             print(f"{Path(args.file).name}: {info['moves']} moves ({info['arcs']} arcs{joined}), {info['events']} events, "
                   f"{info['commands']} commands, {info['step_events']} step events, {compiled.profile} profile, "
                   f"machine time {compiled.machine_time_s:.3f} s, end {where(program, compiled)}, "

@@ -59,7 +59,7 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 from ..cores import UsageError
 from ..models.lecture import within_half_step
@@ -887,10 +887,9 @@ class Compiler:
         self.modes = sorted(program.path_modes, key=lambda mode: mode[0])
         if self.laser:
             self.emit_event("laser_mode", 1, 1, program.moves[0].line if program.moves else 0, inline_event=True)
-        origins = program.origins if len(program.origins) == len(program.moves) else [0] * len(program.moves)
-        moves = [m if m.origin == o else replace(m, origin=o) for m, o in zip(program.moves, origins)]
+        moves = program.moves
         if self.machine.values["motion"]["naive_cam"]:
-            moves, self.out.joined = collapse(moves, self.modes)
+            moves, self.out.joined = collapse(moves)
         for m in moves:
             self.first = True
             self.origin = m.origin

@@ -217,6 +217,8 @@ class _Machine:
         self.touch_assumed = False                # a probe move took its touch at its end (no machine)
         self.comp: Compensator | None = None      # cutter compensation (G41 / G42, until its exit move)
         self.block_top = 0                        # the running block's line outside any subroutine
+        self.naive_tolerance = 0.0                # G64's Q (or P without Q), mm; 0: G61, G61.1, G64 alone
+        self.chain = 0                            # the naive-CAM chain count: a path-control block or a message ends one
         self._restore(saved or {})
         self._write_parameters()
 
@@ -343,8 +345,13 @@ class _Machine:
             if self.moves_made > MAX_MOVES:
                 self._fail(None, f"the program makes more than {MAX_MOVES} moves (an arc's turns counted): "
                                  "split it")
+            origin = move.origin or self.block_top
+            if isinstance(move, Line) and move.feed is not None and not move.probe and self.naive_tolerance > 0:
+                move = replace(move, origin=origin, join=(self.chain, self.naive_tolerance))
+            elif origin != move.origin:
+                move = replace(move, origin=origin)
             self.program.moves.append(move)
-            self.program.origins.append(move.origin or self.block_top)
+            self.program.origins.append(origin)
 
     def compensation_off(self, tool_stays: bool = False) -> None:
         """G40: the pending compensated move ends; the next XY move starts where the tool is.
@@ -431,6 +438,7 @@ class _Machine:
     # ---- one block ------------------------------------------------------------------
     def _message(self, block: Block, text: str) -> None:
         self.program.messages.append(f"line {block.line}: {text}")
+        self.chain += 1
         held = self.comp.held() if self.comp is not None else 0     # (moves made before it, not settled yet)
         self.program.message_origins.append((len(self.program.moves) + held, block.top))
 
@@ -581,6 +589,8 @@ class _Machine:
                 q = None if q is None else q * self.scale
             self.program.path_modes.append((line, {610: "G61", 611: "G61.1", 640: "G64"}[code],
                                             p, q))
+            self.naive_tolerance = (q if q is not None else p if p is not None else 0.0) if code == 640 else 0.0
+            self.chain += 1
         # 21. distance modes, 22. return mode
         if "distance" in words.g:
             self.absolute = words.g["distance"][0] == 900

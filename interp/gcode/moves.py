@@ -31,6 +31,10 @@ class Line:
     line: int
     probe: int = 0              # 382 .. 385: a G38.2 .. G38.5 probe move (stops where the probe trips)
     origin: int = _origin()     # (all moves) the program's line outside any subroutine that made it
+    # a G1 move made under a naive-CAM tolerance (interp.gcode.naivecam): (the chain it may
+    # join: a count the interpreter advances at every path-control block and message, the
+    # tolerance in mm), in the order the program runs; None: it joins nothing
+    join: tuple[int, float] | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
