@@ -179,7 +179,7 @@ class Cmd(Command):
 
     motion: Motion | None = field(default=None, compare=False, repr=False)
     # the program's line outside any subroutine that made it (a subroutine's call line), for
-    # a run from a line after a stop; 0 where the program does not say (Program.origins)
+    # a run from a line after a stop; 0 where the move does not say (a Line built by hand)
     origin: int = field(default=0, compare=False, repr=False)
 
     def fields(self) -> tuple[int, ...]:
@@ -198,7 +198,7 @@ class Compiled:
     end_steps: tuple[int, int, int] = (0, 0, 0)
     machine_time_s: float = 0.0
     moves: int = 0              # lines and arcs run (joined lines count once)
-    joined: int = 0             # straight feed moves joined into the one before them (G64 Q: naivecam)
+    joined: int = 0             # G1 moves joined into the one before them (motion.naive_cam: interp.gcode.naivecam)
     arcs: int = 0
     chords: int = 0             # arcs run as chords
     corrected: int = 0          # arcs whose end is off their circle (a correction: taken in or a line)
