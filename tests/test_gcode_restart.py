@@ -59,7 +59,7 @@ def test_the_state_before_the_line_and_the_approach():
     assert shown == [("output_on", 1.0), ("tool_change", 2.0), ("pause", 6.0), ((0, 0, 10), None),
                      ((20, 5, 10), None), ("spindle_cw", 12000.0), ("flood_on", 0.0), ((20, 5, 1), None),
                      ((20, 5, -1), 300.0)]
-    assert all(m.line == 11 for m in run.moves[:9]) and run.origins[:9] == [11] * 9
+    assert all(m.line == 11 for m in run.moves[:9]) and [m.origin for m in run.moves[:9]] == [11] * 9
     kept = whole.moves[[m.line for m in whole.moves].index(11):]
     assert run.moves[9:] == kept and run.moves[9] == Line((20, 5, -1), (20, 20, -1), 900.0, 11)
     info = run.restart
@@ -143,7 +143,7 @@ def test_a_subroutine_counts_with_its_calls_line():
     text = ("G21 G90\nG0 Z5\no100 call [1]\nG0 X0 Y0\no100 call [2]\nG0 X0 Y0\nM2\n"
             "o100 sub\nG1 X#1 F300\nG1 Y#1\no100 endsub\n")
     whole = interpret(text)
-    assert whole.origins == [2, 3, 3, 4, 5, 5, 6, 7]
+    assert [m.origin for m in whole.moves] == [2, 3, 3, 4, 5, 5, 6, 7]
     run = start_at(whole, 4, (0.0, 0.0, 5.0))
     assert [m.end for m in run.moves if isinstance(m, Line)] == [(1, 1, 5), (0, 0, 5), (2, 0, 5), (2, 2, 5), (0, 0, 5)]
     run = start_at(whole, 5, (0.0, 0.0, 5.0))
@@ -266,7 +266,7 @@ def test_origins_under_cutter_compensation():
     line of its own call, and a message on the start line shows."""
     text = ("G21 G90\nG0 X-5 Y-5\nG41.1 D2\no100 call\no100 call\no100 call\nG40\nG0 X-5 Y-5\nM2\n"
             "o100 sub\nG91 G1 X10 F300\nG90\no100 endsub\n")
-    assert interpret(text).origins == [2, 4, 5, 6, 8, 9]
+    assert [m.origin for m in interpret(text).moves] == [2, 4, 5, 6, 8, 9]
     text = "G21 G90\nG0 X-5 Y-5\nG41.1 D2\nG1 X0 Y0 F300\nG1 X10\n(MSG, at six)\nG1 Y10\nG1 X0\nG40\n"
     assert start_at(interpret(text), 6, (0.0, 0.0, 0.0)).messages == ["line 6: at six"]
 

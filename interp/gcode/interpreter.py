@@ -351,7 +351,6 @@ class _Machine:
             elif origin != move.origin:
                 move = replace(move, origin=origin)
             self.program.moves.append(move)
-            self.program.origins.append(origin)
 
     def compensation_off(self, tool_stays: bool = False) -> None:
         """G40: the pending compensated move ends; the next XY move starts where the tool is.

@@ -112,10 +112,10 @@ class Program:
     saved: dict[int, float] = field(default_factory=dict)
     # interpretation stopped after a probe move whose result is not known yet (interpret's probes)
     probe_pending: bool = False
-    # run from a line (restart.start_at): for each move and each message, the program's line
-    # outside any subroutine that ran it (a call's line for a subroutine's); the program's
-    # own subroutines as (label, first line, last line); what the start line found
-    origins: list[int] = field(default_factory=list)
+    # run from a line (restart.start_at): for each message, the program's line outside any
+    # subroutine that ran it (a call's line for a subroutine's; each move carries its own
+    # origin); the program's own subroutines as (label, first line, last line); what the
+    # start line found
     message_origins: list[tuple[int, int]] = field(default_factory=list)    # (moves before it, line)
     subroutines: list[tuple[str, int, int]] = field(default_factory=list)
     restart: object = None

@@ -83,8 +83,7 @@ def _motion(move) -> bool:
 
 def start_index(program: Program, line: int) -> int | None:
     """The index of the first move the run from `line` keeps (None: none is at or after it)."""
-    origins = program.origins if len(program.origins) == len(program.moves) else [m.line for m in program.moves]
-    return next((k for k, origin in enumerate(origins) if origin >= line), None)
+    return next((k for k, m in enumerate(program.moves) if (m.origin or m.line) >= line), None)
 
 
 def start_at(program: Program, line: int, here: Point, laser: bool = False) -> Program:
@@ -151,8 +150,8 @@ def start_at(program: Program, line: int, here: Point, laser: bool = False) -> P
     if len(program.message_origins) == len(messages):   # those the run from the start shows
         messages = [text for text, (made, origin) in zip(messages, program.message_origins)
                     if made > first or (made == first and origin >= line)]
-    return replace(program, moves=run, restart=info, messages=messages,
-                   origins=[line] * (len(run) - len(kept)) + program.origins[first:])
+    run = [m if m.origin else replace(m, origin=line) for m in run]    # (the restored state's, the approach's)
+    return replace(program, moves=run, restart=info, messages=messages)
 
 
 def same_from(one: Program, other: Program, line: int, starts: tuple[Point, Point]) -> bool:
