@@ -7,6 +7,7 @@ neither the G-code language layer nor the simulator.
 import math
 import random
 import tomllib
+from dataclasses import replace
 
 import pytest
 
@@ -289,16 +290,14 @@ def test_correction_made_before_a_stop(between):
     # before a dwell, an event, an exact-stop move or the program's end the arc's correction
     # is a line of its own: the machine stops on the programmed point
     prog = [Line((0, 0, 0), (100, 0, 0), None, 1), OFF_CIRCLE]
-    modes = []
     if between == "dwell":
         prog.append(Dwell(0.5, 3))
     elif between == "event":
         prog.append(Event("mist_on", 0, 3))
-    elif between == "G61":
-        modes = [(4, "G61", None, None)]
     if between != "end":
-        prog.append(Line((0, 100.1, 0), (-50, 100.1, 0), 1000, 4))
-    out = compile_program(Program(prog, path_modes=modes), MACHINE)
+        prog.append(Line((0, 100.1, 0), (-50, 100.1, 0), 1000, 4,
+                         path_control=("G61", None) if between == "G61" else ("G64", None)))
+    out = compile_program(Program(prog), MACHINE)
     kinds = [c.kind for c in out.commands]
     assert kinds[:3] == [LINE, ARC_CCW, LINE] and out.corrected == 1
     assert total(out.commands[:3]) == [0, 10010, 0]
@@ -335,14 +334,13 @@ def test_correction_in_another_plane_or_before_an_exact_stop():
     # the correction of OFF_CIRCLE (an XY arc) is along y: an arc whose normal is y (ZX) cannot
     # take it in, nor an arc in G61; an arc whose normal is x (YZ) takes it in
     start, end = (0, 100.1, 0), (0, 100.1, 20)
-    cases = [(Arc(start, end, (0, 100.1, 10), "ZX", True, 1, 1000, 3), [], [LINE, ARC_CCW, LINE, ARC_CCW]),
-             (Arc(start, end, (0, 100.1, 10), "YZ", True, 1, 1000, 3), [(3, "G61", None, None)],
+    cases = [(Arc(start, end, (0, 100.1, 10), "ZX", True, 1, 1000, 3), [LINE, ARC_CCW, LINE, ARC_CCW]),
+             (Arc(start, end, (0, 100.1, 10), "YZ", True, 1, 1000, 3, path_control=("G61", None)),
               [LINE, ARC_CCW, LINE, ARC_CCW]),
-             (Arc(start, end, (0, 100.1, 10), "YZ", True, 1, 1000, 3), [], [LINE, ARC_CCW, ARC_CCW])]
-    for arc, modes, kinds in cases:
-        out = compile_program(Program([Line((0, 0, 0), (100, 0, 0), None, 1), OFF_CIRCLE, arc], path_modes=modes),
-                              MACHINE)
-        assert [c.kind for c in out.commands][:len(kinds)] == kinds, (arc.plane, modes)
+             (Arc(start, end, (0, 100.1, 10), "YZ", True, 1, 1000, 3), [LINE, ARC_CCW, ARC_CCW])]
+    for arc, kinds in cases:
+        out = compile_program(Program([Line((0, 0, 0), (100, 0, 0), None, 1), OFF_CIRCLE, arc]), MACHINE)
+        assert [c.kind for c in out.commands][:len(kinds)] == kinds, (arc.plane, arc.path_control)
         assert total(out.commands) == steps_of(end)
 
 
@@ -915,9 +913,9 @@ def test_profile_fields_and_settings():
 def test_path_modes_give_stops_and_tolerances():
     from interp.gcode.compile import Compiler
 
-    prog = Program([Line((0, 0, 0), (1, 0, 0), 600, 1), Line((1, 0, 0), (2, 0, 0), 600, 3),
-                    Line((2, 0, 0), (3, 0, 0), 600, 5), Line((3, 0, 0), (4, 0, 0), 600, 7)],
-                   path_modes=[(2, "G61", None, None), (4, "G64", 0.05, None), (6, "G64", None, None)])
+    modes = [("G64", None), ("G61", None), ("G64", 0.05), ("G64", None)]
+    prog = Program([Line((k, 0, 0), (k + 1, 0, 0), 600, 2 * k + 1, path_control=mode)
+                    for k, mode in enumerate(modes)])
     out = Compiler(MACHINE).run(prog)
     motions = [c.motion for c in out.commands]
     assert [m.stop_before for m in motions] == [True, True, False, False]
@@ -1013,15 +1011,16 @@ def test_speeds_are_whole_quanta():
 def test_exact_stop_before_each_programmed_move_only():
     # G61 stops before every programmed move, not inside one: not between an arc's turns or
     # chords, nor before the correction that finishes an arc (the reviewer's double stop)
-    g61 = [(1, "G61", None, None)]
+    def g61(moves):
+        return Program([replace(m, path_control=("G61", None)) for m in moves])
     prog = [Line((0, 0, 0), (100, 0, 0), None, 1), OFF_CIRCLE, Line((0, 100.1, 0), (0, 50, 0), 1000, 3)]
-    out = compile_program(Program(prog, path_modes=g61), MACHINE)
+    out = compile_program(g61(prog), MACHINE)
     assert [(c.kind, c.motion.stop_before) for c in out.commands] == \
         [(LINE, True), (ARC_CCW, True), (LINE, False), (LINE, True)]
     turns = Arc((100, 0, 0), (100, 0, 0), (0, 0, 0), "XY", True, 3, 1000, 2)
-    out = compile_program(Program([prog[0], turns], path_modes=g61), MACHINE)
+    out = compile_program(g61([prog[0], turns]), MACHINE)
     assert [c.motion.stop_before for c in arc_commands(out)] == [True, False, False]
-    chords = compile_program(Program([prog[0], turns], path_modes=g61), load_machine(sets=["axis.y.steps_per_mm=80"]))
+    chords = compile_program(g61([prog[0], turns]), load_machine(sets=["axis.y.steps_per_mm=80"]))
     stops = [c.motion.stop_before for c in chords.commands[1:]]
     assert len(stops) > 100 and stops == [True] + [False] * (len(stops) - 1)
 

@@ -426,10 +426,34 @@ def test_bad_cycles(text, message):
 # ---- dwell, path modes, tools -------------------------------------------------------------
 
 def test_dwell_and_path_modes():
-    program = interpret("G4 P1.5\nG61\nG64 P0.01 Q0.02\nG20 G64 P0.001\nG61.1")
-    assert program.moves == [Dwell(1.5, 1)]
-    assert program.path_modes == [(2, "G61", None, None), (3, "G64", 0.01, 0.02),
-                                  (4, "G64", pytest.approx(0.0254), None), (5, "G61.1", None, None)]
+    program = interpret("G4 P1.5\nG1 X1 F600\nG61 X2\nG64 P0.01 Q0.02 X3\nX4\nG20 G64 P0.001 X0\nG61.1 X1\n"
+                        "G64 X2")
+    assert program.moves[0] == Dwell(1.5, 1)
+    assert [m.path_control for m in program.moves[1:]] == \
+        [("G64", None), ("G61", None), ("G64", 0.01), ("G64", 0.01), ("G64", pytest.approx(0.0254)),
+         ("G61.1", None), ("G64", None)]
+
+
+def test_path_modes_in_run_order():
+    # a subroutine's G61 holds for the moves made after it runs, not for those before its
+    # call (nor a loop's G64 P for the turns before it changes it)
+    text = "o100 sub\nG61\no100 endsub\nG1 X1 F600\no100 call\nX2\nX3"
+    assert [m.path_control for m in interpret(text).moves] == [("G64", None), ("G61", None), ("G61", None)]
+    text = "#1=0\no1 while [#1 LT 2]\nG1 X[#1+1] F600\nG64 P0.1\n#1=[#1+1]\no1 endwhile"
+    assert [m.path_control for m in interpret(text).moves] == [("G64", None), ("G64", 0.1)]
+
+
+@pytest.mark.parametrize("code", ["G61", "G61.1", "G64 P0.1"])
+def test_path_control_refused_under_cutter_compensation(code):
+    # LinuxCNC refuses it too: the compensated move is made a block late, under the new mode
+    tools = {1: {"length_mm": 0.0, "diameter_mm": 2.0}}
+    with pytest.raises(GcodeError) as error:
+        interpret(f"G0 X-5 Y-5\nG41 D1 G1 X0 Y0 F600\n{code}\nX10", tools=tools)
+    word = code.split()[0]
+    assert str(error.value) == (f"line 3, column 1: {word}: the path-control mode cannot change with cutter "
+                                "compensation on (G40 first)")
+    program = interpret(f"G0 X-5 Y-5\nG41 D1 G1 X0 Y0 F600\nX10\nG40 {code} G0 X20", tools=tools)
+    assert program.moves[-1].path_control[0] == word
 
 
 def test_tool_length_offsets():

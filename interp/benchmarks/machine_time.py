@@ -24,7 +24,6 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from bisect import bisect_right
 from dataclasses import dataclass
 
 from ..cores import UsageError
@@ -38,17 +37,6 @@ from . import grbl_planner
 from .gcode_corpus import CORPUS, corpus_files
 
 STREAM_WINDOW = 32
-
-
-def _path_mode(program: Program):
-    """line -> (mode, P) in force at that line (a mode set in a block holds for its move)."""
-    changes = sorted(program.path_modes, key=lambda change: change[0])
-    lines = [change[0] for change in changes]
-
-    def at(line: int) -> tuple[str, float | None]:
-        index = bisect_right(lines, line) - 1
-        return ("G64", None) if index < 0 else (changes[index][1], changes[index][2])
-    return at
 
 
 def arc_geometry(arc: Arc) -> tuple[float, float, tuple, tuple]:
@@ -79,7 +67,6 @@ def program_segments(program: Program, machine: Machine, *,
     steps = machine.steps_per_mm
     rate = tuple(a.max_rate_mm_min / 60.0 for a in machine.axes)
     accel = tuple(a.accel_mm_s2 for a in machine.axes)
-    mode_at = _path_mode(program)
     segments: list[Segment] = []
     dwell = 0.0
     stop = True
@@ -93,7 +80,7 @@ def program_segments(program: Program, machine: Machine, *,
             dwell += move.seconds if isinstance(move, Dwell) else 0.0
             stop = True
             continue
-        mode, tolerance = mode_at(move.line)
+        mode, tolerance = move.path_control
         if isinstance(move, Line):
             start = position if position is not None else rounded(move.start)
             end = rounded(move.end)

@@ -66,7 +66,7 @@ from ..models.lecture import within_half_step
 from ..models.motion import ARC_CCW, ARC_CW, DWELL, LINE, Command, command_steps, inline, interval_costs, next_not_inline
 from ..models.speed_ramp import BLOCK_SHIFT_MIN
 from .machine import AXES, Machine
-from .moves import EVENTS, PLANES, Arc, Dwell, Event, Line, Program
+from .moves import CONTINUOUS, EVENTS, PLANES, Arc, Dwell, Event, Line, Program
 from .naivecam import collapse
 from .stepcount import arc_count, arc_events, helix_count, line_count
 
@@ -256,9 +256,10 @@ class Compiler:
             raise CompileError(f"a pause of {pause_seconds:g} s is out of range (0 .. {DWELL_SECONDS_MAX} s, a day)")
         self.pause_cycles = _round(pause_seconds * self.clock)
         self.here = [int(v) for v in start_steps]      # the machine's position, steps
-        # an arc's correction not yet made: (the rounded end, feed mm/s, source line) of an
-        # arc that ended on the lattice point beside it; the next line or arc takes it in
-        self.pending: tuple[list[int], float, int] | None = None
+        # an arc's correction not yet made: (the rounded end, feed mm/s, source line, path
+        # control) of an arc that ended on the lattice point beside it; the next line or arc
+        # takes it in
+        self.pending: tuple[list[int], float, int, tuple] | None = None
         self.out = Compiled(profile=self.profile_name, costs=costs)
         self.stop_next = True           # an exact stop before the next move
         self.first = True               # no command of the programmed move made yet (emit_move)
@@ -266,7 +267,7 @@ class Compiler:
         # whether the path is in a G0 (the beam dark: power 0 until the next feed move)
         self.laser = bool(machine.values["spindle"]["laser"])
         self.power, self.beam_on, self.dark = 0, False, False
-        self.modes: list = []           # the program's path-control modes (line, mode, P, Q)
+        self.path_control = CONTINUOUS  # the path-control mode of the move being compiled (Line.path_control)
         self.origin = 0                 # the origin of the move being compiled (Cmd.origin)
         self._warnings: dict[str, list[str]] = {}
         self._more: dict[str, int] = {}
@@ -355,7 +356,7 @@ class Compiler:
         arc's turns and chords, a long line's parts) nor before a correction (`piece`) that
         finishes the move before it."""
         self.room(1, cmd.source)
-        mode, tolerance = self.path_mode(cmd.source)
+        mode, tolerance = self.path_control
         exact = mode in EXACT_STOP_MODES and self.first and not piece
         cmd.motion = Motion(length_mm, _unit(start_mm), _unit(end_mm), feed_mm_s, steps, events, radius_mm,
                             plane_axes, stop_before=self.stop_next or exact, tolerance_mm=tolerance)
@@ -363,15 +364,6 @@ class Compiler:
         self.first = self.first and piece
         cmd.origin = self.origin
         self.out.commands.append(cmd)
-
-    def path_mode(self, line: int) -> tuple[str, float | None]:
-        """(G61 | G61.1 | G64, G64's P tolerance in mm or None) in force on `line`."""
-        mode, tolerance = "G64", None
-        for at, name, p, _q in self.modes:
-            if at > line:
-                break
-            mode, tolerance = name, p if name == "G64" else None
-        return mode, tolerance
 
     def feed_cap(self, delta_mm) -> float:
         """The highest path speed (mm/min) along delta_mm at which no axis exceeds its max rate."""
@@ -414,20 +406,22 @@ class Compiler:
     def settle(self) -> None:
         """Make the pending correction: a short line to the arc's rounded end."""
         if self.pending is not None:
-            target, feed, line = self.pending
+            target, feed, line, control = self.pending
             self.pending = None
+            moving, self.path_control = self.path_control, control      # (the arc's tolerance)
             self.line_to(target, feed, line, piece=True)
+            self.path_control = moving
 
-    def exact_stop(self, line: int) -> bool:
-        """Whether the move on `line` starts with an exact stop (its path-control mode)."""
-        return self.path_mode(line)[0] in EXACT_STOP_MODES
+    def exact_stop(self) -> bool:
+        """Whether the move being compiled starts with an exact stop (its path-control mode)."""
+        return self.path_control[0] in EXACT_STOP_MODES
 
     def segment(self, start, end, feed, line: int) -> None:
         """A straight move between two points in mm (a G0/G1 line or a chord); it takes in a
         pending correction (it starts where the arc before it ended)."""
         for k in range(3):
             self.check_travel(line, k, end[k])
-        if self.exact_stop(line):
+        if self.exact_stop():
             self.settle()
         self.pending = None
         target = self.steps(end)
@@ -482,7 +476,7 @@ class Compiler:
         # before ended) if that start is within TAKE_IN_STEPS of the programmed circle
         if self.pending is not None:
             cu, cv = centre(self.pending[0])
-            if self.exact_stop(m.line) or self.pending[0][iw] != self.here[iw] or \
+            if self.exact_stop() or self.pending[0][iw] != self.here[iw] or \
                     abs(math.hypot(cu - self.here[iu], cv - self.here[iv]) - r * s_u) > TAKE_IN_STEPS:
                 self.settle()
             self.pending = None
@@ -524,7 +518,7 @@ class Compiler:
         here[iu], here[iv], here[iw] = cu + pu, cv + pv, end[iw]
         self.here = here
         if here != end:                     # the correction: the next line or arc takes it in
-            self.pending = (end, feed, m.line)
+            self.pending = (end, feed, m.line, m.path_control)
 
     def arc_command(self, kind, plane, ci, cj, x, y, travel, sweep, feed, m: Arc, a_start) -> None:
         """An ARC command (start 0, centre (ci, cj), end (x, y) in the plane, w travel) with
@@ -884,7 +878,6 @@ class Compiler:
         self.out.machine_time_s = t
 
     def run(self, program: Program) -> Compiled:
-        self.modes = sorted(program.path_modes, key=lambda mode: mode[0])
         if self.laser:
             self.emit_event("laser_mode", 1, 1, program.moves[0].line if program.moves else 0, inline_event=True)
         moves = program.moves
@@ -893,6 +886,8 @@ class Compiler:
         for m in moves:
             self.first = True
             self.origin = m.origin
+            if isinstance(m, (Line, Arc)):
+                self.path_control = m.path_control
             if isinstance(m, Line):
                 self.out.moves += 1
                 self.laser_rapid(m.feed is None, m.line)

@@ -26,7 +26,7 @@ from . import cycles
 from .cutter import CompensationError, Compensator
 from .errors import GcodeError, without_controls
 from .language import Block, ExpressionError, Parameters, Word, iterate_blocks, read_source, substitute_parameters
-from .moves import PLANES, Arc, Dwell, Event, Line, Point, ProbeResult, Program
+from .moves import CONTINUOUS, PLANES, Arc, Dwell, Event, Line, Point, ProbeResult, Program
 from .parameter_file import LENGTHS
 
 MM_PER_INCH = 25.4
@@ -217,6 +217,7 @@ class _Machine:
         self.touch_assumed = False                # a probe move took its touch at its end (no machine)
         self.comp: Compensator | None = None      # cutter compensation (G41 / G42, until its exit move)
         self.block_top = 0                        # the running block's line outside any subroutine
+        self.path_control = CONTINUOUS            # G61 / G61.1 / G64 and its P (mm): stamped on each motion
         self.naive_tolerance = 0.0                # G64's Q (or P without Q), mm; 0: G61, G61.1, G64 alone
         self.chain = 0                            # the naive-CAM chain count: a path-control block or a message ends one
         self._restore(saved or {})
@@ -345,12 +346,12 @@ class _Machine:
             if self.moves_made > MAX_MOVES:
                 self._fail(None, f"the program makes more than {MAX_MOVES} moves (an arc's turns counted): "
                                  "split it")
-            origin = move.origin or self.block_top
+            marks = {"origin": move.origin or self.block_top}
+            if isinstance(move, (Line, Arc)):
+                marks["path_control"] = self.path_control
             if isinstance(move, Line) and move.feed is not None and not move.probe and self.naive_tolerance > 0:
-                move = replace(move, origin=origin, join=(self.chain, self.naive_tolerance))
-            elif origin != move.origin:
-                move = replace(move, origin=origin)
-            self.program.moves.append(move)
+                marks["join"] = (self.chain, self.naive_tolerance)
+            self.program.moves.append(replace(move, **marks))
 
     def compensation_off(self, tool_stays: bool = False) -> None:
         """G40: the pending compensated move ends; the next XY move starts where the tool is.
@@ -577,6 +578,8 @@ class _Machine:
         # 20. path control
         if "path control" in words.g:
             code, word = words.g["path control"]
+            if self._compensating():        # (LinuxCNC refuses it too: the comp's moves lag a block)
+                self._fail(word, "the path-control mode cannot change with cutter compensation on (G40 first)")
             p = q = None
             if code == 640:
                 p = words.get("P")
@@ -586,8 +589,7 @@ class _Machine:
                         self._fail(words.word(letter), "the G64 tolerance cannot be negative")
                 p = None if p is None else p * self.scale
                 q = None if q is None else q * self.scale
-            self.program.path_modes.append((line, {610: "G61", 611: "G61.1", 640: "G64"}[code],
-                                            p, q))
+            self.path_control = ({610: "G61", 611: "G61.1", 640: "G64"}[code], p)
             self.naive_tolerance = (q if q is not None else p if p is not None else 0.0) if code == 640 else 0.0
             self.chain += 1
         # 21. distance modes, 22. return mode

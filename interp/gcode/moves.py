@@ -18,6 +18,16 @@ def _origin():
     return field(default=0, compare=False, repr=False)
 
 
+# a motion's path-control mode: ("G61" | "G61.1" | "G64", G64's P corner tolerance in mm or
+# None), the mode in force when the program ran its block (in run order: a subroutine's or a
+# loop's G64 holds for the moves made after it); not part of a move's value
+CONTINUOUS = ("G64", None)
+
+
+def _path_control():
+    return field(default=CONTINUOUS, compare=False, repr=False)
+
+
 # Arc planes as RS274NGC defines them: (u, v) is the plane, w its normal;
 # counter-clockwise turns from +u towards +v.
 PLANES = {"XY": (0, 1, 2), "ZX": (2, 0, 1), "YZ": (1, 2, 0)}      # G17, G18, G19
@@ -35,6 +45,7 @@ class Line:
     # join: a count the interpreter advances at every path-control block and message, the
     # tolerance in mm), in the order the program runs; None: it joins nothing
     join: tuple[int, float] | None = field(default=None, compare=False, repr=False)
+    path_control: tuple[str, float | None] = _path_control()
 
 
 @dataclass(frozen=True)
@@ -58,6 +69,7 @@ class Arc:
     feed: float
     line: int
     origin: int = _origin()
+    path_control: tuple[str, float | None] = _path_control()
 
 
 @dataclass(frozen=True)
@@ -104,9 +116,6 @@ class Program:
     end_work: Point = (0.0, 0.0, 0.0)     # final position in work coordinates, program units
     units: str = "mm"                     # the units in force at the end: "mm" or "inch"
     end_machine: Point = (0.0, 0.0, 0.0)  # final position in machine coordinates, mm
-    # path-control mode changes, for the planner: (line, "G61" | "G61.1" | "G64", P, Q), P and Q
-    # (G64's blending tolerance and naive-CAM tolerance) in mm or None when not programmed
-    path_modes: list[tuple[int, str, float | None, float | None]] = field(default_factory=list)
     # the persistent parameters at the end (#5161.. G28, #5181.. G30, #5210.. G92, #5220 the
     # coordinate system, #5221.. G54..G59.3), machine mm: what a parameter file keeps
     saved: dict[int, float] = field(default_factory=dict)

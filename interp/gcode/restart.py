@@ -36,7 +36,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from ..cores import UsageError
-from .moves import Arc, Dwell, Event, Line, Point, Program
+from .moves import CONTINUOUS, Arc, Dwell, Event, Line, Point, Program
 
 SPINDLE_EVENTS = ("spindle_cw", "spindle_ccw", "spindle_off", "spindle_speed")
 
@@ -117,10 +117,11 @@ def start_at(program: Program, line: int, here: Point, laser: bool = False) -> P
     floor = top if state.retract is None else min(top, max(state.retract, position[2]))
     legs = [((here[0], here[1], top), None), ((position[0], position[1], top), None),
             ((position[0], position[1], floor), None), (position, None if laser else feed)]
+    control = next((m.path_control for m in moves[first:] if _motion(m)), CONTINUOUS)   # (the mode at the start)
     approach, at = [], tuple(here)
     for point, rate in legs:
         if point != at:
-            approach.append(Line(at, point, rate, line))
+            approach.append(Line(at, point, rate, line, path_control=control))
             at = point
     ups = next((k for k, move in enumerate(approach) if move.end[2] < top), len(approach))     # up and across
     spindle, coolant = state.spindle, tuple(name for name in ("mist", "flood") if getattr(state, name))
