@@ -89,7 +89,7 @@ def test_error_is_a_usage_error_with_the_exact_format():
                      "(G42.1 and G41)"),
     ("G95", "line 1, column 1: G95: feed per revolution (G95) is not supported"),
     ("G38.5 Z-1", "line 1, column 1: G38.5: feed move without a feed rate (no F word yet)"),
-    ("G5 X1 Y1 I1 J1 P1 Q1", "line 1, column 1: G5: cubic spline moves (G5) are not supported"),
+    ("G5.3", "line 1, column 1: G5.3: NURBS moves (G5.3) are not supported"),
     ("G12", "line 1, column 1: G12: unknown or unsupported G code"),
     ("M300 S30", "line 1, column 1: M300: unsupported M code"),
     ("M140 S60", "line 1, column 1: M140: unsupported M code"),

@@ -22,7 +22,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Sequence
 
-from . import cycles
+from . import cycles, spline
 from .cutter import CompensationError, Compensator
 from .errors import GcodeError, without_controls
 from .language import Block, ExpressionError, Parameters, Word, iterate_blocks, read_source, substitute_parameters
@@ -54,7 +54,7 @@ PLANE_CODE = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
 # G codes in tenths (G59.1 -> 591) -> modal group
 G_GROUPS: dict[int, str] = {}
 for _codes, _group in (
-        ((0, 10, 20, 30, 382, 383, 384, 385, 800, 730, 810, 820, 830, 850, 860, 890), "motion"),
+        ((0, 10, 20, 30, 50, 51, 382, 383, 384, 385, 800, 730, 810, 820, 830, 850, 860, 890), "motion"),
         ((40, 100, 280, 281, 300, 301, 530, 920, 921, 922, 923), "non-modal"),
         ((170, 180, 190), "plane"), ((900, 910), "distance"), ((901, 911), "arc distance"),
         ((930, 940), "feed mode"), ((200, 210), "units"), ((400, 410, 420, 411, 421), "cutter compensation"),
@@ -66,8 +66,6 @@ for _codes, _group in (
         G_GROUPS[_code] = _group
 
 G_REFUSED = {
-    50: "cubic spline moves (G5) are not supported",
-    51: "quadratic spline moves (G5.1) are not supported",
     52: "NURBS moves (G5.2) are not supported",
     53: "NURBS moves (G5.3) are not supported",
     70: "lathe diameter mode is not supported",
@@ -98,7 +96,7 @@ PROBE_CODES = {382: "G38.2", 383: "G38.3", 384: "G38.4", 385: "G38.5"}
 PROBE_AWAY = (384, 385)           # the probe trips where it loses contact
 PROBE_FAIL = {382: "the probe did not touch before the end of the move",
               384: "the probe did not lose contact before the end of the move"}
-MOTION_NAMES = {0: "G0", 10: "G1", 20: "G2", 30: "G3", 800: "G80", 730: "G73", 810: "G81",
+MOTION_NAMES = {0: "G0", 10: "G1", 20: "G2", 30: "G3", 50: "G5", 51: "G5.1", 800: "G80", 730: "G73", 810: "G81",
                 820: "G82", 830: "G83", 850: "G85", 860: "G86", 890: "G89"}
 CYCLE_CODES = {730: 73, 810: 81, 820: 82, 830: 83, 850: 85, 860: 86, 890: 89}
 AXIS_USERS = {100: "G10", 280: "G28", 300: "G30", 920: "G92"}
@@ -193,6 +191,7 @@ class _Machine:
         self.feed: float | None = None           # mm/min (G94)
         self.motion = 800                        # G80
         self.motion_before_cycle: int | None = None   # G0 / G1 in force before a canned cycle
+        self.spline_tail: tuple[float, float] | None = None  # -P, -Q (mm) of a G5 just run: the next G5's I, J
         self.coordinate_system = 1               # G54
         self.work_offsets = [[0.0, 0.0, 0.0] for _ in range(9)]
         self.g92 = [0.0, 0.0, 0.0]               # applied G92 offset
@@ -635,11 +634,16 @@ class _Machine:
                 self._straight(words, new_mode, g53, inverse_f)
             self.cycle_initial = None
         elif not axes_taken and (axis_letters or (motion is not None and new_mode in (20, 30)
-                                                  and any(words.has(c) for c in "IJKR"))):
+                                                  and any(words.has(c) for c in "IJKR"))
+                                 or (motion is not None and new_mode in (50, 51)
+                                     and any(words.has(c) for c in "IJPQ"))):
+            tail, self.spline_tail = self.spline_tail, None
             if new_mode in (0, 10):
                 self._straight(words, new_mode, g53, inverse_f)
             elif new_mode in (20, 30):
                 self._arc(words, new_mode, motion, inverse_f)
+            elif new_mode in (50, 51):
+                self._spline(words, new_mode, motion, inverse_f, tail)
             elif new_mode in PROBE_CODES:
                 self._probe(words, new_mode, inverse_f)
             else:
@@ -648,7 +652,7 @@ class _Machine:
             self.cycle_initial = None
         if new_mode in (0, 10):
             self.motion_before_cycle = new_mode
-        elif new_mode in (20, 30):
+        elif new_mode in (20, 30, 50, 51):
             self.motion_before_cycle = None
         self.motion = new_mode
         self._check_unused(words)
@@ -960,6 +964,48 @@ class _Machine:
         feed = self._feed_for(length, inverse_f, mword)
         self._add(Arc(tuple(start), tuple(target), tuple(centre), self.plane, ccw, turns, feed, self._line))
         self.position = target
+
+    def _spline(self, words: _Words, mode: int, motion, inverse_f: float | None, tail) -> None:
+        """G5 (cubic: I J P Q) and G5.1 (quadratic: I J) in the XY plane, as LinuxCNC runs them:
+        the control points are offsets (program units) from the start (I, J) and from the end
+        (P, Q); a G5 right after a G5 may leave out I and J (the last one's -P, -Q).  The
+        curve runs as arcs and lines within spline.TOLERANCE_MM of it (interp.gcode.spline)."""
+        name, s = MOTION_NAMES[mode], self.scale
+        mword = motion[1] if motion is not None else self._motion_word(words)
+        self._refuse_in_compensation(mword, name)
+        if self.plane != "XY":
+            self._fail(mword, f"{name} splines must be in the XY plane (G17)")
+        for letter in "Z@^":
+            if words.has(letter):
+                self._fail(words.word(letter), f"{name} moves only X and Y")
+        has_i, has_j = words.has("I"), words.has("J")
+        if mode == 51 and not (has_i and words.has("J")):
+            self._fail(mword, "G5.1 needs both I and J")
+        if has_i != has_j:
+            self._fail(words.word("I" if has_i else "J"), f"{name} needs both I and J, or neither")
+        if mode == 50 and not (words.has("P") and words.has("Q")):
+            self._fail(mword, "G5 needs both P and Q")
+        if not has_i and tail is None:
+            self._fail(mword, "G5 needs I and J (they may be left out only right after another G5)")
+        first = (words.value("I") * s, words.value("J") * s) if has_i else tail
+        target = self._target(words)
+        start = tuple(self.position)
+        control = [start[:2], (start[0] + first[0], start[1] + first[1])]
+        if mode == 50:
+            p, q = words.value("P") * s, words.value("Q") * s
+            control.append((target[0] + p, target[1] + q))
+            self.spline_tail = (-p, -q)
+        control.append((target[0], target[1]))
+        parts = spline.pieces(control)
+        feed = self._feed_for(spline.length(parts), inverse_f, mword)
+        z = start[2]
+        for part in parts:
+            a, b = (*part[1], z), (*part[2], z)
+            if part[0] == "line":
+                self._add(Line(a, b, feed, self._line))
+            else:
+                self._add(Arc(a, b, (*part[3], z), "XY", part[4], 1, feed, self._line))
+        self.position = [target[0], target[1], z]
 
     def _cycle(self, words: _Words, mode: int, motion) -> None:
         line = self._line
