@@ -400,3 +400,13 @@ def test_typed_keys_drop_escape_sequences():
     assert typed_keys("\x1b[A\x1b[5~\x1b[6~\x1bOP\x1b[1;5C") == ""
     assert typed_keys("+\x1b[5~-\x1b!]\x1b") == "+-]"
     assert typed_keys("[\x1b[5") == "["                      # (a sequence cut off at the end of a read)
+
+
+def test_key_tokens_one_per_key():
+    """`interp jog`'s keys: an arrow, a page key, an F key is one token; Esc alone is one, also
+    just before another sequence; the other characters one each."""
+    from interp.commands.send import key_tokens
+
+    assert key_tokens("a\x1b[A\x1b[5~q\x1b\x1bOP[\x1b[1;5C") == \
+        ["a", "\x1b[A", "\x1b[5~", "q", "\x1b", "\x1bOP", "[", "\x1b[1;5C"]
+    assert key_tokens("\x1b") == ["\x1b"] and key_tokens("\x1b[") == ["\x1b["] and key_tokens("") == []

@@ -29,7 +29,7 @@ from ..link.driver import Driver, LinkError, MismatchError, configure, read_posi
 from ..link.records import encode_program
 from .gcode import compile_text
 from . import send
-from .send import Keyboard, add_link_options, check_link_args, compile_build, mm_text
+from .send import Keyboard, add_link_options, key_tokens, check_link_args, compile_build, mm_text
 from .status import work_position
 
 DEFAULT_FEED = 1000.0                               # mm/min
@@ -113,11 +113,6 @@ def show_position(driver: Driver, machine: Machine, said: str = "") -> None:
     work = work_position(machine, position)
     if work:
         print(work)
-
-
-def key_tokens(typed: str) -> list[str]:
-    """Keys typed as tokens: an escape sequence (an arrow, a page key) is one."""
-    return re.findall(r"\x1b\[[0-9;]*[A-Za-z~]|\x1bO[A-Za-z]|[\s\S]", typed)
 
 
 def unfinished(typed: str) -> bool:

@@ -152,14 +152,20 @@ def check_link_args(args) -> None:
 # ---------------- the keyboard ----------------
 
 # a terminal's escape sequences: CSI (arrow keys ESC [ A, PgUp ESC [ 5 ~, also cut off at the
-# end of a read), SS3 (F1 ESC O P), ESC + a key (Alt+key), a lone ESC
-ESCAPE = re.compile(r"\x1b(?:\[[0-?]*[ -/]*(?:[@-~]|$)|O.?|.)?", re.DOTALL)
+# end of a read), SS3 (F1 ESC O P), ESC + a key other than ESC (Alt+key), a lone ESC
+ESCAPE = re.compile(r"\x1b(?:\[[0-?]*[ -/]*(?:[@-~]|$)|O[^\x1b]?|[^\x1b])?", re.DOTALL)
+
+
+def key_tokens(text: str) -> list[str]:
+    """The keys typed as tokens: an escape sequence (an arrow, a page key, Alt+key, a lone
+    Esc) is one, any other character one."""
+    return [match.group() for match in re.finditer(f"{ESCAPE.pattern}|.", text, re.DOTALL)]
 
 
 def typed_keys(text: str) -> str:
     """The keys typed, without the terminal's escape sequences: an arrow key or PgUp must not
     act as the '[' (spindle override), '5' (feed override) and '~' (resume) inside them."""
-    return ESCAPE.sub("", text)
+    return "".join(token for token in key_tokens(text) if not token.startswith("\x1b"))
 
 
 class Keyboard:
