@@ -179,6 +179,20 @@ def test_g92_family():
     assert ends(text) == [(10, 10, 0), (15, 10, 0), (5, 10, 0), (10, 10, 0), (1, 10, 0)]
 
 
+def test_g52_local_offset_shares_g92s():
+    """G52 X Y Z: the words are the offset from the coordinate system's origin (LinuxCNC,
+    Fanuc, Mach3), kept in G92's registers; axes not named keep theirs; G52 X0 Y0 Z0 ends it."""
+    text = ("G10 L2 P1 X100\nG0 X0 Y0\nG52 X10 Y5\nG0 X0 Y0\nG52 X20\nG0 X0 Y0\nG92 X0\nG0 X1\n"
+            "G52 X0 Y0 Z0\nG0 X0 Y0\nG20 G52 Z1\nG0 Z0")
+    assert ends(text) == [(100, 0, 0), (110, 5, 0), (120, 5, 0), (121, 5, 0), (100, 0, 0),
+                          (100, 0, pytest.approx(25.4))]
+    program = interpret("G52 X2 Y3\nG0 X0 M2")
+    assert program.saved[5210] == 1.0 and (program.saved[5211], program.saved[5212]) == (2.0, 3.0)
+    with pytest.raises(GcodeError) as error:
+        interpret("G52")
+    assert str(error.value) == "line 1, column 1: G52: G52 needs at least one axis word"
+
+
 def test_fanuc_home_idiom_g91_g28_z0():
     # G91 G28 Z0: the intermediate point is the current one, then Z alone goes home
     assert ends("G0 X5 Y5 Z-3\nG91 G28 Z0\nG90 G28 X0 Y0", g28=(1, 2, 3)) == [

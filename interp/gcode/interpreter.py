@@ -55,7 +55,7 @@ PLANE_CODE = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
 G_GROUPS: dict[int, str] = {}
 for _codes, _group in (
         ((0, 10, 20, 30, 50, 51, 382, 383, 384, 385, 800, 730, 810, 820, 830, 850, 860, 890), "motion"),
-        ((40, 100, 280, 281, 300, 301, 530, 920, 921, 922, 923), "non-modal"),
+        ((40, 100, 280, 281, 300, 301, 520, 530, 920, 921, 922, 923), "non-modal"),
         ((170, 180, 190), "plane"), ((900, 910), "distance"), ((901, 911), "arc distance"),
         ((930, 940), "feed mode"), ((200, 210), "units"), ((400, 410, 420, 411, 421), "cutter compensation"),
         ((430, 431, 490), "tool length"), ((980, 990), "return mode"),
@@ -81,7 +81,6 @@ G_REFUSED = {
     191: "UVW planes are not supported",
     950: "feed per revolution (G95) is not supported",
     960: "constant surface speed (G96) is not supported",
-    520: "G52 is not an RS274NGC code (use G92)",
 }
 
 M_GROUPS: dict[int, str] = {}
@@ -99,7 +98,7 @@ PROBE_FAIL = {382: "the probe did not touch before the end of the move",
 MOTION_NAMES = {0: "G0", 10: "G1", 20: "G2", 30: "G3", 50: "G5", 51: "G5.1", 800: "G80", 730: "G73", 810: "G81",
                 820: "G82", 830: "G83", 850: "G85", 860: "G86", 890: "G89"}
 CYCLE_CODES = {730: 73, 810: 81, 820: 82, 830: 83, 850: 85, 860: 86, 890: 89}
-AXIS_USERS = {100: "G10", 280: "G28", 300: "G30", 920: "G92"}
+AXIS_USERS = {100: "G10", 280: "G28", 300: "G30", 520: "G52", 920: "G92"}
 VALID_LETTERS = set("ABCDFGHIJKLMNPQRSTUVWXYZ@^")
 
 
@@ -1139,7 +1138,7 @@ class _Machine:
 
     # ---- G4 excepted non-modal codes --------------------------------------------------
     def _non_modal(self, words: _Words, nonmodal: tuple[int, Word]) -> bool:
-        """G10, G28, G28.1, G30, G30.1, G92, G92.1, G92.2, G92.3; True if it used the axis words."""
+        """G10, G28, G28.1, G30, G30.1, G52, G92, G92.1, G92.2, G92.3; True if it used the axis words."""
         code, word = nonmodal
         s = self.scale
         line = self._line
@@ -1167,16 +1166,22 @@ class _Machine:
         if code in (281, 301):
             self.homes[code - 1] = list(self.position)
             return False
-        if code == 920:
+        if code in (520, 920):
+            # G92: the offset that gives the current point the words' coordinates; G52 (LinuxCNC,
+            # Fanuc, Mach3): the words are the offset itself, from the coordinate system's
+            # origin (G52 X0 Y0 Z0 ends it); both set the same offsets (#5210..#5213)
             for letter in EXTRA_AXES:                 # offsets of absent axes: no effect
                 if words.has(letter):
                     words.value(letter)
             named = [a for a in range(3) if words.has(AXES[a])]
             if not named and not any(words.has(c) for c in EXTRA_AXES):
-                self._fail(word, "G92 needs at least one axis word")
+                self._fail(word, f"{AXIS_USERS[code]} needs at least one axis word")
             for a in named:
-                self.g92[a] = (self.position[a] - self.work_offsets[self.coordinate_system - 1][a]
-                               - self.tool_offset[a] - words.value(AXES[a]) * s)
+                if code == 520:
+                    self.g92[a] = words.value(AXES[a]) * s
+                else:
+                    self.g92[a] = (self.position[a] - self.work_offsets[self.coordinate_system - 1][a]
+                                   - self.tool_offset[a] - words.value(AXES[a]) * s)
             self.g92_stored = list(self.g92)
             self.g92_enabled = True
             return True
