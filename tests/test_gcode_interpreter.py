@@ -179,6 +179,64 @@ def test_g92_family():
     assert ends(text) == [(10, 10, 0), (15, 10, 0), (5, 10, 0), (10, 10, 0), (1, 10, 0)]
 
 
+def test_m70_m72_save_and_restore_the_modal_state():
+    """M72 brings back what M70 saved: units, distance mode, F, S, spindle and coolant (with
+    their events), plane, coordinate system, path control."""
+    program = interpret("G1 F100\nM3 S1000 M8\nM70\nG91 G20 G18 G61 F10 S500 G55\nM5 M9\nX1\nM72\nX1\n"
+                        "G2 X2 I0.5\nM2")
+    moves = program.moves
+    events = [(m.name, m.value, m.line) for m in moves if isinstance(m, Event)]
+    assert events == [("spindle_cw", 1000, 2), ("flood_on", 0, 2), ("spindle_speed", 500, 4),
+                      ("spindle_off", 0, 5), ("coolant_off", 0, 5), ("spindle_cw", 1000, 7), ("flood_on", 0, 7),
+                      ("program_end", 2, 10)]
+    lines = [m for m in moves if not isinstance(m, Event)]
+    assert [(m.end, m.feed) for m in lines[:2]] == [((25.4, 0, 0), 254.0), ((1, 0, 0), 100.0)]
+    assert lines[1].path_control == ("G64", None) and lines[0].path_control == ("G61", None)
+    assert isinstance(lines[2], Arc) and lines[2].plane == "XY" and program.units == "mm"
+
+
+def test_m73_restores_at_the_subroutines_return():
+    """M73 in a subroutine: its modal state comes back when it returns (also when the return is
+    the program's last block), at each level of nested calls."""
+    text = ("o100 sub\nM73\nG91 G20 M7 G55\nX1\no100 endsub\n"
+            "o200 sub\nM73\nM3 S2000\no100 call\nG1 X1\no200 endsub\n"
+            "G10 L2 P2 X100\nG1 F100 X1\no200 call\nX2\no100 call")
+    moves = interpret(text).moves
+    events = [(m.name, m.line) for m in moves if isinstance(m, Event)]
+    # inside o200: M3; o100's M7, its return (coolant off before line 10), o200's return
+    # (spindle off before line 15); o100 called from line 16: M7, and the coolant off at the
+    # program's end (named by the call's line)
+    assert events == [("spindle_cw", 8), ("mist_on", 3), ("coolant_off", 10), ("spindle_off", 15),
+                      ("mist_on", 3), ("coolant_off", 16)]
+    ends = [m.end for m in moves if isinstance(m, Line)]
+    # o100 moves 1 inch in G91 under G55; o200's G1 X1 is back in G90, G54 (its caller's)
+    assert ends == [(1, 0, 0), (26.4, 0, 0), (1, 0, 0), (2, 0, 0), (27.4, 0, 0)]
+
+
+@pytest.mark.parametrize("text,message", [
+    ("M72", "line 1, column 1: M72: no modal state saved at this call level (M70 or M73 first)"),
+    ("M70\nM71\nM72", "line 3, column 1: M72: no modal state saved at this call level (M70 or M73 first)"),
+    ("o1 sub\nM72\no1 endsub\nM70\no1 call", "line 2, column 1: M72: no modal state saved at this call level "
+                                            "(M70 or M73 first)"),
+    ("M70 M72", "line 1, column 5: M72: two M codes of the modal state group in one block (M70 and M72)"),
+])
+def test_modal_state_refusals(text, message):
+    with pytest.raises(GcodeError) as error:
+        interpret(text)
+    assert str(error.value) == message
+
+
+def test_modal_state_refused_under_cutter_compensation():
+    tools = {1: {"length_mm": 0.0, "diameter_mm": 2.0}}
+    with pytest.raises(GcodeError) as error:
+        interpret("G0 X-5 Y-5\nG41 D1 G1 X0 Y0 F600\nM70", tools=tools)
+    assert str(error.value) == "line 3, column 1: M70: M70 cannot be used with cutter compensation on (G40 first)"
+    with pytest.raises(GcodeError) as error:
+        interpret("o1 sub\nM73\nG41 D1 G1 X0 Y0 F600\no1 endsub\nG0 X-5 Y-5\no1 call\nX10", tools=tools)
+    assert str(error.value) == ("line 7, column 1: a subroutine with M73 returned with cutter compensation on: "
+                                "its modal state cannot come back (G40 before the return)")
+
+
 def test_g52_local_offset_shares_g92s():
     """G52 X Y Z: the words are the offset from the coordinate system's origin (LinuxCNC,
     Fanuc, Mach3), kept in G92's registers; axes not named keep theirs; G52 X0 Y0 Z0 ends it."""

@@ -17,6 +17,7 @@ LinuxCNC and Grbl.
 """
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -86,7 +87,7 @@ G_REFUSED = {
 M_GROUPS: dict[int, str] = {}
 for _codes, _group in (((0, 1, 2, 30, 60), "stopping"), ((3, 4, 5), "spindle"),
                        ((6, 61), "tool change"), ((7, 8, 9), "coolant"),
-                       ((48, 49, 50, 51, 52, 53), "override"),
+                       ((48, 49, 50, 51, 52, 53), "override"), ((70, 71, 72, 73), "modal state"),
                        ((62, 63, 64, 65), "output")):
     for _code in _codes:
         M_GROUPS[_code] = _group
@@ -99,6 +100,20 @@ MOTION_NAMES = {0: "G0", 10: "G1", 20: "G2", 30: "G3", 50: "G5", 51: "G5.1", 800
                 820: "G82", 830: "G83", 850: "G85", 860: "G86", 890: "G89"}
 CYCLE_CODES = {730: 73, 810: 81, 820: 82, 830: 83, 850: 85, 860: 86, 890: 89}
 AXIS_USERS = {100: "G10", 280: "G28", 300: "G30", 520: "G52", 920: "G92"}
+# what M70 / M73 save and M72 restores: LinuxCNC's modal state, of what this machine has
+# (units, plane, distance and feed modes, F, S, spindle, coolant, coordinate system, tool
+# length offset, canned-cycle return mode, path control)
+MODAL_STATE = ("units", "plane", "absolute", "arc_absolute", "inverse_time", "feed", "speed", "spindle",
+               "mist", "flood", "coordinate_system", "tool_offset", "r_plane_retract", "path_control",
+               "naive_tolerance")
+
+
+@dataclass
+class _ModalState:
+    values: dict
+    autorestore: bool           # M73: back at the subroutine's return
+
+
 VALID_LETTERS = set("ABCDFGHIJKLMNPQRSTUVWXYZ@^")
 
 
@@ -137,6 +152,8 @@ def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0
         if machine.ended or machine.program.probe_pending:
             break
     if not machine.program.probe_pending:
+        if not machine.ended:
+            machine.modal_returns(machine.block_top)    # (an M73 subroutine that returned at the end: its call's line)
         machine.compensation_off(tool_stays=True)   # (the text ended with compensation on)
     program = machine.program
     # the language layer's warnings and ours, in line order
@@ -211,6 +228,7 @@ class _Machine:
         self.assigned_mm: dict[int, float] = {}  # see _keep_assignments
         self.probe_results: list[ProbeResult] | None = None
         self.coolant_on = False                  # M7 / M8 in force (M9 ends it)
+        self.mist = self.flood = False           # M7, M8 (for M72)
         self.probes_made = 0
         self.touch_assumed = False                # a probe move took its touch at its end (no machine)
         self.comp: Compensator | None = None      # cutter compensation (G41 / G42, until its exit move)
@@ -380,6 +398,57 @@ class _Machine:
         if self._compensating():
             self._fail(word, f"{what} cannot be used with cutter compensation on (G40 first)")
 
+    def _modal_state(self, m: tuple[int, Word], line: int) -> None:
+        """M70 saves the modal state (MODAL_STATE) of this call level, M73 too, to come back when
+        the subroutine returns; M71 forgets it; M72 restores it (LinuxCNC's)."""
+        code, word = m
+        self._refuse_in_compensation(word, f"M{code}")
+        slots = self.params.modal_saved
+        if code in (70, 73):
+            slots[-1] = _ModalState({name: copy.deepcopy(getattr(self, name)) for name in MODAL_STATE}, code == 73)
+        elif code == 71:
+            slots[-1] = None
+        elif slots[-1] is None:
+            self._fail(word, "no modal state saved at this call level (M70 or M73 first)")
+        else:
+            self._restore_modal(slots[-1], line)
+
+    def modal_returns(self, line: int) -> None:
+        """The modal states M73 saved in subroutines that have returned since the last block."""
+        returned = self.params.modal_returned
+        while returned:
+            state = returned.pop(0)
+            if self._compensating():
+                self._fail(None, "a subroutine with M73 returned with cutter compensation on: its modal "
+                                 "state cannot come back (G40 before the return)", line=line)
+            self._restore_modal(state, line)
+
+    def _restore_modal(self, state: _ModalState, line: int) -> None:
+        """The saved values back; the spindle and coolant events where they differ."""
+        was = {name: getattr(self, name) for name in ("spindle", "speed", "mist", "flood", "coordinate_system")}
+        if state.values["units"] != self.units:
+            self._keep_assignments()
+        self.settings_changed = True                    # (units, offsets: the parameters)
+        for name, value in state.values.items():
+            setattr(self, name, copy.deepcopy(value))
+        if self.coordinate_system != was["coordinate_system"]:
+            self._read_offsets(self.coordinate_system)
+            self.settings_changed = True
+        self.chain += 1                                 # (path control may change: a naive-CAM chain ends)
+        if self.spindle is None and was["spindle"] is not None:
+            self._event("spindle_off", 0, line)
+        elif self.spindle is not None and self.spindle != was["spindle"]:
+            self._event("spindle_cw" if self.spindle == "cw" else "spindle_ccw", self.speed, line)
+        elif self.spindle is not None and self.speed != was["speed"]:
+            self._event("spindle_speed", self.speed, line)
+        if (self.mist, self.flood) != (was["mist"], was["flood"]):
+            if was["mist"] or was["flood"]:
+                self._event("coolant_off", 0, line)
+            for name in ("mist", "flood"):
+                if getattr(self, name):
+                    self._event(f"{name}_on", 0, line)
+        self.coolant_on = self.mist or self.flood
+
     def _cutter(self, words: _Words) -> None:
         """17. G40, G41 / G42 D (tool number; without D the loaded tool), G41.1 / G42.1 D (diameter)."""
         code, word = words.g["cutter compensation"]
@@ -442,6 +511,7 @@ class _Machine:
 
     def run_block(self, block: Block) -> None:
         self.block_top = block.top
+        self.modal_returns(block.line)
         for comment in block.comments:
             text = comment.lstrip()
             head, comma, rest = text.partition(",")
@@ -464,7 +534,7 @@ class _Machine:
         words = self._sort_words(block)
         line = block.line
         if words.g.keys() & {"non-modal", "units", "tool length", "coordinate system"} or \
-                "tool change" in words.m:
+                words.m.keys() & {"tool change", "modal state"}:
             self.settings_changed = True
 
         # 3. feed rate mode, 4. feed rate
@@ -533,10 +603,15 @@ class _Machine:
             else:
                 self.spindle = "cw" if code == 3 else "ccw"
                 self._event("spindle_cw" if code == 3 else "spindle_ccw", self.speed, line)
+        # 10. save, forget, restore the modal state
+        if "modal state" in words.m:
+            self._modal_state(words.m["modal state"], line)
         # 11. coolant
         for code, _word in words.coolant:
             self._event({7: "mist_on", 8: "flood_on", 9: "coolant_off"}[code], 0, line)
-            self.coolant_on = code != 9
+            self.mist = code == 7 or (code == 8 and self.mist)
+            self.flood = code == 8 or (code == 7 and self.flood)
+            self.coolant_on = self.mist or self.flood
         # 12. overrides
         if "override" in words.m:
             code, word = words.m["override"]
@@ -557,9 +632,10 @@ class _Machine:
             if PLANE_OF[words.g["plane"][0]] != self.plane:
                 self._refuse_in_compensation(words.g["plane"][1], "a change of plane")
             self.plane = PLANE_OF[words.g["plane"][0]]
-        if block_units != self.units:
-            self._keep_assignments()
-        self.units = block_units
+        if units is not None:               # (no G20 / G21: the units in force, as M72 may have restored them)
+            if block_units != self.units:
+                self._keep_assignments()
+            self.units = block_units
         # 17. cutter radius compensation
         if "cutter compensation" in words.g:
             self._cutter(words)

@@ -109,6 +109,10 @@ class Parameters:
         self.numbered = [0.0] * (NUMBERED + 1)
         self.globals: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}
         self.frames: list[dict[str, float]] = [{}]          # named locals per call level
+        # the interpreter's modal state saved per call level (M70, M73), and those M73 saved
+        # that a return has left to restore (the interpreter restores them before its next block)
+        self.modal_saved: list[object] = [None]
+        self.modal_returned: list[object] = []
         self.saved: list[list[float]] = []                  # callers' #1..#30
         self.warnings: list[str] = []
         self.subroutines: list[tuple[str, int, int]] = []
@@ -172,11 +176,15 @@ class Parameters:
         self.saved.append(self.numbered[1:CALL_ARGUMENTS + 1])
         self.numbered[1:len(args) + 1] = [float(a) for a in args]
         self.frames.append({})
+        self.modal_saved.append(None)
 
     def pop_call(self) -> None:
         """Leave a subroutine: the caller's #1..#30 and locals back."""
         self.numbered[1:CALL_ARGUMENTS + 1] = self.saved.pop()
         self.frames.pop()
+        state = self.modal_saved.pop()
+        if state is not None and state.autorestore:
+            self.modal_returned.append(state)
 
 
 # --- reading one line -------------------------------------------------------------------
