@@ -750,6 +750,13 @@ class _Machine:
             raise GcodeError(line if line is not None else self._line, 1, "", text)
         raise GcodeError(self._line, word.column, word.text.strip(), text)
 
+    def _claim(self, taken: dict[str, tuple[int, Word]], group: str, code: int, word: Word) -> None:
+        """The block's G or M code of a modal group: one each."""
+        if group in taken:
+            self._fail(word, f"two {word.letter.upper()} codes of the {group} group in one block "
+                             f"({taken[group][1].text.strip()} and {word.text.strip()})")
+        taken[group] = (code, word)
+
     def _sort_words(self, block: Block) -> _Words:
         self._line = block.line
         g: dict[str, tuple[int, Word]] = {}
@@ -776,10 +783,7 @@ class _Machine:
                     if code != 800:
                         g[group] = (code, word)
                     continue
-                if group in g:
-                    self._fail(word, f"two G codes of the {group} group in one block "
-                                     f"({g[group][1].text.strip()} and {word.text.strip()})")
-                g[group] = (code, word)
+                self._claim(g, group, code, word)
             elif letter == "M":
                 code = round(word.value)
                 if abs(word.value - code) > 1e-6 or word.value < 0:
@@ -793,10 +797,7 @@ class _Machine:
                     coolant.append((code, word))
                     m[group] = (code, word)
                     continue
-                if group in m:
-                    self._fail(word, f"two M codes of the {group} group in one block "
-                                     f"({m[group][1].text.strip()} and {word.text.strip()})")
-                m[group] = (code, word)
+                self._claim(m, group, code, word)
             elif letter == "N":
                 continue
             elif letter == "$":         # LinuxCNC's spindle select: this machine has spindle 0 only
