@@ -97,7 +97,7 @@ def program_segments(program: Program, machine: Machine, *,
             segment = Segment(length, start_unit, end_unit, move.feed / 60.0, rate, accel,
                               radius_mm=radius, plane_axes=(u, v))
             end = rounded(move.end)
-        segment.stop_before = stop or mode in exact_stop_modes
+        segment.stop_before = stop or (mode in exact_stop_modes and not move.continues)
         segment.tolerance_mm = tolerance if mode == "G64" else None
         segments.append(segment)
         position = end

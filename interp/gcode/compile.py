@@ -884,7 +884,7 @@ class Compiler:
         if self.machine.values["motion"]["naive_cam"]:
             moves, self.out.joined = collapse(moves)
         for m in moves:
-            self.first = True
+            self.first = not getattr(m, "continues", False)     # (a G5 curve's pieces after its first)
             self.origin = m.origin
             if isinstance(m, (Line, Arc)):
                 self.path_control = m.path_control

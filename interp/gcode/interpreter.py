@@ -341,7 +341,10 @@ class _Machine:
     def _add(self, move) -> None:
         """Append a move (an arc's turns count as moves towards MAX_MOVES); under cutter
         compensation, the tool's moves the compensator settles with it, each carrying the
-        line outside any subroutine that made it (its origin: they settle later)."""
+        line outside any subroutine that made it (its origin: they settle later).  A motion
+        ends a G5 series (the next G5 needs its I and J)."""
+        if isinstance(move, (Line, Arc)):
+            self.spline_tail = None
         if self.comp is None:
             self._append([move])
             return
@@ -712,13 +715,12 @@ class _Machine:
                                                   and any(words.has(c) for c in "IJKR"))
                                  or (motion is not None and new_mode in (50, 51)
                                      and any(words.has(c) for c in "IJPQ"))):
-            tail, self.spline_tail = self.spline_tail, None
             if new_mode in (0, 10):
                 self._straight(words, new_mode, g53, inverse_f)
             elif new_mode in (20, 30):
                 self._arc(words, new_mode, motion, inverse_f)
             elif new_mode in (50, 51):
-                self._spline(words, new_mode, motion, inverse_f, tail)
+                self._spline(words, new_mode, motion, inverse_f)
             elif new_mode in PROBE_CODES:
                 self._probe(words, new_mode, inverse_f)
             else:
@@ -1041,7 +1043,7 @@ class _Machine:
         self._add(Arc(tuple(start), tuple(target), tuple(centre), self.plane, ccw, turns, feed, self._line))
         self.position = target
 
-    def _spline(self, words: _Words, mode: int, motion, inverse_f: float | None, tail) -> None:
+    def _spline(self, words: _Words, mode: int, motion, inverse_f: float | None) -> None:
         """G5 (cubic: I J P Q) and G5.1 (quadratic: I J) in the XY plane, as LinuxCNC runs them:
         the control points are offsets (program units) from the start (I, J) and from the end
         (P, Q); a G5 right after a G5 may leave out I and J (the last one's -P, -Q).  The
@@ -1049,6 +1051,8 @@ class _Machine:
         name, s = MOTION_NAMES[mode], self.scale
         mword = motion[1] if motion is not None else self._motion_word(words)
         self._refuse_in_compensation(mword, name)
+        if self.comp is not None:                       # (G40 given, its straight exit move not yet)
+            self._fail(mword, f"{name} cannot be the exit move after G40: a straight move (G0 or G1) first")
         if self.plane != "XY":
             self._fail(mword, f"{name} splines must be in the XY plane (G17)")
         for letter in "Z@^":
@@ -1061,6 +1065,7 @@ class _Machine:
             self._fail(words.word("I" if has_i else "J"), f"{name} needs both I and J, or neither")
         if mode == 50 and not (words.has("P") and words.has("Q")):
             self._fail(mword, "G5 needs both P and Q")
+        tail = self.spline_tail
         if not has_i and tail is None:
             self._fail(mword, "G5 needs I and J (they may be left out only right after another G5)")
         first = (words.value("I") * s, words.value("J") * s) if has_i else tail
@@ -1070,18 +1075,21 @@ class _Machine:
         if mode == 50:
             p, q = words.value("P") * s, words.value("Q") * s
             control.append((target[0] + p, target[1] + q))
-            self.spline_tail = (-p, -q)
         control.append((target[0], target[1]))
-        parts = spline.pieces(control)
+        try:
+            parts = spline.pieces(control)
+        except spline.SplineError as error:
+            self._fail(mword, str(error))
         feed = self._feed_for(spline.length(parts), inverse_f, mword)
         z = start[2]
-        for part in parts:
+        for n, part in enumerate(parts):
             a, b = (*part[1], z), (*part[2], z)
             if part[0] == "line":
-                self._add(Line(a, b, feed, self._line))
+                self._add(Line(a, b, feed, self._line, continues=n > 0))
             else:
-                self._add(Arc(a, b, (*part[3], z), "XY", part[4], 1, feed, self._line))
+                self._add(Arc(a, b, (*part[3], z), "XY", part[4], 1, feed, self._line, continues=n > 0))
         self.position = [target[0], target[1], z]
+        self.spline_tail = (-p, -q) if mode == 50 else None       # (after the pieces: _add clears it)
 
     def _cycle(self, words: _Words, mode: int, motion) -> None:
         line = self._line

@@ -28,6 +28,12 @@ def _path_control():
     return field(default=CONTINUOUS, compare=False, repr=False)
 
 
+# a piece of the programmed move before it (a G5 curve's arcs and lines after its first):
+# no exact stop before it under G61 / G61.1; not part of a move's value
+def _continues():
+    return field(default=False, compare=False, repr=False)
+
+
 # Arc planes as RS274NGC defines them: (u, v) is the plane, w its normal;
 # counter-clockwise turns from +u towards +v.
 PLANES = {"XY": (0, 1, 2), "ZX": (2, 0, 1), "YZ": (1, 2, 0)}      # G17, G18, G19
@@ -46,6 +52,7 @@ class Line:
     # tolerance in mm), in the order the program runs; None: it joins nothing
     join: tuple[int, float] | None = field(default=None, compare=False, repr=False)
     path_control: tuple[str, float | None] = _path_control()
+    continues: bool = _continues()
 
 
 @dataclass(frozen=True)
@@ -70,6 +77,7 @@ class Arc:
     line: int
     origin: int = _origin()
     path_control: tuple[str, float | None] = _path_control()
+    continues: bool = _continues()
 
 
 @dataclass(frozen=True)

@@ -6,26 +6,36 @@ the end P3, with control points P1 = P0 + (I, J) and P2 = P3 + (P, Q); G5.1 is t
 quadratic one with P1 = P0 + (I, J).  The hardware has lines and circular arcs, so
 `pieces` cuts the curve into them, each within TOLERANCE_MM of the curve:
 
-  * a piece of the parameter range [t0, t1] is checked at SAMPLES points inside it;
-  * a line from B(t0) to B(t1) if every sample lies within the tolerance of it;
-  * else the circle through B(t0), B((t0 + t1) / 2) and B(t1) if every sample lies
-    within the tolerance of it, in order along the arc (no wider than RADIUS_RATIO
-    times its chord);
+  * a piece of the parameter range [t0, t1] becomes a line from B(t0) to B(t1) if the
+    curve there stays within the tolerance of that segment: checked exactly (the
+    curve's distance from the chord's line and its travel along it are polynomials in
+    t, whose extremes are at the ends or where their derivatives vanish);
+  * else the circle through B(t0), B((t0 + t1) / 2) and B(t1) if the curve lies within
+    the tolerance of it at SAMPLES points (checked against ARC_MARGIN of the tolerance,
+    so that it holds between them) and turns one way along it (no wider than
+    RADIUS_RATIO times its chord);
   * else the range is halved (at most DEPTH times; there a line).
 
 The pieces join end to end at points of the curve, so the path is continuous and its
-ends are the programmed ones exactly.
+ends are the programmed ones exactly.  A curve that needs more than MAX_PIECES pieces
+(control points far beyond any machine's travel) raises SplineError.
 """
 from __future__ import annotations
 
 import math
 
-TOLERANCE_MM = 0.001        # every piece stays this close to the curve (at its samples)
-SAMPLES = 16                # points checked inside each piece
+TOLERANCE_MM = 0.001        # every piece stays this close to the curve
+SAMPLES = 32                # points checked inside each arc piece
+ARC_MARGIN = 0.9            # ... against this share of the tolerance
 DEPTH = 30                  # halvings of the parameter range at the most
 RADIUS_RATIO = 1000.0       # an arc's radius at most this many chords (else a finer piece)
+MAX_PIECES = 20_000         # pieces of one curve at the most
 
 Point2 = tuple[float, float]
+
+
+class SplineError(ValueError):
+    """The curve needs more than MAX_PIECES pieces."""
 
 
 def bezier(control: list[Point2], t: float) -> Point2:
@@ -39,12 +49,43 @@ def bezier(control: list[Point2], t: float) -> Point2:
     return points[0]
 
 
-def _off_line(p: Point2, a: Point2, b: Point2) -> float:
-    """The distance of p from the segment a-b."""
-    dx, dy = b[0] - a[0], b[1] - a[1]
-    span = dx * dx + dy * dy
-    t = 0.0 if span == 0 else max(0.0, min(1.0, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / span))
-    return math.hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy)
+def power_basis(control: list[Point2]) -> list[Point2]:
+    """The curve as a polynomial: B(t) = sum of c[k] t^k (c[k] = C(n, k) times the k-th
+    forward difference of the control points)."""
+    n = len(control) - 1
+    return [tuple(math.comb(n, k) * sum((-1) ** (k - i) * math.comb(k, i) * control[i][axis] for i in range(k + 1))
+                  for axis in range(2)) for k in range(n + 1)]
+
+
+def _extremes(coefficients: list[float], t0: float, t1: float) -> list[float]:
+    """The values of the polynomial (coefficients by power) at t0, t1 and where its derivative
+    vanishes between them."""
+    def value(t):
+        return sum(c * t ** k for k, c in enumerate(coefficients))
+    d = [k * c for k, c in enumerate(coefficients)][1:] + [0.0, 0.0]      # derivative, padded
+    c0, c1, c2 = d[0], d[1], d[2]
+    if c2 != 0:
+        disc = c1 * c1 - 4 * c2 * c0
+        roots = [] if disc < 0 else [(-c1 + s * math.sqrt(disc)) / (2 * c2) for s in (1, -1)]
+    elif c1 != 0:
+        roots = [-c0 / c1]
+    else:
+        roots = []
+    return [value(t) for t in [t0, t1] + [r for r in roots if t0 < r < t1]]
+
+
+def _fits_line(basis: list[Point2], t0: float, t1: float, a: Point2, b: Point2, tolerance: float) -> bool:
+    """The curve on [t0, t1] stays within tolerance of the segment a-b (exactly)."""
+    length = math.dist(a, b)
+    if length == 0:
+        return False
+    ux, uy = (b[0] - a[0]) / length, (b[1] - a[1]) / length
+    along = [c[0] * ux + c[1] * uy for c in basis]          # (B(t) - a) . u, as a polynomial
+    across = [-c[0] * uy + c[1] * ux for c in basis]        # (B(t) - a) x u
+    along[0] -= a[0] * ux + a[1] * uy
+    across[0] -= -a[0] * uy + a[1] * ux
+    return (all(abs(v) <= tolerance for v in _extremes(across, t0, t1))
+            and all(-tolerance <= v <= length + tolerance for v in _extremes(along, t0, t1)))
 
 
 def _circle(a: Point2, m: Point2, b: Point2) -> tuple[Point2, bool] | None:
@@ -64,9 +105,10 @@ def _angle_from(centre: Point2, start: Point2, p: Point2, ccw: bool) -> float:
     return (a if ccw else -a) % (2 * math.pi)
 
 
-def _fits_arc(a: Point2, m: Point2, b: Point2, samples: list[Point2], tolerance: float):
-    """(centre, ccw) of the arc a-m-b if every sample lies on it within tolerance, in order."""
-    circle = _circle(a, m, b)
+def _fits_arc(control: list[Point2], t0: float, t1: float, a: Point2, b: Point2, tolerance: float):
+    """(centre, ccw) of the arc from a through the middle of the piece to b if the curve lies on
+    it within tolerance at the samples and turns one way along it, else None."""
+    circle = _circle(a, bezier(control, (t0 + t1) / 2), b)
     if circle is None:
         return None
     centre, ccw = circle
@@ -75,8 +117,9 @@ def _fits_arc(a: Point2, m: Point2, b: Point2, samples: list[Point2], tolerance:
         return None
     sweep = _angle_from(centre, a, b, ccw)
     last = 0.0
-    for p in samples:
-        if abs(math.dist(p, centre) - radius) > tolerance:
+    for k in range(1, SAMPLES + 1):
+        p = bezier(control, t0 + (t1 - t0) * k / (SAMPLES + 1))
+        if abs(math.dist(p, centre) - radius) > ARC_MARGIN * tolerance:
             return None
         angle = _angle_from(centre, a, p, ccw)
         if not last <= angle <= sweep:
@@ -88,23 +131,26 @@ def _fits_arc(a: Point2, m: Point2, b: Point2, samples: list[Point2], tolerance:
 def pieces(control: list[Point2], tolerance: float = TOLERANCE_MM) -> list[tuple]:
     """The curve of the control points (3: quadratic, 4: cubic) as ("line", start, end) and
     ("arc", start, end, centre, ccw) pieces in order, each within tolerance of the curve."""
+    basis = power_basis(control)
+    if all(p == control[0] for p in control):
+        return []                               # (a curve that does not move)
     out: list[tuple] = []
-    todo = [(0.0, 1.0, 0)]                   # a stack: the earlier half on top
+    todo = [(0.0, 1.0, 0)]                      # a stack: the earlier half on top
     while todo:
         t0, t1, depth = todo.pop()
         a, b = bezier(control, t0), bezier(control, t1)
-        samples = [bezier(control, t0 + (t1 - t0) * k / (SAMPLES + 1)) for k in range(1, SAMPLES + 1)]
-        if a == b and all(p == a for p in samples):
-            continue                            # (a curve that does not move)
-        if depth >= DEPTH or all(_off_line(p, a, b) <= tolerance for p in samples):
-            out.append(("line", a, b))
-            continue
-        middle = (t0 + t1) / 2
-        arc = _fits_arc(a, bezier(control, middle), b, samples, tolerance)
-        if arc is not None:
-            out.append(("arc", a, b, *arc))
-            continue
-        todo += [(middle, t1, depth + 1), (t0, middle, depth + 1)]
+        if depth >= DEPTH or _fits_line(basis, t0, t1, a, b, tolerance):
+            if a != b:
+                out.append(("line", a, b))
+        else:
+            arc = _fits_arc(control, t0, t1, a, b, tolerance)
+            if arc is not None:
+                out.append(("arc", a, b, *arc))
+            else:
+                todo += [((t0 + t1) / 2, t1, depth + 1), (t0, (t0 + t1) / 2, depth + 1)]
+        if len(out) + len(todo) > MAX_PIECES:
+            raise SplineError(f"the curve needs more than {MAX_PIECES} arcs and lines within "
+                              f"{tolerance:g} mm: are its control points (I J P Q) that far?")
     return out
 
 
