@@ -81,6 +81,7 @@ def test_an_s_curve_is_a_few_arcs():
 @pytest.mark.parametrize("control", [
     [(0.0, 7.598), (0.0, 5.356), (0.0, 49.1), (0.0, 46.49)],     # dips below its start, overshoots its end
     [(0.0, 1.0), (0.0, 17.0), (0.0, 0.0)],                        # goes up to 8.7576 and comes back
+    [(0.0, 0.0), (0.0, 17.0), (0.0, 1.0)],                        # ... the other way (hypothesis found it)
     [(-161.39, 262.93), (-206.56, 866.76), (977.61, -902.6), (426.53, -763.22)],
 ])
 def test_curves_that_turn_back_along_a_piece(control):
