@@ -202,15 +202,41 @@ def test_m73_restores_at_the_subroutines_return():
             "o200 sub\nM73\nM3 S2000\no100 call\nG1 X1\no200 endsub\n"
             "G10 L2 P2 X100\nG1 F100 X1\no200 call\nX2\no100 call")
     moves = interpret(text).moves
-    events = [(m.name, m.line) for m in moves if isinstance(m, Event)]
-    # inside o200: M3; o100's M7, its return (coolant off before line 10), o200's return
-    # (spindle off before line 15); o100 called from line 16: M7, and the coolant off at the
-    # program's end (named by the call's line)
-    assert events == [("spindle_cw", 8), ("mist_on", 3), ("coolant_off", 10), ("spindle_off", 15),
-                      ("mist_on", 3), ("coolant_off", 16)]
+    events = [(m.name, m.line, m.origin) for m in moves if isinstance(m, Event)]
+    # inside o200 (called from line 14): M3; o100's M7, its return (coolant off at its endsub,
+    # line 5), o200's return (spindle off at line 11); o100 called from line 16: M7, and the
+    # coolant off at its return, the program's last block
+    assert events == [("spindle_cw", 8, 14), ("mist_on", 3, 14), ("coolant_off", 5, 14), ("spindle_off", 11, 14),
+                      ("mist_on", 3, 16), ("coolant_off", 5, 16)]
     ends = [m.end for m in moves if isinstance(m, Line)]
     # o100 moves 1 inch in G91 under G55; o200's G1 X1 is back in G90, G54 (its caller's)
     assert ends == [(1, 0, 0), (26.4, 0, 0), (1, 0, 0), (2, 0, 0), (27.4, 0, 0)]
+
+
+def test_m73_state_is_back_for_the_next_lines_expressions():
+    """The restore happens at the return, before the language layer reads the next line: its
+    expressions, assignments and conditions see the caller's units and coordinate system, and
+    the persistent parameters are written in them (a reviewer's cases)."""
+    program = interpret("G0 X10\no1 sub\nM73\nG20 G55\no1 endsub\no1 call\nG0 X[#5420 + 1]\n#<cs> = #5220\n"
+                        "o2 if [#<cs> EQ 1]\nG0 Y1\no2 endif")
+    assert [m.end for m in program.moves] == [(10, 0, 0), (11, 0, 0), (11, 1, 0)]
+    assert interpret("o1 sub\nM73\nG20\n#5221 = 1\no1 endsub\no1 call").saved[5221] == pytest.approx(25.4)
+
+
+def test_m72_restores_the_tool_length_status_not_its_value():
+    """A tool-change subroutine with M73: G43 stays on, with the new tool's length (LinuxCNC
+    keeps the status G43 / G43.1 / G49); a G49 saved comes back as G49; G43.1's values as
+    they were."""
+    tools = {1: {"length_mm": 10.0, "diameter_mm": 3.0}, 2: {"length_mm": 20.0, "diameter_mm": 6.0}}
+    text = ("o<tc> sub\nM73\nG49\nT#1 M6\nG43 H#1\no<tc> endsub\nT1 M6 G43 H1\nG0 Z0\no<tc> call [2]\nG0 Z0\n"
+            "M70\nG49\nM72\nG0 Z1\nG43.1 Z5\nM70\nG49\nM72\nG0 Z2\nG49\nM70\nG43 H1\nM72\nG0 Z3")
+    ends = [m.end for m in interpret(text, tools=tools).moves if isinstance(m, Line)]
+    assert ends == [(0, 0, 10), (0, 0, 20), (0, 0, 21), (0, 0, 7), (0, 0, 3)]
+
+
+def test_m72_in_a_block_that_moves_under_the_g93_it_restores():
+    program = interpret("G93\nG1 X1 F2\nM70\nG94 F100\nX2\nM72 X3 F4")
+    assert program.moves[-1].feed == pytest.approx(4.0)     # 1 mm in 1/4 minute
 
 
 @pytest.mark.parametrize("text,message", [
@@ -233,7 +259,7 @@ def test_modal_state_refused_under_cutter_compensation():
     assert str(error.value) == "line 3, column 1: M70: M70 cannot be used with cutter compensation on (G40 first)"
     with pytest.raises(GcodeError) as error:
         interpret("o1 sub\nM73\nG41 D1 G1 X0 Y0 F600\no1 endsub\nG0 X-5 Y-5\no1 call\nX10", tools=tools)
-    assert str(error.value) == ("line 7, column 1: a subroutine with M73 returned with cutter compensation on: "
+    assert str(error.value) == ("line 4, column 1: a subroutine with M73 returned with cutter compensation on: "
                                 "its modal state cannot come back (G40 before the return)")
 
 

@@ -585,7 +585,9 @@ def oracle(node) -> float:
         raise Undefined
     result = {
         "+": lambda: a + b, "-": lambda: a - b, "*": lambda: a * b, "/": lambda: a / b,
-        "MOD": lambda: a - b * math.floor(a / b) if b > 0 else math.fmod(a, b) % abs(b),
+        # LinuxCNC's MOD: C's fmod, plus |b| when negative (a floored a - b floor(a / b) differs
+        # at float edges: [-1]**1 MOD [1/3] is 0.333..26, not 0)
+        "MOD": lambda: math.fmod(a, b) + (abs(b) if math.fmod(a, b) < 0 else 0.0),
         "**": lambda: a ** b,
         "EQ": lambda: float(abs(a - b) < 1e-4), "NE": lambda: float(abs(a - b) >= 1e-4),
         "GT": lambda: float(a > b), "GE": lambda: float(a >= b), "LT": lambda: float(a < b),

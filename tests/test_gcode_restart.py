@@ -70,6 +70,18 @@ def test_the_state_before_the_line_and_the_approach():
                                "the last at F300")
 
 
+def test_after_a_subroutine_that_restores_its_callers_state():
+    """Line 10 follows a call of a subroutine that saved the state with M73 and turned the
+    spindle to S2000 and flood on: its return restored S1000 and coolant off, so the run from
+    line 10 starts with those (the restore's events count as the call's line)."""
+    text = ("o1 sub\nM73\nM3 S2000 M8\nG91 G1 X5 F300\no1 endsub\nG21 G90 G0 Z5\nM3 S1000\nG0 X0 Y0\n"
+            "o1 call\nG1 X20 Y0 F200\nG1 X20 Y20\nM2")
+    run = start_at(interpret(text), 10, (0.0, 0.0, 0.0))
+    info = run.restart
+    assert (info.spindle, info.speed, info.coolant) == ("M3", 1000.0, ())
+    assert [m.name for m in run.moves if isinstance(m, Event)] == ["spindle_cw", "program_end"]
+
+
 def test_the_spin_up_dwell_and_a_laser():
     """A dwell right after M3 is its spin-up: restored after the spindle, before the descent.
     On a laser no dwell is kept and the beam's M3 comes after the approach (the rapids keep it

@@ -104,8 +104,8 @@ AXIS_USERS = {100: "G10", 280: "G28", 300: "G30", 520: "G52", 920: "G92"}
 # (units, plane, distance and feed modes, F, S, spindle, coolant, coordinate system, tool
 # length offset, canned-cycle return mode, path control)
 MODAL_STATE = ("units", "plane", "absolute", "arc_absolute", "inverse_time", "feed", "speed", "spindle",
-               "mist", "flood", "coordinate_system", "tool_offset", "r_plane_retract", "path_control",
-               "naive_tolerance")
+               "mist", "flood", "coordinate_system", "tool_length", "tool_offset", "r_plane_retract",
+               "path_control", "naive_tolerance")
 
 
 @dataclass
@@ -152,8 +152,6 @@ def interpret(text: str, *, g28: Point = (0.0, 0.0, 0.0), g30: Point = (0.0, 0.0
         if machine.ended or machine.program.probe_pending:
             break
     if not machine.program.probe_pending:
-        if not machine.ended:
-            machine.modal_returns(machine.block_top)    # (an M73 subroutine that returned at the end: its call's line)
         machine.compensation_off(tool_stays=True)   # (the text ended with compensation on)
     program = machine.program
     # the language layer's warnings and ours, in line order
@@ -195,6 +193,7 @@ class _Machine:
     def __init__(self, params: Parameters, g28: Point, g30: Point, tools: dict[int, dict],
                  start: Point = (0.0, 0.0, 0.0), saved: dict[int, float] | None = None):
         self.params = params
+        params.on_return = self._returned
         self.program = Program()
         self.moves_made = 0
         self.tools = {int(t): dict(v) for t, v in tools.items()}
@@ -214,6 +213,7 @@ class _Machine:
         self.g92_stored = [0.0, 0.0, 0.0]        # #5211.. (kept while G92.2 suspends)
         self.g92_enabled = False
         self.tool_offset = [0.0, 0.0, 0.0]
+        self.tool_length = "G49"                 # its mode: G43, G43.1, G49 (M72 restores the mode)
         self.homes = {280: list(map(float, g28)), 300: list(map(float, g30))}
         self.r_plane_retract = True              # G99 (LinuxCNC's start-up mode)
         self.cycle_initial: float | None = None
@@ -416,19 +416,18 @@ class _Machine:
         else:
             self._restore_modal(slots[-1], line)
 
-    def modal_returns(self, line: int) -> None:
-        """The modal states M73 saved in subroutines that have returned since the last block."""
-        returned = self.params.modal_returned
-        while returned:
-            state = returned.pop(0)
-            if self._compensating():
-                self._fail(None, "a subroutine with M73 returned with cutter compensation on: its modal "
-                                 "state cannot come back (G40 before the return)", line=line)
-            self._restore_modal(state, line)
+    def _returned(self, state: _ModalState, line: int) -> None:
+        """A subroutine that saved its caller's modal state with M73 returns (at `line`): the
+        state back before the language layer reads the next line (its expressions see it)."""
+        if self._compensating():
+            self._fail(None, "a subroutine with M73 returned with cutter compensation on: its modal "
+                             "state cannot come back (G40 before the return)", line=line)
+        self._restore_modal(state, line)
+        self._write_parameters()
 
     def _restore_modal(self, state: _ModalState, line: int) -> None:
         """The saved values back; the spindle and coolant events where they differ."""
-        was = {name: getattr(self, name) for name in ("spindle", "speed", "mist", "flood", "coordinate_system")}
+        was = {name: getattr(self, name) for name in MODAL_STATE}
         if state.values["units"] != self.units:
             self._keep_assignments()
         self.settings_changed = True                    # (units, offsets: the parameters)
@@ -436,8 +435,16 @@ class _Machine:
             setattr(self, name, copy.deepcopy(value))
         if self.coordinate_system != was["coordinate_system"]:
             self._read_offsets(self.coordinate_system)
-            self.settings_changed = True
-        self.chain += 1                                 # (path control may change: a naive-CAM chain ends)
+        # the tool length's mode comes back, not its value: G43 takes the loaded tool's length,
+        # G49 none, G43.1 the offsets it had; the same mode keeps the offset in force
+        if self.tool_length == was["tool_length"]:
+            self.tool_offset = was["tool_offset"]
+        elif self.tool_length == "G49":
+            self.tool_offset = [0.0, 0.0, 0.0]
+        elif self.tool_length == "G43":
+            self.tool_offset = [0.0, 0.0, self._tool_length_of(self.tool_loaded)]
+        if (self.path_control, self.naive_tolerance) != (was["path_control"], was["naive_tolerance"]):
+            self.chain += 1                             # (a naive-CAM chain ends)
         if self.spindle is None and was["spindle"] is not None:
             self._event("spindle_off", 0, line)
         elif self.spindle is not None and self.spindle != was["spindle"]:
@@ -514,7 +521,6 @@ class _Machine:
 
     def run_block(self, block: Block) -> None:
         self.block_top = block.top
-        self.modal_returns(block.line)
         for comment in block.comments:
             text = comment.lstrip()
             head, comma, rest = text.partition(",")
@@ -609,6 +615,8 @@ class _Machine:
         # 10. save, forget, restore the modal state
         if "modal state" in words.m:
             self._modal_state(words.m["modal state"], line)
+            if self.inverse_time and words.has("F"):    # (M72 back to G93: the block's F times its move)
+                inverse_f = words.value("F")
         # 11. coolant
         for code, _word in words.coolant:
             self._event({7: "mist_on", 8: "flood_on", 9: "coolant_off"}[code], 0, line)
@@ -1340,9 +1348,21 @@ class _Machine:
             return
         self._fail(l_word, "unsupported G10 form (L1, L2, L10, L11 and L20 are supported)")
 
+    def _tool_length_of(self, tool: int, line: int | None = None) -> float:
+        """Tool `tool`'s length from the tool table (0: none; a tool not in it: 0, with a warning
+        on `line`)."""
+        if tool == 0:
+            return 0.0
+        if tool not in self.tools:
+            self._warn(line if line is not None else self._line,
+                       f"G43: tool {tool} is not in the tool table; its length is taken as 0")
+            return 0.0
+        return float(self.tools[tool].get("length_mm", 0.0))
+
     def _tool_length(self, words: _Words) -> bool:
         code, word = words.g["tool length"]
         line = self._line
+        self.tool_length = {490: "G49", 430: "G43", 431: "G43.1"}[code]
         if code == 490:
             self.tool_offset = [0.0, 0.0, 0.0]
             return False
@@ -1353,15 +1373,7 @@ class _Machine:
                 if h < 0 or h != int(h):
                     self._fail(words.word("H"), "H must be a whole number >= 0")
                 tool = int(h)
-            if tool == 0:
-                length = 0.0
-            elif tool not in self.tools:
-                self._warn(line, f"G43: tool {tool} is not in the tool table; its length is "
-                                 "taken as 0")
-                length = 0.0
-            else:
-                length = float(self.tools[tool].get("length_mm", 0.0))
-            self.tool_offset = [0.0, 0.0, length]
+            self.tool_offset = [0.0, 0.0, self._tool_length_of(tool, line)]
             return False
         else:                                       # G43.1: dynamic offsets from axis words
             self._extra_axes(words)

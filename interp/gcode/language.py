@@ -109,10 +109,10 @@ class Parameters:
         self.numbered = [0.0] * (NUMBERED + 1)
         self.globals: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}
         self.frames: list[dict[str, float]] = [{}]          # named locals per call level
-        # the interpreter's modal state saved per call level (M70, M73), and those M73 saved
-        # that a return has left to restore (the interpreter restores them before its next block)
+        # the interpreter's modal state saved per call level (M70, M73); on_return(state, line)
+        # restores one M73 saved when its subroutine returns (at the endsub or return itself)
         self.modal_saved: list[object] = [None]
-        self.modal_returned: list[object] = []
+        self.on_return = None
         self.saved: list[list[float]] = []                  # callers' #1..#30
         self.warnings: list[str] = []
         self.subroutines: list[tuple[str, int, int]] = []
@@ -178,13 +178,14 @@ class Parameters:
         self.frames.append({})
         self.modal_saved.append(None)
 
-    def pop_call(self) -> None:
-        """Leave a subroutine: the caller's #1..#30 and locals back."""
+    def pop_call(self, line: int = 0) -> None:
+        """Leave a subroutine (at `line`): the caller's #1..#30 and locals back, and the modal
+        state its M73 saved."""
         self.numbered[1:CALL_ARGUMENTS + 1] = self.saved.pop()
         self.frames.pop()
         state = self.modal_saved.pop()
-        if state is not None and state.autorestore:
-            self.modal_returned.append(state)
+        if state is not None and state.autorestore and self.on_return is not None:
+            self.on_return(state, line)
 
 
 # --- reading one line -------------------------------------------------------------------
@@ -1033,7 +1034,7 @@ def iterate_blocks(text: str, params: Parameters, find_file=None) -> Iterator[Bl
                 value = condition(rec)
             if not returns:                             # pragma: no cover - structure forbids
                 fail(rec, None, f"{kind} outside a subroutine call")
-            params.pop_call()
+            params.pop_call(called_at if unit.file else rec.line)
             params.set("_value", 0.0 if value is None else value)
             params.set("_value_returned", 0.0 if value is None else 1.0)
             unit, pc, repeats, called_at = returns.pop()
