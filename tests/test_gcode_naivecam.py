@@ -67,6 +67,8 @@ def test_the_tolerance_follows_linuxcnc(mode, count):
     ("G4 P0.1", 2),             # a dwell
     ("G64 P0.05", 2),           # a new path-control block
     ("(MSG, hello)", 2),        # a message (LinuxCNC's canonical layer ends a chain there)
+    ("G92 X1", 2), ("G92.1", 2), ("G52 X0", 2), ("G10 L2 P1 X0", 2), ("G54", 2), ("G43.1 Z0", 2),
+    ("G49", 2),                 # an offset change (one that changes nothing too, as LinuxCNC)
 ])
 def test_what_ends_a_chain(between, feed_lines_wanted):
     moves, _ = joined(f"G21 G90 G64 P0.05\nG0 X0 Y0\nG1 X1 F600\n{between}\nG1 X2\nX3\nM2\n")

@@ -545,6 +545,9 @@ class _Machine:
         if words.g.keys() & {"non-modal", "units", "tool length", "coordinate system"} or \
                 words.m.keys() & {"tool change", "modal state"}:
             self.settings_changed = True
+        if words.g.keys() & {"tool length", "coordinate system"} or \
+                words.g.get("non-modal", (0,))[0] in (100, 520, 920, 921, 922, 923):
+            self.chain += 1                 # (an offset change ends a naive-CAM chain, as in LinuxCNC)
 
         # 3. feed rate mode, 4. feed rate
         feed_mode = words.g.get("feed mode")
