@@ -884,10 +884,11 @@ class Compiler:
         if self.machine.values["motion"]["naive_cam"]:
             moves, self.out.joined = collapse(moves)
         for m in moves:
-            self.first = not getattr(m, "continues", False)     # (a G5 curve's pieces after its first)
+            self.first = True
             self.origin = m.origin
             if isinstance(m, (Line, Arc)):
                 self.path_control = m.path_control
+                self.first = not m.continues                   # (a G5 curve's pieces after its first)
             if isinstance(m, Line):
                 self.out.moves += 1
                 self.laser_rapid(m.feed is None, m.line)
