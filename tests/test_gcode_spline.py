@@ -83,6 +83,8 @@ def test_an_s_curve_is_a_few_arcs():
     [(0.0, 1.0), (0.0, 17.0), (0.0, 0.0)],                        # goes up to 8.7576 and comes back
     [(0.0, 0.0), (0.0, 17.0), (0.0, 1.0)],                        # ... the other way (hypothesis found it)
     [(-161.39, 262.93), (-206.56, 866.76), (977.61, -902.6), (426.53, -763.22)],
+    [(0.0, 24.0), (0.0, 0.0), (0.0, 8.0), (1.0, 0.0)],            # a nearly quadratic distance (rounding)
+    [(-21.637, 41.817), (-13.117, -22.44), (39.389, -27.735), (-22.907, -1.306)],   # past a line's end
 ])
 def test_curves_that_turn_back_along_a_piece(control):
     """A curve that runs past a chord's end, or back along it, is followed there: lines are

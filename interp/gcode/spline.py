@@ -64,13 +64,16 @@ def _extremes(coefficients: list[float], t0: float, t1: float) -> list[float]:
         return sum(c * t ** k for k, c in enumerate(coefficients))
     d = [k * c for k, c in enumerate(coefficients)][1:] + [0.0, 0.0]      # derivative, padded
     c0, c1, c2 = d[0], d[1], d[2]
-    if c2 != 0:
-        disc = c1 * c1 - 4 * c2 * c0
-        roots = [] if disc < 0 else [(-c1 + s * math.sqrt(disc)) / (2 * c2) for s in (1, -1)]
-    elif c1 != 0:
-        roots = [-c0 / c1]
-    else:
-        roots = []
+    disc = c1 * c1 - 4 * c2 * c0
+    roots = []
+    if disc >= 0 and (c1 != 0 or c2 != 0):
+        # the stable form: q = -(c1 + sign(c1) sqrt(disc)) / 2, roots q / c2 and c0 / q (a
+        # nearly vanishing c2, as rounding leaves it, then still gives the linear root)
+        q = -0.5 * (c1 + math.copysign(math.sqrt(disc), c1))
+        if c2 != 0:
+            roots.append(q / c2)
+        if q != 0:
+            roots.append(c0 / q)
     return [value(t) for t in [t0, t1] + [r for r in roots if t0 < r < t1]]
 
 
@@ -84,8 +87,10 @@ def _fits_line(basis: list[Point2], t0: float, t1: float, a: Point2, b: Point2, 
     across = [-c[0] * uy + c[1] * ux for c in basis]        # (B(t) - a) x u
     along[0] -= a[0] * ux + a[1] * uy
     across[0] -= -a[0] * uy + a[1] * ux
-    return (all(abs(v) <= tolerance for v in _extremes(across, t0, t1))
-            and all(-tolerance <= v <= length + tolerance for v in _extremes(along, t0, t1)))
+    side = max(abs(v) for v in _extremes(across, t0, t1))
+    travel = _extremes(along, t0, t1)
+    beyond = max(0.0, max(travel) - length, -min(travel))     # past an end of the segment
+    return math.hypot(side, beyond) <= tolerance            # (a bound on the distance from it)
 
 
 def _circle(a: Point2, m: Point2, b: Point2) -> tuple[Point2, bool] | None:
