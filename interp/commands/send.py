@@ -156,16 +156,19 @@ def check_link_args(args) -> None:
 ESCAPE = re.compile(r"\x1b(?:\[[0-?]*[ -/]*(?:[@-~]|$)|O[^\x1b]?|[^\x1b])?", re.DOTALL)
 
 
+KEY = re.compile(f"{ESCAPE.pattern}|.", re.DOTALL)
+
+
 def key_tokens(text: str) -> list[str]:
     """The keys typed as tokens: an escape sequence (an arrow, a page key, Alt+key, a lone
     Esc) is one, any other character one."""
-    return [match.group() for match in re.finditer(f"{ESCAPE.pattern}|.", text, re.DOTALL)]
+    return KEY.findall(text)
 
 
 def typed_keys(text: str) -> str:
     """The keys typed, without the terminal's escape sequences: an arrow key or PgUp must not
     act as the '[' (spindle override), '5' (feed override) and '~' (resume) inside them."""
-    return "".join(token for token in key_tokens(text) if not token.startswith("\x1b"))
+    return ESCAPE.sub("", text)
 
 
 class Keyboard:

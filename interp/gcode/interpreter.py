@@ -227,8 +227,7 @@ class _Machine:
         self.settings_changed = True             # the offset parameters need writing
         self.assigned_mm: dict[int, float] = {}  # see _keep_assignments
         self.probe_results: list[ProbeResult] | None = None
-        self.coolant_on = False                  # M7 / M8 in force (M9 ends it)
-        self.mist = self.flood = False           # M7, M8 (for M72)
+        self.mist = self.flood = False           # M7, M8 in force (M9 ends both)
         self.probes_made = 0
         self.touch_assumed = False                # a probe move took its touch at its end (no machine)
         self.comp: Compensator | None = None      # cutter compensation (G41 / G42, until its exit move)
@@ -457,7 +456,6 @@ class _Machine:
             for name in ("mist", "flood"):
                 if getattr(self, name):
                     self._event(f"{name}_on", 0, line)
-        self.coolant_on = self.mist or self.flood
 
     def _cutter(self, words: _Words) -> None:
         """17. G40, G41 / G42 D (tool number; without D the loaded tool), G41.1 / G42.1 D (diameter)."""
@@ -625,7 +623,6 @@ class _Machine:
             self._event({7: "mist_on", 8: "flood_on", 9: "coolant_off"}[code], 0, line)
             self.mist = code == 7 or (code == 8 and self.mist)
             self.flood = code == 8 or (code == 7 and self.flood)
-            self.coolant_on = self.mist or self.flood
         # 12. overrides
         if "override" in words.m:
             code, word = words.m["override"]
@@ -930,7 +927,7 @@ class _Machine:
         if length < SAME_POINT_MM:
             self._fail(word, "the probe move has no length: its end is where the machine is")
         feed = self._feed_for(length, inverse_f, word)
-        if self.spindle is not None or self.coolant_on:
+        if self.spindle is not None or self.mist or self.flood:
             # (a controller ends a probe move with an abort, which stops the spindle and coolant)
             self._fail(word, f"{name} with the spindle or coolant on: stop them (M5, M9) before probing")
         self._add(Line(tuple(self.position), tuple(target), feed, self._line, probe=mode))
@@ -1070,7 +1067,7 @@ class _Machine:
             if words.has(letter):
                 self._fail(words.word(letter), f"{name} moves only X and Y")
         has_i, has_j = words.has("I"), words.has("J")
-        if mode == 51 and not (has_i and words.has("J")):
+        if mode == 51 and not (has_i and has_j):
             self._fail(mword, "G5.1 needs both I and J")
         if has_i != has_j:
             self._fail(words.word("I" if has_i else "J"), f"{name} needs both I and J, or neither")
