@@ -543,7 +543,7 @@ _QUAD = [("start", "bit"), ("tick", "bit"), ("x0", "s8"), ("y0", "s8"), ("x1", "
          ("ccw", "bit"), ("busy", "bit"), ("step_x", "bit"), ("step_y", "bit"), ("dir_x", "bit"),
          ("dir_y", "bit"), ("done", "bit"), ("error", "bit")]
 _MT = "motion_top"
-# The G-code build (W 32, FRAC 48) on a machine slowed down for the eye: a 1 kHz clock and
+# The G-code build (W 32, FRAC 32) on a machine slowed down for the eye: a 1 kHz clock and
 # 1 step/mm, so F12000 mm/min is 0.2 step per clock, reached in about 16 clocks (an
 # acceleration of 12.5 m/s^2); pulse 2 cycles, set-up 1, hold 1.
 _MACHINE = [f"axis.{a}.{k}={v}" for a in "xyz"
@@ -616,12 +616,12 @@ def diagrams() -> dict[str, Diagram]:
                                     ("out_valid", "bit"), ("out_step", "b3"), ("out_dir", "b3"), ("level", "u"),
                                     ("overflow", "bit")], f"{_MT}.u_sync"),
                 [("start", 1, 24)], f"{_MT}.clk", _GCODE, "axis bits ZYX (bit 0 = X)"),
-        Diagram("step_pacer", "step_pacer inside motion_top (FEED_W 50, FRAC 48): the speed ramps up to 0.2 step/clock",
+        Diagram("step_pacer", "step_pacer inside motion_top (FEED_W 34, FRAC 32): the speed ramps up to 0.2 step/clock",
                 _core("step_pacer", [("sum", "u"), ("jerk_shift", "u"), ("step_valid", "bit"), ("step_axes", "u"),
                                      ("step_cost", "u"), ("drive_ready", "bit"), ("due", "bit"), ("fire", "bit")],
                       f"{_MT}.u_profile.u_pacer"),
                 [("start", 1, 4), ("fire", 4, 30)], f"{_MT}.clk", _GCODE, "sum: the filtered speed (path units per clock, "
-                "2^48 = one axial step); a step leaves when the phase covers its cost (the true length of "
+                "2^32 = one axial step); a step leaves when the phase covers its cost (the true length of "
                 "one step of the segment) and the output stage is ready"),
         Diagram("step_dir", "step_dir inside motion_top (AXES 3): pulse width 2, setup 1, hold 1",
                 _core("step_dir", [("pulse_width", "u"), ("setup", "u"), ("hold", "u"), ("valid", "bit"),

@@ -165,7 +165,7 @@ localparam integer QUANTUM_LO_VALUE_LSB = 0;
 localparam integer QUANTUM_LO_VALUE_WIDTH = 32;
 // QUANTUM_HI
 localparam integer QUANTUM_HI_VALUE_LSB = 0;
-localparam integer QUANTUM_HI_VALUE_WIDTH = 18;
+localparam integer QUANTUM_HI_VALUE_WIDTH = 2;
 // MOTION
 localparam integer MOTION_BLOCK_SHIFT_LSB = 0;
 localparam integer MOTION_BLOCK_SHIFT_WIDTH = 4;

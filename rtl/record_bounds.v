@@ -7,7 +7,7 @@
 // of nibbles, and as many more bytes as its nibbles add up to.  `flush` (and rst) make
 // the next byte a head.
 module record_bounds #(
-    parameter integer RECORD_BYTES = 84    // bytes of a whole record (9 .. 255)
+    parameter integer RECORD_BYTES = 68    // bytes of a whole record (9 .. 255)
 ) (
     input  wire       clk,
     input  wire       rst,

@@ -17,11 +17,11 @@
 // previous record's byte of the position entering at the top.
 module record_unpack #(
     parameter integer W      = 32,  // command field width (>= 6)
-    parameter integer FEED_W = 50,  // speed word width (>= 2)
-    parameter integer NW     = 40,  // exit speed width (>= 1)
-    parameter integer PF     = 24,  // rate fraction bits: cmd_rate is PF + 1 bits (>= 1)
-    parameter integer LEN_W  = 82,  // move length width (>= 1)
-    parameter integer ZW     = 108  // braking budget width (>= 1)
+    parameter integer FEED_W = 34,  // speed word width (>= 2)
+    parameter integer NW     = 24,  // exit speed width (>= 1)
+    parameter integer PF     = 16,  // rate fraction bits: cmd_rate is PF + 1 bits (>= 1)
+    parameter integer LEN_W  = 66,  // move length width (>= 1)
+    parameter integer ZW     = 68   // braking budget width (>= 1)
 ) (
     input  wire              clk,
     input  wire              rst,

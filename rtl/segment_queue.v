@@ -13,7 +13,7 @@
 // `flush` empties the queue (like rst).
 module segment_queue #(
     parameter integer AW = 12,          // address width: the queue holds 2^AW bytes (4 .. 15)
-    parameter integer RECORD_BYTES = 84 // bytes of a record, for free_records (1 .. 2^AW)
+    parameter integer RECORD_BYTES = 68 // bytes of a record, for free_records (1 .. 2^AW)
 ) (
     input  wire          clk,
     input  wire          rst,

@@ -25,7 +25,7 @@ extern "C" {
 #define CONTROLLER__VERSION__RECORD_BYTES_bm 0xff00
 #define CONTROLLER__VERSION__RECORD_BYTES_bp 8
 #define CONTROLLER__VERSION__RECORD_BYTES_bw 8
-#define CONTROLLER__VERSION__RECORD_BYTES_reset 0x54
+#define CONTROLLER__VERSION__RECORD_BYTES_reset 0x44
 #define CONTROLLER__VERSION__W_bm 0xff0000
 #define CONTROLLER__VERSION__W_bp 16
 #define CONTROLLER__VERSION__W_bw 8
@@ -39,29 +39,29 @@ extern "C" {
 #define CONTROLLER__BUILD0__FEED_W_bm 0xff
 #define CONTROLLER__BUILD0__FEED_W_bp 0
 #define CONTROLLER__BUILD0__FEED_W_bw 8
-#define CONTROLLER__BUILD0__FEED_W_reset 0x32
+#define CONTROLLER__BUILD0__FEED_W_reset 0x22
 #define CONTROLLER__BUILD0__FRAC_bm 0xff00
 #define CONTROLLER__BUILD0__FRAC_bp 8
 #define CONTROLLER__BUILD0__FRAC_bw 8
-#define CONTROLLER__BUILD0__FRAC_reset 0x30
+#define CONTROLLER__BUILD0__FRAC_reset 0x20
 #define CONTROLLER__BUILD0__NW_bm 0xff0000
 #define CONTROLLER__BUILD0__NW_bp 16
 #define CONTROLLER__BUILD0__NW_bw 8
-#define CONTROLLER__BUILD0__NW_reset 0x28
+#define CONTROLLER__BUILD0__NW_reset 0x18
 #define CONTROLLER__BUILD0__PF_bm 0xff000000
 #define CONTROLLER__BUILD0__PF_bp 24
 #define CONTROLLER__BUILD0__PF_bw 8
-#define CONTROLLER__BUILD0__PF_reset 0x18
+#define CONTROLLER__BUILD0__PF_reset 0x10
 
 // reg - controller::BUILD1
 #define CONTROLLER__BUILD1__LEN_W_bm 0xff
 #define CONTROLLER__BUILD1__LEN_W_bp 0
 #define CONTROLLER__BUILD1__LEN_W_bw 8
-#define CONTROLLER__BUILD1__LEN_W_reset 0x52
+#define CONTROLLER__BUILD1__LEN_W_reset 0x42
 #define CONTROLLER__BUILD1__ZW_bm 0xff00
 #define CONTROLLER__BUILD1__ZW_bp 8
 #define CONTROLLER__BUILD1__ZW_bw 8
-#define CONTROLLER__BUILD1__ZW_reset 0x6c
+#define CONTROLLER__BUILD1__ZW_reset 0x44
 #define CONTROLLER__BUILD1__MW_bm 0xff0000
 #define CONTROLLER__BUILD1__MW_bp 16
 #define CONTROLLER__BUILD1__MW_bw 8
@@ -142,7 +142,7 @@ extern "C" {
 #define CONTROLLER__QUEUE_FREE__RECORDS_bm 0xffff0000
 #define CONTROLLER__QUEUE_FREE__RECORDS_bp 16
 #define CONTROLLER__QUEUE_FREE__RECORDS_bw 16
-#define CONTROLLER__QUEUE_FREE__RECORDS_reset 0x30
+#define CONTROLLER__QUEUE_FREE__RECORDS_reset 0x3c
 
 // reg - controller::position_r
 #define CONTROLLER__POSITION_R__VALUE_bm 0xffffffff
@@ -239,9 +239,9 @@ extern "C" {
 #define CONTROLLER__QUANTUM_LO__VALUE_reset 0x1
 
 // reg - controller::QUANTUM_HI
-#define CONTROLLER__QUANTUM_HI__VALUE_bm 0x3ffff
+#define CONTROLLER__QUANTUM_HI__VALUE_bm 0x3
 #define CONTROLLER__QUANTUM_HI__VALUE_bp 0
-#define CONTROLLER__QUANTUM_HI__VALUE_bw 18
+#define CONTROLLER__QUANTUM_HI__VALUE_bw 2
 #define CONTROLLER__QUANTUM_HI__VALUE_reset 0x0
 
 // reg - controller::MOTION

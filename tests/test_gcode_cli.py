@@ -17,7 +17,7 @@ import pytest
 
 from interp.cli import main
 from interp.commands import gcode
-from interp.gcode.compile import EVENT, EVENT_CODES
+from interp.gcode.compile import EVENT, EVENT_CODES, FRAC, PF
 from interp.gcode.moves import Arc, Dwell, Event, Line, Program
 from interp.models.motion import ARC_CCW, ARC_CW, LINE
 
@@ -47,9 +47,9 @@ def fake_harness(commands_path, sim, *, steps_path, timing, max_cycles, progress
         kind, plane, feed, x, y, z, i, j, k, l, limit, exit, rate, cost, length, budget = fields
         if kind in (LINE, ARC_CW, ARC_CCW):
             steps, _ = command_steps(Command(kind, feed, x, y, z, i, j, k, l, plane=plane), 32)
-            accel = rate / (1 << 24) * a_q / (1 << bs) / (1 << 48)
-            exit_speed = exit * a_q / (1 << 48)
-            times, duration = trapezoid_times(event_costs(cost, steps), speed, feed / (1 << 48), exit_speed,
+            accel = rate / (1 << PF) * a_q / (1 << bs) / (1 << FRAC)
+            exit_speed = exit * a_q / (1 << FRAC)
+            times, duration = trapezoid_times(event_costs(cost, steps), speed, feed / (1 << FRAC), exit_speed,
                                               accel)
             rows += [(math.ceil(now + t), *s) for t, s in zip(times, steps)]
             now += duration
@@ -240,7 +240,7 @@ def test_controls_reach_the_harness_in_cycles(fakes, nc, tmp_path, capsys):
     assert seen["controls"] == [(250000, "override", 50), (500000, "hold", 0), (750000, "resume", 0),
                                 (1000000, "hold", 0), (1500000, "resume", 0)]
     assert seen["settings"]["override"] == 150 and seen["settings"]["jerk_shift"] > 0
-    assert seen["push_interval"] == 92                  # the record unpacker's pace (84-byte compact records)
+    assert seen["push_interval"] == 76                  # the record unpacker's pace (68-byte compact records)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "monitor: " in capsys.readouterr().out
 

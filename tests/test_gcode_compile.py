@@ -16,8 +16,8 @@ from hypothesis import strategies as st
 
 from interp.testing.seeds import seeded_random
 from interp.models.speed_ramp import BLOCK_SHIFT_MIN
-from interp.gcode.compile import (ARC_LIMIT, DWELL_MAX, EVENT, EVENT_CODES, EXIT_MARGIN, FRAC, LINE_MAX, PF,
-                                  PWM_FULL, TAKE_IN_STEPS, CompileError, Compiler, compile_program)
+from interp.gcode.compile import (ARC_LIMIT, BLOCK_SHIFT_MAX, DWELL_MAX, EVENT, EVENT_CODES, EXIT_MARGIN, FRAC,
+                                  LINE_MAX, NW_MAX, PF, PWM_FULL, ZW_MAX, TAKE_IN_STEPS, CompileError, Compiler, compile_program)
 from interp.gcode.planner import junction_speed
 from interp.gcode.stepcount import arc_count, arc_events, helix_count
 from interp.gcode.machine import SCHEMA, MachineError, default_machine_text, load_machine
@@ -573,7 +573,7 @@ def test_chords_for_unequal_steps_and_huge_radius():
 # ---------------- feeds ----------------
 
 def word(mm_s: float, spm: float, clock: float) -> float:
-    """A path speed in path units (2^-48 steps) per clock."""
+    """A path speed in path units (2^-FRAC steps) per clock."""
     return mm_s * spm * (1 << FRAC) / clock
 
 
@@ -892,8 +892,9 @@ def test_profile_fields_and_settings():
     # A = the largest path acceleration in path units / clock^2 (the diagonal rapid's, above
     # 500) over a block of 2^BLOCK_SHIFT_MIN clocks
     block = 1 << BLOCK_SHIFT_MIN
-    assert a == math.ceil(block * max(word(p.accel_mm_s2, 100, 50e6) for p in out.plans) / 50e6)
-    assert a > math.ceil(block * word(500, 100, 50e6) / 50e6)
+    largest = max(word(p.accel_mm_s2, 100, 50e6) for p in out.plans)
+    assert a == math.ceil(block * largest / 50e6)
+    assert largest > word(500, 100, 50e6)
     stops = [c.motion.stop_before for c in out.commands if c.motion]
     assert stops == [True, False, False, True]               # the start, after the dwell
     assert out.commands[0].exit > 0                          # straight on: no stop between 1 and 2
@@ -908,6 +909,26 @@ def test_profile_fields_and_settings():
     # the planner's accel in path units / clock^2: rate = floor(a_seg 2^bs / A 2^PF)
     p = out.plans[0]
     assert out.commands[0].rate == math.floor(word(p.accel_mm_s2, 100, 50e6) * block / 50e6 / a * (1 << PF))
+
+
+def test_block_grows_until_the_words_hold_the_program():
+    """A fast machine (3200 steps/mm, 20 m/min at 200 MHz): at blocks of 4 clocks the rapid would
+    be above 2^NW quanta, so the compiler takes the least block that holds it, and every field
+    fits its word."""
+    sets = [f"axis.{a}.{k}={v}" for a in "xyz" for k, v in (("steps_per_mm", 3200), ("max_rate_mm_min", 20000))]
+    machine = load_machine(sets=sets, clock_hz=200e6)
+    prog = Program([Line((0, 0, 0), (300, 0, 0), None, 1), Line((300, 0, 0), (0, 0, 0), 1000, 2)])
+    out = compile_program(prog, machine)
+    check_profile(out)
+    a, bs = out.settings["speed_quantum"], out.settings["block_shift"]
+    assert bs > BLOCK_SHIFT_MIN
+    fastest = max(c.limit for c in out.commands)
+    assert fastest // a <= NW_MAX and max(c.budget for c in out.commands) <= ZW_MAX
+    # the least such block: one block less leaves the rapid above 2^NW quanta
+    a_less = math.ceil(a / 2)
+    assert fastest // a_less > NW_MAX or a_less == a
+    assert Compiler.least_block_shift(1e-3, 1e3, 1e3) == BLOCK_SHIFT_MIN
+    assert Compiler.least_block_shift(1e-3, 1e30, 1e3) == BLOCK_SHIFT_MAX + 1      # nothing holds it
 
 
 def test_path_modes_give_stops_and_tolerances():

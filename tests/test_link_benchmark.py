@@ -6,9 +6,9 @@ from interp.benchmarks.link import capacity, ceiling, queue_low
 
 
 def test_ceiling_and_capacity():
-    # 3 Mbaud: 300 000 characters/s, 128 of every 134 are payload, 84 bytes a record
-    assert ceiling(3_000_000, 84) == pytest.approx(300_000 * 128 / 134 / 84)
-    assert capacity(84) == 4096 // 84 + 8 == 56
+    # 3 Mbaud: 300 000 characters/s, 128 of every 134 are payload, 68 bytes a record
+    assert ceiling(3_000_000, 68) == pytest.approx(300_000 * 128 / 134 / 68)
+    assert capacity(68) == 4096 // 68 + 8 == 68
 
 
 def test_fast_link_keeps_the_queue_full():

@@ -17,16 +17,17 @@ from interp.link import protocol as p
 from interp.link.devicemodel import DeviceModel
 from interp.link.driver import (Driver, FeedOverride, LinkError, MismatchError, SpindleOverride, check_controller,
                                configure, run_program, spindle_scale)
-from interp.link.records import Build, RecordReader, encode, encode_program
+from interp.gcode.compile import FEED_W, LEN_W, PF, ZW
+from interp.link.records import Build, RecordReader, encode, encode_program, record_bytes
 
 SEED = int(os.environ.get("SEED", random.randrange(1 << 30)))
 
 
 def commands(n: int) -> list[dict]:
     rng = random.Random(n)
-    return [{"kind": 0, "feed": rng.randrange(1, 1 << 50), "x": rng.randrange(-1000, 1000), "y": k, "z": -k,
-             "limit": rng.randrange(1 << 50), "rate": rng.randrange(1, 1 << 24), "length": rng.randrange(1 << 82),
-             "budget": rng.randrange(1 << 108)} for k in range(n)]
+    return [{"kind": 0, "feed": rng.randrange(1, 1 << FEED_W), "x": rng.randrange(-1000, 1000), "y": k, "z": -k,
+             "limit": rng.randrange(1 << FEED_W), "rate": rng.randrange(1, 1 << PF), "length": rng.randrange(1 << LEN_W),
+             "budget": rng.randrange(1 << ZW)} for k in range(n)]
 
 
 def run(model: DeviceModel, cmds, **kw):
@@ -66,7 +67,7 @@ def test_throughput_without_noise():
     cmds = commands(150)
     model = DeviceModel(records_per_second=5000)
     driver, outcome = run(model, cmds)
-    rate = 84 * len(cmds) / outcome.seconds
+    rate = record_bytes() * len(cmds) / outcome.seconds
     print(f"{rate:.0f} bytes/s of records over {outcome.seconds:.3f} s link time")
     assert outcome.status == "done" and rate >= 0.85 * 11520
     assert driver.recoveries == 0 and model.gaps == 0 and model.errors == 0
@@ -143,7 +144,7 @@ def test_machine_error_names_the_record():
     model = DeviceModel(fail_at=5, fail_code=17)
     _, outcome = run(model, cmds)
     assert (outcome.status, outcome.error, outcome.limits, outcome.executed) == ("error", 17, 1, 5)
-    assert not model.queue and model.reader.previous == bytes(84)    # ALARM flushes, as the controller
+    assert not model.queue and model.reader.previous == bytes(record_bytes())    # ALARM flushes, as the controller
 
 
 def test_compact_records_through_the_model():
@@ -153,7 +154,7 @@ def test_compact_records_through_the_model():
     driver = Driver(model, baud=model.baud)
     driver.connect()
     stream = encode_program(cmds)
-    assert len(stream) < 84 * len(cmds)
+    assert len(stream) < record_bytes() * len(cmds)
     outcome = run_program(driver, stream, len(cmds))
     assert outcome.status == "done" and executed_fields(model, cmds) == cmds
 
@@ -481,8 +482,9 @@ def test_a_controller_reset_during_a_run_is_a_link_error(reset_at, earlier, hold
         assert run(model, commands(earlier))[1].status == "done"
     model.reset_at = model.t + reset_at
     keys = iter(["!"])
+    count = 4096 // record_bytes() + 12 if hold else 60   # held: more records than the 4 KiB queue holds
     with pytest.raises(LinkError, match=why):
-        run(model, commands(60), max_seconds=30.0, keys=(lambda: next(keys, "")) if hold else None)
+        run(model, commands(count), max_seconds=30.0, keys=(lambda: next(keys, "")) if hold else None)
     assert model.reset_at is None and model.t < 5.0 + earlier        # (it happened, and soon after)
 
 

@@ -106,24 +106,24 @@ def test_frame_round_trip(ftype, seq, payload, junk, cut):
 # ---------------- records ----------------
 
 def test_record_bytes_default_build():
-    assert r.record_bytes() == 84 == 1 + 7 + 28 + 7 + 5 + 4 + 7 + 11 + 14
+    assert r.record_bytes() == 68 == 1 + 5 + 28 + 5 + 3 + 3 + 5 + 9 + 9
     assert r.record_bytes({"W": 16, "FEED_W": 16, "NW": 16, "PF": 12, "LEN_W": 34, "ZW": 48}) == \
         1 + 2 + 14 + 2 + 2 + 2 + 2 + 5 + 6
 
 
 def test_record_layout_by_hand():
-    rec = r.encode({"kind": 2, "plane": 1, "feed": 0x0102, "x": -2, "l": 5, "rate": 1 << 24, "budget": 3})
+    rec = r.encode({"kind": 2, "plane": 1, "feed": 0x0102, "x": -2, "l": 5, "rate": 1 << 16, "budget": 3})
     assert rec[0] == 0x12
-    assert rec[1:8] == bytes([2, 1, 0, 0, 0, 0, 0])                 # feed, 7 bytes
-    assert rec[8:12] == b"\xfe\xff\xff\xff"                          # x = -2, 4 bytes
-    assert rec[32:36] == bytes([5, 0, 0, 0])                         # l
-    assert rec[48:52] == bytes([0, 0, 0, 1])                         # rate (PF + 1 = 25 bits, 4 bytes)
-    assert rec[-14:] == bytes([3] + [0] * 13)                        # budget, 14 bytes
+    assert rec[1:6] == bytes([2, 1, 0, 0, 0])                       # feed, 5 bytes
+    assert rec[6:10] == b"\xfe\xff\xff\xff"                          # x = -2, 4 bytes
+    assert rec[30:34] == bytes([5, 0, 0, 0])                         # l
+    assert rec[42:45] == bytes([0, 0, 1])                            # rate (PF + 1 = 17 bits, 3 bytes)
+    assert rec[-9:] == bytes([3] + [0] * 8)                          # budget, 9 bytes
     # a DWELL's cycles (unsigned W bits) are the port's bit pattern
-    assert r.encode({"kind": 4, "x": (1 << 32) - 1})[8:12] == b"\xff\xff\xff\xff"
+    assert r.encode({"kind": 4, "x": (1 << 32) - 1})[6:10] == b"\xff\xff\xff\xff"
 
 
-@pytest.mark.parametrize("fields, word", [({"x": 1 << 32}, "x"), ({"y": -(1 << 31) - 1}, "y"), ({"feed": 1 << 50}, "feed"), ({"rate": -1}, "rate"),
+@pytest.mark.parametrize("fields, word", [({"x": 1 << 32}, "x"), ({"y": -(1 << 31) - 1}, "y"), ({"feed": 1 << 34}, "feed"), ({"rate": -1}, "rate"),
                                           ({"kind": 8}, "kind"), ({"plane": 4}, "plane"), ({"speed": 1}, "speed")])
 def test_record_out_of_range(fields, word):
     with pytest.raises(ValueError, match=word):
@@ -131,17 +131,17 @@ def test_record_out_of_range(fields, word):
 
 
 def test_decode_refuses_bad_records():
-    with pytest.raises(ValueError, match="84 bytes"):
-        r.decode(bytes(83))
+    with pytest.raises(ValueError, match="68 bytes"):
+        r.decode(bytes(67))
     bad = bytearray(r.encode({"kind": 0}))
-    bad[7] = 0xFF                                                    # above FEED_W's 50 bits
+    bad[5] = 0xFF                                                    # above FEED_W's 34 bits
     with pytest.raises(ValueError, match="feed"):
         r.decode(bytes(bad))
 
 
-FIELD_RANGES = {"kind": (0, 7), "plane": (0, 3), "feed": (0, (1 << 50) - 1), "limit": (0, (1 << 50) - 1),
-                "exit": (0, (1 << 40) - 1), "rate": (0, (1 << 25) - 1), "cost": (0, (1 << 50) - 1),
-                "length": (0, (1 << 82) - 1), "budget": (0, (1 << 108) - 1),
+FIELD_RANGES = {"kind": (0, 7), "plane": (0, 3), "feed": (0, (1 << 34) - 1), "limit": (0, (1 << 34) - 1),
+                "exit": (0, (1 << 24) - 1), "rate": (0, (1 << 17) - 1), "cost": (0, (1 << 34) - 1),
+                "length": (0, (1 << 66) - 1), "budget": (0, (1 << 68) - 1),
                 **{f: (-(1 << 31), (1 << 31) - 1) for f in r.SIGNED}}
 
 
@@ -149,7 +149,7 @@ FIELD_RANGES = {"kind": (0, 7), "plane": (0, 3), "feed": (0, (1 << 50) - 1), "li
 @given(st.fixed_dictionaries({k: st.integers(lo, hi) for k, (lo, hi) in FIELD_RANGES.items()}))
 def test_record_round_trip(fields):
     data = r.encode(fields)
-    assert len(data) == 84
+    assert len(data) == 68
     assert r.decode(data) == fields
 
 
@@ -160,12 +160,12 @@ def test_compiled_program_records():
 
     _, compiled = compile_text("G21 G90\nM3 S1000\nG1 X1 Y2 F600\nG2 X3 Y2 I1 J0\nG4 P0.1\nM5\nM2\n")
     stream = r.encode_program(compiled.commands, compact_records=False)
-    assert len(stream) == 84 * len(compiled.commands)
+    assert len(stream) == 68 * len(compiled.commands)
     short = r.encode_program(compiled.commands)
     assert len(short) < len(stream) / 2
     reader, at, kinds = r.RecordReader(), 0, set()
     for n, cmd in enumerate(compiled.commands):
-        fields = r.decode(stream[84 * n:84 * n + 84])
+        fields = r.decode(stream[68 * n:68 * n + 68])
         assert tuple(fields[k] for k in r.FIELD_NAMES) == cmd.fields()
         size = reader.length(short[at:])
         assert short[at] & r.COMPACT and r.decode(reader.take(short[at:at + size])) == fields
@@ -194,11 +194,11 @@ def test_compact_round_trip(previous, fields, kept):
 
 
 def test_compact_refuses_long_difference():
-    """A nibble above its field's bytes (exit: 5 bytes) is an error, like the controller's 18;
+    """A nibble above its field's bytes (exit: 3 bytes) is an error, like the controller's 18;
     the record is still taken (B bytes of that field)."""
     table = bytearray(7)
     table[4] = 6 << 4                                                # field 9, exit
     reader = r.RecordReader()
     with pytest.raises(ValueError, match="longer than its field"):
         reader.take(bytes([r.COMPACT]) + table + bytes(6))
-    assert r.compact(r.encode({}), bytes(84)) == bytes([r.COMPACT]) + bytes(7)   # all zero: 8 bytes
+    assert r.compact(r.encode({}), bytes(68)) == bytes([r.COMPACT]) + bytes(7)   # all zero: 8 bytes

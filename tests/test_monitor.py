@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from interp.testing.seeds import seeded_random
-from interp.gcode.compile import compile_program
+from interp.gcode.compile import FRAC, PF, compile_program
 from interp.gcode.machine import load_machine
 from interp.gcode.moves import Arc, Dwell, Line, Program
 from interp.simulation.monitor import ideal_rows, monitor, read_rows, table, verdict
@@ -91,9 +91,9 @@ def stopped_rows(out, hold_cycle: int, decel: float):
     resumes (at full speed, at once) a second later."""
     rows = ideal_rows(out.commands, out.settings)
     c = out.commands[0]
-    a = c.rate / (1 << 24) * out.settings["speed_quantum"] / (1 << out.settings["block_shift"]) / (1 << 48) * decel
-    v = c.feed / (1 << 48)
-    cost = c.cost / (1 << 48)
+    a = c.rate / (1 << PF) * out.settings["speed_quantum"] / (1 << out.settings["block_shift"]) / (1 << FRAC) * decel
+    v = c.feed / (1 << FRAC)
+    cost = c.cost / (1 << FRAC)
     k0 = next(k for k, r in enumerate(rows) if r[0] >= hold_cycle)
     x = 0.0
     brake, k = [], k0

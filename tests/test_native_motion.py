@@ -242,7 +242,7 @@ TAIL = " 100 0 4096 0 65536 7"     # limit exit rate cost length budget
     (f"\n9 0 100 1 2 3 0 0 0 0{TAIL}\n", "line 2: kind 9 is out of range"),
     (f"0 0 -5 1 2 3 0 0 0 0{TAIL}\n", "line 1: feed -5 is out of range"),
     (f"0 0 1 {1 << 40} 0 0 0 0 0 0{TAIL}\n", f"line 1: x {1 << 40} is out of range"),
-    (f"0 0 1 1 0 0 0 0 0 0 1 0 1 0 {1 << 82} 1\n", f"line 1: length {1 << 82} is out of range"),
+    (f"0 0 1 1 0 0 0 0 0 0 1 0 1 0 {1 << 66} 1\n", f"line 1: length {1 << 66} is out of range"),
     ("0 0 1 1 0 0 0 0 0 0 1 0 1 0 1 -1\n", "line 1: budget -1 is out of range"),
 ])
 def test_bad_command_file(native, tmp_path, text, where):

@@ -121,16 +121,16 @@ def test_access_as_agreed():
 def test_fixed_values_at_the_default_build():
     r = registers.RESETS
     assert r["ID"] == 0x494E5450 and bytes.fromhex(f"{r['ID']:08X}") == b"INTP"
-    assert r["VERSION"] == 1 | 84 << 8 | 32 << 16 | 32 << 24
-    assert r["BUILD0"] == 50 | 48 << 8 | 40 << 16 | 24 << 24
-    assert r["BUILD1"] == 82 | 108 << 8 | 12 << 16 | 16 << 24
+    assert r["VERSION"] == 1 | 68 << 8 | 32 << 16 | 32 << 24
+    assert r["BUILD0"] == 34 | 32 << 8 | 24 << 16 | 16 << 24
+    assert r["BUILD1"] == 66 | 68 << 8 | 12 << 16 | 16 << 24
     assert r["CLOCK_HZ"] == 50_000_000
     assert r["QUEUE_SIZE"] == 4096 | 12 << 16 | 1 << 24
     assert r["OVERRIDE"] == 100 and r["QUANTUM_LO"] == 1 and r["QUANTUM_HI"] == 0
     assert r["PULSE_WIDTH"] == r["DIR_SETUP"] == r["DIR_HOLD"] == 25          # 0.5 us at 50 MHz
     assert r["SPINDLE_PERIOD"] == 50_000_000 // 20_000
     assert r["CONTROL"] == r["INPUT_INVERT"] == 0 and r["MOTION"] == 2         # block_shift 2
-    assert registers.FIELDS["QUANTUM_HI.value"][1] == 50 - 32               # FEED_W - 32
+    assert registers.FIELDS["QUANTUM_HI.value"][1] == 34 - 32               # FEED_W - 32
 
 
 def _vh_constants() -> dict[str, int]:
@@ -241,8 +241,8 @@ def test_missing_rdl_is_one_line(tmp_path, capsys):
 # port on Icarus: resets at the default build, read-only registers ignore writes, read-write
 # fields read back what was written (write-1 pulses read 0), unknown addresses read 0 and
 # ignore writes, wb_adr[1:0] ignored, every access acknowledged within 2 clocks.
-DEFAULT_BUILD = {"CLK_HZ": 50_000_000, "W": 32, "FEED_W": 50, "FRAC": 48, "NW": 40, "PF": 24, "LEN_W": 82,
-                 "ZW": 108, "MW": 12, "TW": 16, "POS_W": 32, "QUEUE_AW": 12, "CURVES": 1}
+DEFAULT_BUILD = {"CLK_HZ": 50_000_000, "W": 32, "FEED_W": 34, "FRAC": 32, "NW": 24, "PF": 16, "LEN_W": 66,
+                 "ZW": 68, "MW": 12, "TW": 16, "POS_W": 32, "QUEUE_AW": 12, "CURVES": 1}
 UNKNOWN = (0x88, 0xC0, 0xFC)
 
 _BENCH = """`timescale 1ns/1ps

@@ -352,7 +352,7 @@ def test_status_sim_model(capsys):
     assert code == 0, err
     lines = out.splitlines()
     assert lines[0] == "ID 1229870160 (0x494E5450)"
-    assert "VERSION 0x20205401: protocol=1 record_bytes=84 w=32 pos_w=32" in lines
+    assert "VERSION 0x20204401: protocol=1 record_bytes=68 w=32 pos_w=32" in lines
     assert any(x.startswith("STATUS 0x") and "state=IDLE" in x for x in lines)
     assert not any(x.startswith("CMD_DATA") for x in lines)
     assert lines[-1] == "machine position X0.000 Y0.000 Z0.000 mm"

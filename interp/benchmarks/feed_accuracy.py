@@ -197,7 +197,7 @@ def tables(quick: bool):
             (f"the same measured on the RTL (native Verilator harness, {RTL_CLOCK_HZ / 1e3:g} kHz, middle half "
              f"of the events)", ["move", "F mm/min", "true: mm/min", "true: error %", "even: error %",
                                  "lecture: mm/min", "lecture: error %"], rtl_rows()),
-            ("cruise word precision (100 steps/mm, FRAC = 48)",
+            (f"cruise word precision (100 steps/mm, FRAC = {FRAC})",
              ["clock MHz", "F mm/min", "cruise word", "achieved mm/min", "error %"], clock_rows())]
 
 

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Simulation speed of whole motion_top jobs: native Verilator harness vs cocotb.
 
-motion_top at the CLI build (W = 32, FRAC = 48), a 50 MHz clock in mind:
+motion_top at the CLI build (W = 32, FRAC = 32), a 50 MHz clock in mind:
   * "F600 contour": a 40 x 20 mm rectangle with 5 mm corner arcs at F600 mm/min,
     100 steps/mm (1 step per 50,000 cycles), 2 us pulses;
   * "rapid 100 kHz": the same at 1 step per 500 cycles;
@@ -86,7 +86,7 @@ def speed_table(quick: bool):
     sims = [s for s in ("icarus", "verilator") if have_simulator(s)]
     if "FRAC > 28" in (RTL / "motion_top.v").read_text():
         return ("Simulation speed of motion_top jobs", ["note"],
-                [["motion_top does not take FRAC = 48 yet (the CLI build)"]])
+                [[f"motion_top does not take FRAC = {CLI_PARAMETERS['FRAC']} yet (the CLI build)"]])
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
@@ -106,7 +106,7 @@ def speed_table(quick: bool):
                 start = time.perf_counter()
                 result = run_cocotb_job(path, sim, timing, tmp / "steps.csv", caps[sim], settings=settings)
                 rows.append(_row(f"{sim} cocotb", name, result, time.perf_counter() - start))
-    return ("Simulation speed of motion_top jobs (CLI build, W = 32, FRAC = 48)",
+    return (f"Simulation speed of motion_top jobs (CLI build, W = 32, FRAC = {CLI_PARAMETERS['FRAC']})",
             ["job", "simulation", "cycles", "steps", "stopped at max_cycles", "wall s", "cycles/s", "skipped"], rows)
 
 

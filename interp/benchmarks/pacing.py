@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The S-curve filter and the step pacer at the G-code build's widths (FEED_W 50,
-FRAC 48, MW 12): area and Fmax on iCE40 HX8K and ECP5-25F next to feed_rate's
+"""The S-curve filter and the step pacer at the G-code build's widths (FEED_W 34,
+FRAC 32, MW 12): area and Fmax on iCE40 HX8K and ECP5-25F next to feed_rate's
 (the constant-feed speed block they replace), and the stall the pacer's phase
 absorbs.
 
@@ -16,10 +16,11 @@ from __future__ import annotations
 import json
 
 from ..flows import synth
+from ..gcode.compile import FEED_W, FRAC, MW
 
-CLI = {"FEED_W": 50, "FRAC": 48, "MW": 12}
+CLI = {"FEED_W": FEED_W, "FRAC": FRAC, "MW": MW}
 BLOCKS = [t for t in synth.CORES if t.toplevel in ("jerk_filter", "step_pacer")] + [
-    synth.Target("feed_rate", "feed_rate", {"FEED_W": 50, "FRAC": 48}, width=None),
+    synth.Target("feed_rate", "feed_rate", {"FEED_W": FEED_W, "FRAC": FRAC}, width=None),
 ]
 
 
@@ -64,7 +65,7 @@ def stall_rows() -> list[list]:
 def tables(quick: bool):
     run = synth.have_tools() and not quick
     return [
-        ("S-curve filter and step pacer vs feed_rate, FEED_W 50, FRAC 48, MW 12 "
+        (f"S-curve filter and step pacer vs feed_rate, FEED_W {FEED_W}, FRAC {FRAC}, MW {MW} "
          f"({'Yosys + nextpnr, seed 1' if run else 'cached results'})",
          ["block", "family", "Fmax (MHz)", "LUTs", "FFs", "BRAMs", "note"], area_rows(run)),
         ("step_pacer: the longest stall its phase absorbs (GUARD 8), clocks",

@@ -85,11 +85,11 @@ CORES = [
     Target("step_sync", "step_sync", {}, width=None),
     Target("step_dir", "step_dir", {}, width=None),
     # the path-speed profile generator at the G-code build's widths
-    Target("speed_ramp", "speed_ramp", {"FEED_W": 50, "NW": 40, "PF": 24, "LEN_W": 82, "ZW": 108},
+    Target("speed_ramp", "speed_ramp", {"FEED_W": 34, "NW": 24, "PF": 16, "LEN_W": 66, "ZW": 68},
            width=None),
     # the S-curve filter and the step pacer after it, at the same build's widths
-    Target("jerk_filter", "jerk_filter", {"FEED_W": 50, "MW": 12, "SUM_W": 62}, width=None),
-    Target("step_pacer", "step_pacer", {"FEED_W": 50, "FRAC": 48, "MW": 12, "SUM_W": 62, "GUARD": 8},
+    Target("jerk_filter", "jerk_filter", {"FEED_W": 34, "MW": 12, "SUM_W": 46}, width=None),
+    Target("step_pacer", "step_pacer", {"FEED_W": 34, "FRAC": 32, "MW": 12, "SUM_W": 46, "GUARD": 8},
            width=None),
     # W: the command fields (X, Y, Z, I, J, K, L) and the cores' coordinates
     Target("motion_top", "motion_top", {"W": WIDTH, "POS_W": WIDTH}, width="W"),

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """A Program (moves in machine mm, interp.gcode.moves) -> rtl/motion_top.v commands.
 
-The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
+The build the command line uses: W = 32, FRAC = 32, FEED_W = 34.  The rules
 (docs/gcode-cli.md is the user's page):
 
   * positions: every point is rounded to the nearest step ONCE, absolutely
@@ -48,7 +48,7 @@ The build the command line uses: W = 32, FRAC = 48, FEED_W = 50.  The rules
     comparison; costs="lecture": every move by the lecture's costs, unscaled,
     for tests), cmd_budget; and the global speed quantum A,
     block_shift, jerk_shift (Compiled.settings).  Speeds are path units
-    (2^-48 steps) per clock: v = mm/s x spm x 2^48 / clock_hz, spm the path's
+    (2^-32 steps) per clock: v = mm/s x spm x 2^32 / clock_hz, spm the path's
     steps per mm along the command.  F is capped so that no axis exceeds its
     max_rate_mm_min (with a warning), rapids run at that cap.  A cruise word
     that rounds to 0 is an error.
@@ -71,8 +71,8 @@ from .naivecam import collapse
 from .stepcount import arc_count, arc_events, helix_count, line_count
 
 EVENT = 5
-W, FRAC, FEED_W = 32, 48, 50                 # the CLI's build of motion_top
-NW, PF, LEN_W, ZW, MW = 40, 24, 82, 108, 12  # its profile widths (quanta, rate fraction, ...)
+W, FRAC, FEED_W = 32, 32, 34                 # the CLI's build of motion_top
+NW, PF, LEN_W, ZW, MW = 24, 16, 66, 68, 12   # its profile widths (quanta, rate fraction, ...)
 BLOCK_SHIFT_MAX = 15                         # block_shift [3:0]
 EXIT_MARGIN = 4                              # quanta kept below the next command's braking reach
 LINE_MAX = (1 << (W - 1)) - 1                # longest line command per axis (-2^31 is refused)
@@ -661,31 +661,48 @@ class Compiler:
             self.pause(self.pause_cycles, m.line)
 
     # ---------------- the speed profile ----------------
-    def shifts(self, accel_mm_s2: float) -> tuple[int, int]:
-        """(block_shift, jerk_shift): BLOCK_SHIFT_MIN (blocks of 4 clocks, the least the
-        speed generator's decision pipeline takes), 0 for the trapezoid; for the S-curve
-        the smallest window 2^(jerk_shift + block_shift) clocks >= 2 accel / J seconds,
-        jerk_shift <= MW, block_shift >= BLOCK_SHIFT_MIN.
+    def shifts(self, accel_mm_s2: float, least: int = BLOCK_SHIFT_MIN) -> tuple[int, int]:
+        """(block_shift, jerk_shift): `least` (at least BLOCK_SHIFT_MIN, blocks of 4 clocks,
+        the least the speed generator's decision pipeline takes; more where the profile's
+        words need it, least_block_shift) and 0 for the trapezoid; for the S-curve the
+        smallest window 2^(jerk_shift + block_shift) clocks >= 2 accel / J seconds,
+        jerk_shift <= MW, block_shift >= least.
 
         The moving average over W turns a step of the acceleration from a to a' into a
         jerk of |a - a'| / W: a / W where a ramp meets a cruise, 2 a / W where an
         acceleration turns straight into a deceleration (a short move, a hold).  The
         window 2 a / J keeps both within J."""
         if self.profile_name == "trapezoid":
-            return BLOCK_SHIFT_MIN, 0
+            return least, 0
         jerk = self.machine.values["motion"]["jerk_mm_s3"]
         cycles = 2 * accel_mm_s2 / jerk * self.clock
         if cycles <= 1:
             total = 0
         else:                                                # (cycles is inf for a tiny jerk)
             total = math.ceil(math.log2(cycles) - 1e-12) if cycles < math.inf else math.inf
-        jerk_shift = min(MW, max(0, total - BLOCK_SHIFT_MIN))
-        block_shift = max(BLOCK_SHIFT_MIN, total - jerk_shift)
+        jerk_shift = min(MW, max(0, total - least))
+        block_shift = max(least, total - jerk_shift)
         if block_shift > BLOCK_SHIFT_MAX:
             raise CompileError(f"the S-curve's window 2 accel / jerk = 2 x {accel_mm_s2:g} / {jerk:g} s is "
                                f"{cycles:.4g} clock cycles, beyond the hardware's 2^{MW + BLOCK_SHIFT_MAX}: "
                                f"raise motion.jerk_mm_s3 or lower the clock")
         return block_shift, jerk_shift
+
+    @staticmethod
+    def least_block_shift(a_pu: float, speed_pu: float, braking: float) -> int:
+        """The smallest block_shift >= BLOCK_SHIFT_MIN at which the profile's words hold the
+        program: with A = ceil(2^block_shift x a_pu) (a_pu the largest path acceleration per
+        clock^2), the fastest speed word (cruise or ceiling, speed_pu) is below 2^NW quanta
+        and every budget, at most 2 x 2^PF x a_i x length_i / A^2 (braking: the largest
+        a_i x length_i), below 2^ZW.  A larger block makes the quantum larger and both
+        smaller (the speed by 2^block_shift, the budget by 4^block_shift); the quantum stays
+        2^block_shift x the acceleration per clock, so the speeds' resolution is that of
+        the acceleration over a block.  BLOCK_SHIFT_MAX + 1 if none does."""
+        for shift in range(BLOCK_SHIFT_MIN, BLOCK_SHIFT_MAX + 1):
+            quantum = max(1, math.ceil((1 << shift) * a_pu))
+            if speed_pu // quantum <= NW_MAX and (2 << PF) * braking / (quantum * quantum) <= ZW_MAX:
+                return shift
+        return BLOCK_SHIFT_MAX + 1
 
     def hardware_exits(self, moves: list[Cmd]) -> None:
         """Make every exit reachable by the speed generator's discrete braking: the next
@@ -765,7 +782,7 @@ class Compiler:
     def profile(self) -> None:
         """Plan the move commands and fill in their profile fields and the settings."""
         moves = [c for c in self.out.commands if c.motion is not None]
-        plans = []
+        plans, caps = [], []
         # flat arcs run on the lecture's step costs (module docstring): their stepped length
         # over the true one scales the command's speeds, and bounds the local speed.  Helices
         # are charged as lines: core A spreads w evenly over the events, so with the lecture's
@@ -794,22 +811,14 @@ class Compiler:
                         for n, (m, brief) in enumerate(zip(motions, shortest))]
             deviation = self.machine.values["motion"]["junction_deviation_mm"]
             plans = plan(segments, junction_deviation_mm=deviation)
-            if self.profile_name != "trapezoid":
-                # the S-curve's moving average spreads the speed around a corner: plan the
-                # junctions for the filtered speed (the window W = 2^(block + jerk shift) clocks;
-                # the accelerations, and so the window, do not depend on the junction speeds)
-                shift = sum(self.shifts(max(p.accel_mm_s2 for p in plans)))
-                plans = plan(segments, junction_deviation_mm=deviation, smoothing_s=(1 << shift) / self.clock)
             # the axes' ceiling for feed override > 100 %: the segment's limits without its feed
             # (one per distinct direction and radius: programs repeat them)
             ceiling: dict = {}
-            caps = []
             for m in motions:
                 key = (m.start_unit, m.end_unit, m.radius_mm, m.plane_axes, m.pacing, m.even_costs)
                 if key not in ceiling:
                     ceiling[key] = limits(planner_segment(m, None, rates, accels, feed_mm_s=math.inf))[0]
                 caps.append(min(ceiling[key], m.length_mm * self.clock / SEGMENT_CLOCKS))
-        self.out.plans = plans
         clock = self.clock
         # path units / clock per mm/s along the true path: the speeds' words (`scale`, the arcs'
         # stepped over true length in).  An exit is the plan's on the smaller of its two sides'
@@ -818,8 +827,25 @@ class Compiler:
         # arcs at their cruise keeps the cruise word
         along = [c.motion.spm * (1 << FRAC) / clock for c in moves]
         scale = [k * c.motion.charge for c, k in zip(moves, along)]
+        # (the accelerations, and so the block, do not depend on the junction speeds)
         a_pu = [p.accel_mm_s2 * k / clock for p, k in zip(plans, scale)]
-        block_shift, jerk_shift = self.shifts(max((p.accel_mm_s2 for p in plans), default=0.0))
+        # the block the profile's words need: the fastest word and the largest a x length
+        # (with a margin for the rounding of the costs and the cruise)
+        speed_pu = max((max(p.cruise_mm_s, cap) * k for p, cap, k in zip(plans, caps, scale)), default=0.0)
+        braking = max((a * c.motion.steps * c.motion.charge * (1 << FRAC) for c, a in zip(moves, a_pu)),
+                      default=0.0)
+        least = self.least_block_shift(max(a_pu, default=1.0), min(speed_pu, FEED_MAX) * 1.01, braking * 1.01)
+        if least > BLOCK_SHIFT_MAX:
+            raise CompileError(f"the program's speeds and moves do not fit the speed generator's words "
+                               f"(NW {NW}, ZW {ZW} bits) at any block: shorten the longest move or lower the "
+                               f"clock")
+        block_shift, jerk_shift = self.shifts(max((p.accel_mm_s2 for p in plans), default=0.0), least)
+        if moves and self.profile_name != "trapezoid":
+            # the S-curve's moving average spreads the speed around a corner: plan the
+            # junctions for the filtered speed (the window W = 2^(block + jerk shift) clocks)
+            plans = plan(segments, junction_deviation_mm=deviation,
+                         smoothing_s=(1 << (block_shift + jerk_shift)) / clock)
+        self.out.plans = plans
         quantum = max(1, math.ceil((1 << block_shift) * max(a_pu, default=1.0)))
         if quantum > FEED_MAX:
             raise CompileError(f"the speed quantum {quantum} does not fit cmd_feed's {FEED_W} bits")
@@ -854,8 +880,9 @@ class Compiler:
                 cmd.cost = max(1, _round(cmd.motion.steps * (1 << FRAC) / events))
                 cmd.length = events * cmd.cost
             cmd.budget = 2 * cmd.rate * cmd.length // (quantum << block_shift)
-            if cmd.length > LEN_MAX or cmd.budget > ZW_MAX:
-                raise CompileError(f"line {cmd.source}: the move is too long for cmd_length / cmd_budget")
+            if cmd.length > LEN_MAX or cmd.budget > ZW_MAX or cmd.limit // quantum > NW_MAX:
+                raise CompileError(f"line {cmd.source}: the move is too long or too fast for cmd_length / "
+                                   f"cmd_budget / the speed in quanta")
         self.hardware_exits(moves)
         # machine time: the plan's trapezoids, the dwells; the S-curve's filter adds its window
         # (2^(jerk_shift + block_shift) clocks) to every run between two stops

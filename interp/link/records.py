@@ -10,8 +10,8 @@ bits zero; signed fields sign-extended to their bytes):
     limit  B(FEED_W)      exit  B(NW)     rate B(PF + 1)     cost B(FEED_W)
     length B(LEN_W)       budget B(ZW)
 
-At the default build (W 32, FEED_W 50, NW 40, PF 24, LEN_W 82, ZW 108) a record is
-1 + 7 + 28 + 7 + 5 + 4 + 7 + 11 + 14 = 84 bytes.  The order is the native harness's
+At the default build (W 32, FEED_W 34, NW 24, PF 16, LEN_W 66, ZW 68) a record is
+1 + 5 + 28 + 5 + 3 + 3 + 5 + 9 + 9 = 68 bytes.  The order is the native harness's
 16-field command line: kind plane feed x y z i j k l limit exit rate cost length budget.
 
 A compact record (head bit 7 set) carries each of the 14 fields after the head as its

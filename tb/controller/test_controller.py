@@ -12,7 +12,7 @@ then released at the unpacker's pace); rst at random cycles (seeded);
 events -> outputs, PWM duty; the probe latch; POS_X/Y/Z set at rest (homing) and refused
 while busy; bad records (kind 6, 7; a curve when the
 curve core is left out).  The benches' small build (W 16, FRAC 16, CURVES 0, a 256-byte
-queue) for most; the G-code build (W 32, FRAC 48, CURVES 1) runs a compiled G-code program.
+queue) for most; the G-code build (W 32, FRAC 32, CURVES 1) runs a compiled G-code program.
 Records come from interp.testing.controllerkit's encoder (the record format of the docs).
 """
 import cocotb
@@ -833,7 +833,7 @@ def test_controller_reset_polarity(sim):
 
 
 def test_controller_cli_build(sim):
-    """The G-code build (W 32, FRAC 48, ..., CURVES 1, a 4 KiB queue)."""
+    """The G-code build (W 32, FRAC 32, ..., CURVES 1, a 4 KiB queue)."""
     icarus_in_make_test(sim)
     run_cocotb(toplevel="controller", test_module="test_controller", sim=sim, parameters=CLI,
                name="controller_cli", testcase=["gcode_program", "laser_program", "registers", "bad_records"])

@@ -119,6 +119,6 @@ def test_feed_rate(sim):
 
 
 def test_feed_rate_wide(sim):
-    """The G-code build's speed block: FRAC = 48 (costs from the exact integer square root)."""
+    """The G-code build's speed block: FRAC = 32 (costs from the exact integer square root)."""
     run_cocotb(toplevel="feed_rate", test_module="test_feed_rate", sim=sim,
-               parameters={"FEED_W": 50, "FRAC": 48}, name="feed_rate_wide")
+               parameters={"FEED_W": 34, "FRAC": 32}, name="feed_rate_wide")

@@ -199,9 +199,9 @@ def test_jerk_filter(sim):
 
 
 def test_jerk_filter_wide(sim):
-    """The G-code build's widths: FEED_W 50, MW 12 (a 4096-block delay line)."""
+    """The G-code build's widths: FEED_W 34, MW 12 (a 4096-block delay line)."""
     from interp.simulation.runner import run_cocotb
     run_cocotb(toplevel="jerk_filter", test_module="test_jerk_filter", sim=sim,
-               parameters={"FEED_W": 50, "MW": 12, "SUM_W": 62}, name="jerk_filter_wide",
+               parameters={"FEED_W": 34, "MW": 12, "SUM_W": 46}, name="jerk_filter_wide",
                testcase=["trapezoid_is_the_speed", "full_speed_and_quantum", "shift_changes_only_when_empty",
                          "drop_inside_a_block"])

@@ -18,7 +18,7 @@ event, which does not stop, within SDEPTH + 1 steps of its place).  The
 virtual speed never changes by more than a quantum per block, and no step starts after
 `stopped` (a hold at rest, the S-curve filter empty too).  Bench commands get
 their profiles from interp.models.profile.profile_for.  Built at the benches' build
-(interp.simulation.motion_build) and at the G-code build (W = 32, FRAC = 48, ...).
+(interp.simulation.motion_build) and at the G-code build (W = 32, FRAC = 32, ...).
 """
 from dataclasses import replace
 
@@ -529,7 +529,7 @@ async def path_speed(dut):
 
 
 def test_motion_top_cli_build(sim):
-    """The G-code build: 32-bit fields, FRAC = 48, FEED_W = 50, NW = 40, PF = 24, ..."""
+    """The G-code build: 32-bit fields, FRAC = 32, FEED_W = 34, NW = 24, PF = 16, ..."""
     run_cocotb(toplevel="motion_top", test_module="test_motion_top", sim=sim, parameters=CLI_BUILD,
                name="motion_top_cli", testcase=["planes_and_helices", "events_after_the_drive_stops",
                                                 "random_mix", "bad_commands_keep_the_queue", "path_speed",

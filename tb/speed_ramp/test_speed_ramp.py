@@ -167,7 +167,7 @@ async def underrun_and_reset(dut):
 
 
 WIDTHS = {"bench": {"FEED_W": 16, "NW": 16, "PF": 12, "LEN_W": 34, "ZW": 48},
-          "cli": {"FEED_W": 50, "NW": 40, "PF": 24, "LEN_W": 82, "ZW": 108}}
+          "cli": {"FEED_W": 34, "NW": 24, "PF": 16, "LEN_W": 66, "ZW": 68}}
 
 
 @pytest.mark.parametrize("build", sorted(WIDTHS))

@@ -190,6 +190,6 @@ def test_step_pacer_guard(sim):
 
 
 def test_step_pacer_wide(sim):
-    """The G-code build's widths: FEED_W 50, FRAC 48, MW 12."""
-    _run(sim, {"FEED_W": 50, "FRAC": 48, "MW": 12, "SUM_W": 62, "GUARD": 8}, "step_pacer_wide",
+    """The G-code build's widths: FEED_W 34, FRAC 32, MW 12."""
+    _run(sim, {"FEED_W": 34, "FRAC": 32, "MW": 12, "SUM_W": 46, "GUARD": 8}, "step_pacer_wide",
          ["golden_pace", "path_speed", "random_offers_hold_and_stalls"])

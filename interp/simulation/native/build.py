@@ -27,8 +27,8 @@ MAIN = HERE / "motion_main.cpp"
 CACHE = ROOT / "build" / "native"
 EXE = "motion_sim"
 
-# motion_top as the CLI builds it (32-bit command fields, feed 2^48 = 1 step per clock).
-CLI_PARAMETERS = {"W": 32, "FRAC": 48, "FEED_W": 50, "NW": 40, "PF": 24, "LEN_W": 82, "ZW": 108, "MW": 12,
+# motion_top as the CLI builds it (32-bit command fields, feed 2^32 = 1 step per clock).
+CLI_PARAMETERS = {"W": 32, "FRAC": 32, "FEED_W": 34, "NW": 24, "PF": 16, "LEN_W": 66, "ZW": 68, "MW": 12,
                   "TW": 16, "POS_W": 32, "QDEPTH": 8, "QLW": 4, "SDEPTH": 2}
 # motion_top's own defaults, for the parameters a set leaves out
 DEFAULTS = {"W": 16, "FEED_W": 16, "FRAC": 16, "NW": 16, "PF": 12, "LEN_W": 34, "ZW": 48, "MW": 6,
