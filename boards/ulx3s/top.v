@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 `default_nettype none
-// ULX3S board top (ECP5 CABGA381; the build targets the LFE5U-25F variant, where
-// the controller fits without the curve core; the 45F and 85F hold it with
-// CURVES 1): the portable controller design rtl/uart_controller.v (UART link +
-// controller) on the board's pins (boards/ulx3s/ulx3s.lpf).
+// ULX3S board top (ECP5 CABGA381; the build targets the LFE5U-25F variant, which
+// holds the whole controller, curve core included; the 45F and 85F share the pins):
+// the portable controller design rtl/uart_controller.v (UART link + controller) on
+// the board's pins (boards/ulx3s/ulx3s.lpf).
 //   clock ....... EHXPLLL from the 25 MHz oscillator (feedback from CLKOP):
 //                 CLK_HZ = 25 MHz * PLL_CLKFB_DIV / PLL_CLKI_DIV, VCO = CLK_HZ * PLL_CLKOP_DIV
 //                 (400 .. 800 MHz).  15 MHz (25 MHz x 3 / 5, VCO 600 MHz): the controller
-//                 at the compiler's widths reaches 45 to 48 MHz routed on the 25F, and a
+//                 at the compiler's widths reaches about 49 MHz routed on the 25F, and a
 //                 bit at 3 Mbaud is exactly 5 clocks (at 25 MHz it would be 8.33)
 //   reset ....... held until the PLL locks, then 2^RESET_BITS - 1 clocks, and
 //                 while the FIRE1 button is pressed (LOCK and the button
@@ -23,7 +23,7 @@ module top #(
     parameter integer PLL_CLKFB_DIV = 3,      // PLL feedback divider (1 .. 128)
     parameter integer PLL_CLKOP_DIV = 40,     // PLL output divider: VCO / CLK_HZ (1 .. 128)
     parameter integer BAUD       = 115200,    // UART bit rate (host side: interp send --baud)
-    parameter integer CURVES     = 0,         // curve core (kind 3): 1 present (45F, 85F), 0 left out (kind 3 refused with error 1)
+    parameter integer CURVES     = 1,         // curve core (kind 3): 1 present, 0 left out (kind 3 refused with error 1; 3400 LUT4s less)
     parameter integer INPUT_INVERT  = 0,      // active-low inputs from the reset on: INPUT_INVERT's bits (0 .. 31)
     parameter integer OUTPUT_INVERT = 0,      // active-low pins from the reset on: OUTPUT_INVERT's bits (0 .. 65535)
     parameter integer RESET_BITS = 4          // power-on reset lasts 2^RESET_BITS - 1 clocks (1 .. 24)

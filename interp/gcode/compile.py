@@ -830,11 +830,12 @@ class Compiler:
         # (the accelerations, and so the block, do not depend on the junction speeds)
         a_pu = [p.accel_mm_s2 * k / clock for p, k in zip(plans, scale)]
         # the block the profile's words need: the fastest word and the largest a x length
-        # (with a margin for the rounding of the costs and the cruise)
+        # (margins: the cruise's rounding; a length of the lecture's costs, up to sqrt 3 x
+        # the true one)
         speed_pu = max((max(p.cruise_mm_s, cap) * k for p, cap, k in zip(plans, caps, scale)), default=0.0)
         braking = max((a * c.motion.steps * c.motion.charge * (1 << FRAC) for c, a in zip(moves, a_pu)),
                       default=0.0)
-        least = self.least_block_shift(max(a_pu, default=1.0), min(speed_pu, FEED_MAX) * 1.01, braking * 1.01)
+        least = self.least_block_shift(max(a_pu, default=1.0), min(speed_pu, FEED_MAX) * 1.01, braking * 2)
         if least > BLOCK_SHIFT_MAX:
             raise CompileError(f"the program's speeds and moves do not fit the speed generator's words "
                                f"(NW {NW}, ZW {ZW} bits) at any block: shorten the longest move or lower the "
