@@ -16,7 +16,7 @@
 //                      quotient bit is 1 when the new R is >= 0
 //   16 multiply rounds acc = (acc + duty bit * ratio) / 2, lowest duty bit first
 //   done ............. scaled = acc (duty if speed >= D); the inputs taken for the next
-// A sequence is ROUNDS = 17 x RW + 17 clocks (1105 at FEED_W 50, SPEED_W 62): `scaled` is
+// A sequence is ROUNDS = 17 x RW + 17 clocks (833 at FEED_W 34, SPEED_W 46): `scaled` is
 // new every ROUNDS clocks, from the inputs of the clock that ended the sequence before.
 module power_scale #(
     parameter integer FEED_W  = 16, // width of feed (1 .. 200)

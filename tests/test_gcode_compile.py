@@ -927,8 +927,24 @@ def test_block_grows_until_the_words_hold_the_program():
     # the least such block: one block less leaves the rapid above 2^NW quanta
     a_less = math.ceil(a / 2)
     assert fastest // a_less > NW_MAX or a_less == a
-    assert Compiler.least_block_shift(1e-3, 1e3, 1e3) == BLOCK_SHIFT_MIN
-    assert Compiler.least_block_shift(1e-3, 1e30, 1e3) == BLOCK_SHIFT_MAX + 1      # nothing holds it
+    assert Compiler.least_block_shift(0.1, 1e3, 1e3) == BLOCK_SHIFT_MIN
+    assert Compiler.least_block_shift(1e-3, 1e3, 1e3) == 6          # 2^6 x 1e-3 >= 1/16 path unit a block
+    assert Compiler.least_block_shift(1e-9, 1e3, 1e3) == BLOCK_SHIFT_MAX
+    assert Compiler.least_block_shift(0.1, 1e30, 1e3) == BLOCK_SHIFT_MAX + 1      # nothing holds it
+
+
+def test_small_accelerations_keep_their_rate():
+    """1 step/mm and 1 mm/s^2 at 200 MHz: a block of 4 clocks holds 2^-23 path unit of
+    acceleration, so the quantum would round up to 1 and the rate to 1 of 2^PF (35 times too
+    steep); the compiler takes a block long enough for the rate to keep its precision."""
+    sets = [f"axis.{a}.{k}={v}" for a in "xyz" for k, v in (("steps_per_mm", 1), ("accel_mm_s2", 1))]
+    out = compile_program(Program([Line((0, 0, 0), (50, 0, 0), 600, 1)]), load_machine(sets=sets, clock_hz=200e6))
+    check_profile(out)
+    a, bs = out.settings["speed_quantum"], out.settings["block_shift"]
+    rate = out.commands[0].rate
+    accel = rate / (1 << PF) * a / (1 << bs) / (1 << FRAC) * 200e6 ** 2          # steps (mm) / s^2
+    assert bs > BLOCK_SHIFT_MIN and rate > 100 and 0.99 <= accel <= 1.0, (bs, rate, accel)
+    assert not out.warnings
 
 
 def test_path_modes_give_stops_and_tolerances():

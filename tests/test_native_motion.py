@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """The native Verilator harness of motion_top (interp.simulation.native) against cocotb on Icarus.
 
-Both run the same command file at the CLI build (32-bit fields, FRAC = 48) and
+Both run the same command file at the CLI build (32-bit fields, FRAC = 32) and
 must write byte-identical steps CSVs and the same results (cycles, position,
 errors, events); the harness's quiet-stretch skipping must not change anything
 (compared with --exact).  Also: the max_cycles stop, a malformed command

@@ -410,3 +410,15 @@ def test_key_tokens_one_per_key():
     assert key_tokens("a\x1b[A\x1b[5~q\x1b\x1bOP[\x1b[1;5C") == \
         ["a", "\x1b[A", "\x1b[5~", "q", "\x1b", "\x1bOP", "[", "\x1b[1;5C"]
     assert key_tokens("\x1b") == ["\x1b"] and key_tokens("\x1b[") == ["\x1b["] and key_tokens("") == []
+
+
+def test_sim_baud_is_one_the_clock_makes():
+    """--sim's default baud: 3 Mbaud from 12 MHz on; below, the fastest the clock's whole clocks a
+    bit make within the receiver's tolerance (230400 at 1 MHz would be 4 clocks, 8.5 % fast)."""
+    from interp.link.simlink import baud_problem, default_baud
+
+    assert [default_baud(c) for c in (50_000_000, 12_000_000, 2_000_000, 1_000_000)] == \
+        [3_000_000, 3_000_000, 500_000, 250_000]
+    assert "8.5 % off" in baud_problem(230_400, 1_000_000)
+    assert baud_problem(115_200, 2_000_000) is None                 # 17 clocks: 2.1 %, within 3 %
+    assert "4 clocks a bit" in baud_problem(115_200, 200_000)

@@ -6,7 +6,7 @@ cmd_feed path units a clock and the pacer releases a step event each time it has
 covered the event's cost, so a command of N events takes length / feed clocks
 (length = the sum of its costs): the mean path speed along the programmed path is
 
-    true length x 2^48 / length  x  feed  (path units / clock),
+    true length x 2^FRAC / length  x  feed  (path units / clock),
 
 compared with F for moves of every kind, in the compiler's three modes: "true" (the
 default: a line's or a helix's events cost its true length / N each; a flat arc's

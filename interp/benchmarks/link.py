@@ -9,8 +9,8 @@
    bit) at 3 Mbaud and at 115200 baud; the rate is the record bytes over the simulated
    seconds from the first byte sent to the last record acknowledged.  The ceiling the
    frame format allows (DATA frames of LMAX payload bytes, 6 bytes of overhead, 10 bits
-   a byte) is given beside it, and the records per second that rate carries at 84 bytes
-   a record (plain records).
+   a byte) is given beside it, and the records per second that rate carries at
+   RECORD_BYTES a record (plain records: 68 at the default build).
 2. Queue level: for each corpus program (the densest first: the most records per second
    of machine time), its compact records (the bytes interp send sends) at the measured
    byte rate give its records per second; the planned end time of every command

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 
+from ..gcode import compile as cli
 from ..models.speed_ramp import BLOCK_SHIFT_MIN, Segment, SpeedRamp, run_profile, segment_budget
 
 BENCH = {"feed_w": 16, "nw": 16, "pf": 12, "len_w": 34, "zw": 48}
@@ -70,8 +71,8 @@ def hold_rows():
 
 def latency_rows():
     rows = []
-    for name, widths in (("bench", BENCH), ("cli", {"feed_w": 50, "nw": 40, "pf": 24,
-                                                   "len_w": 82, "zw": 108})):
+    for name, widths in (("bench", BENCH), ("cli", {"feed_w": cli.FEED_W, "nw": cli.NW, "pf": cli.PF,
+                                                   "len_w": cli.LEN_W, "zw": cli.ZW})):
         model = SpeedRamp(**widths)
         seg = Segment(100, 100, 0, 1 << widths["pf"], 100 * 50, 0)
         inputs = {**seg.ports(), "speed_quantum": 1, "block_shift": BLOCK_SHIFT_MIN, "override": 100, "hold": 0}

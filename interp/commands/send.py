@@ -698,7 +698,8 @@ def add_link_options(p_, sim_help: str, seed: bool = False) -> None:
 
     p_.add_argument("--port", metavar="DEVICE", help="serial device or pyserial URL (loop://, socket://HOST:PORT)")
     p_.add_argument("--baud", type=int, metavar="B", help=f"bits per second, 115200 .. 3000000 (default {DEFAULT_BAUD}; "
-                    "--sim: 3000000, or the fastest the machine's clock allows at 4 clocks a bit)")
+                    "--sim: 3000000, or the fastest the machine's clock makes within the receiver's "
+                    "tolerance, at least 4 clocks a bit)")
     p_.add_argument("--sim", action="store_true", help=sim_help)
     p_.add_argument("--machine", metavar="FILE.toml", help="machine file (default: the shipped default machine)")
     if seed:                            # (send only: the line noise's)

@@ -87,7 +87,7 @@ LEN_MAX, ZW_MAX, NW_MAX = (1 << LEN_W) - 1, (1 << ZW) - 1, (1 << NW) - 1
 # Every move lasts at least this many clocks, at any override: speed_ramp sets up the
 # successor of a segment while the segment runs (about NW + 3 clocks); a shorter segment
 # would end before it and stop at once (motion_top error 9).  Binding only at low clocks
-# (a one-step move at 200 kHz: <= 23 mm/s at 100 steps/mm; at 50 MHz: <= 5.8 m/s).
+# (a one-step move at 200 kHz: <= 37 mm/s at 100 steps/mm; at 50 MHz: <= 9.3 m/s).
 SEGMENT_CLOCKS = 2 * (NW + 3)
 COST_MODES = ("true", "even", "lecture")
 PWM_FULL = 65535                             # spindle duty of S = max_s
@@ -696,11 +696,17 @@ class Compiler:
         and every budget, at most 2 x 2^PF x a_i x length_i / A^2 (braking: the largest
         a_i x length_i), below 2^ZW.  A larger block makes the quantum larger and both
         smaller (the speed by 2^block_shift, the budget by 4^block_shift); the quantum stays
-        2^block_shift x the acceleration per clock, so the speeds' resolution is that of
-        the acceleration over a block.  BLOCK_SHIFT_MAX + 1 if none does."""
+        2^block_shift x the acceleration per clock (rounded up to a whole path unit), so the
+        speeds' resolution is that of the acceleration over a block.  The block also holds at least 1/16 path unit of the
+        largest acceleration (2^block_shift x a_pu >= 1/16, up to BLOCK_SHIFT_MAX), so that
+        the rates keep their precision where A is rounded up to 1.  BLOCK_SHIFT_MAX + 1 if the words fit no block."""
         for shift in range(BLOCK_SHIFT_MIN, BLOCK_SHIFT_MAX + 1):
             quantum = max(1, math.ceil((1 << shift) * a_pu))
-            if speed_pu // quantum <= NW_MAX and (2 << PF) * braking / (quantum * quantum) <= ZW_MAX:
+            fits = speed_pu // quantum <= NW_MAX and (2 << PF) * braking / (quantum * quantum) <= ZW_MAX
+            # ... and a block of at least 1/16 path unit of the largest acceleration (where A is
+            # rounded up to 1, the largest rate is that x 2^PF: 2^(PF-4) at least, so the rates
+            # keep their precision; the largest block if none has it)
+            if fits and ((1 << shift) * a_pu >= 1 / 16 or shift == BLOCK_SHIFT_MAX):
                 return shift
         return BLOCK_SHIFT_MAX + 1
 
@@ -863,15 +869,27 @@ class Compiler:
             cmd.feed = min(feed, FEED_MAX)
             held = held_speed(cmd.feed, quantum)
             slower[id(cmd)] = p.cruise_mm_s * k / held
-            if not 0.99 * cmd.feed <= held <= cmd.feed:
+            want = p.cruise_mm_s * k
+            if not 0.99 * want <= held <= 1.01 * want:
+                cause, remedy = (("a path unit, 2^-32 step, per clock", "lower the clock") if quantum == 1 else
+                                 ("2^block_shift x the largest acceleration per clock",
+                                  "raise the clock or lower the accelerations"))
                 self.warn("quantum", cmd.source, f"feed {p.cruise_mm_s * 60:g} mm/min runs at {held / k * 60:.3g} "
                           f"mm/min: the speed generator holds whole quanta of {quantum / k * 60:.3g} mm/min "
-                          f"(2^block_shift x the largest acceleration per clock at {clock:g} Hz): raise the "
-                          f"clock or lower the accelerations")
+                          f"({cause} at {clock:g} Hz): {remedy}")
             self.check_step_rate(cmd, p.cruise_mm_s)
             cmd.limit = max(cmd.feed, min(FEED_MAX, math.floor(caps[n] * k)))
             cmd.exit = min(NW_MAX, math.floor(p.exit_mm_s * min(scale[n:n + 2]) / quantum))
-            cmd.rate = max(1, min(1 << PF, math.floor(a * (1 << block_shift) * (1 << PF) / quantum)))
+            rate = a * (1 << block_shift) * (1 << PF) / quantum
+            if rate < 1:
+                raise CompileError(f"line {cmd.source}: its acceleration, {p.accel_mm_s2:g} mm/s^2, is below the "
+                                   f"speed generator's resolution at {clock:g} Hz (a rate of {rate:.3g} of 2^{PF}): "
+                                   f"lower the clock or raise the axes' accel_mm_s2")
+            cmd.rate = min(1 << PF, math.floor(rate))
+            if cmd.rate < 0.99 * rate:
+                self.warn("accel", cmd.source, f"acceleration {p.accel_mm_s2:g} mm/s^2 runs at "
+                          f"{p.accel_mm_s2 * cmd.rate / rate:.3g}: the speed generator's rate is a whole "
+                          f"{cmd.rate} of 2^{PF} at {clock:g} Hz: lower the clock or raise the axes' accel_mm_s2")
             events = cmd.motion.events
             if id(cmd) in stepped:
                 cmd.cost, cmd.length = 0, stepped[id(cmd)]

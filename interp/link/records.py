@@ -83,7 +83,7 @@ def layout(build=None) -> list[tuple[str, int]]:
 
 
 def record_bytes(build=None) -> int:
-    """Bytes of one record (84 at the default build)."""
+    """Bytes of one record (68 at the default build)."""
     return 1 + sum(nbytes(bits) for _, bits in layout(build))
 
 

@@ -56,18 +56,29 @@ def _clock_hz(machine) -> int:
 
 
 def baud_problem(baud: int, clock_hz: int) -> str | None:
-    """Why uart_link cannot run at `baud` with this clock (its parameter checks), or None."""
+    """Why uart_link cannot run at `baud` with this clock (its parameter checks, and the
+    rate its whole clocks a bit make: within 3 % of `baud` at 7 or more clocks a bit, 2 %
+    below, docs/link-protocol.md), or None."""
     if not MIN_BAUD <= baud <= MAX_BAUD:
         return f"baud {baud}: the link runs at {MIN_BAUD} .. {MAX_BAUD} baud"
-    if (clock_hz + baud // 2) // baud < 4:
+    clocks = (clock_hz + baud // 2) // baud
+    if clocks < 4:
         return (f"baud {baud}: the link needs 4 clocks a bit, so at most {clock_hz // 4} baud at "
                 f"controller.clock_hz = {clock_hz}")
+    off = abs(clock_hz / clocks / baud - 1.0)
+    if off > (0.03 if clocks >= 7 else 0.02):
+        return (f"baud {baud}: {clocks} clocks a bit at controller.clock_hz = {clock_hz} make "
+                f"{clock_hz / clocks:.0f} baud, {100 * off:.1f} % off (the link takes 3 %, 2 % below 7 "
+                f"clocks a bit): choose a baud near {clock_hz // clocks}")
     return None
 
 
 def default_baud(clock_hz: int) -> int:
-    """3 Mbaud, or the fastest whole 115200-multiple the clock allows (4 clocks a bit)."""
-    return DEFAULT_BAUD if clock_hz >= 4 * DEFAULT_BAUD else max(MIN_BAUD, clock_hz // 4 // MIN_BAUD * MIN_BAUD)
+    """The fastest baud the clock makes well enough (baud_problem): 3 Mbaud from 12 MHz on,
+    else a whole 115200-multiple or a whole fraction of the clock (at least 4 clocks a bit)."""
+    candidates = sorted({DEFAULT_BAUD, *(k * MIN_BAUD for k in range(1, MAX_BAUD // MIN_BAUD + 1)),
+                         *(clock_hz // n for n in range(4, clock_hz // MIN_BAUD + 1))}, reverse=True)
+    return next((b for b in candidates if baud_problem(b, clock_hz) is None), MIN_BAUD)
 
 
 class SimLink:

@@ -3,8 +3,8 @@
 clocks; at its last clock `scaled` = duty * ratio >> 16 of the inputs taken at the end of the
 sequence before, ratio = speed * 65536 // (feed << shift); duty itself at or above that, 0
 at feed 0), with seeded random duty, speed, shift and feed at full width, held for a while
-or changed every clock, and reset at random cycles; at the controller's widths (FEED_W 50,
-SPEED_W 62) and at 6 and 9."""
+or changed every clock, and reset at random cycles; at the controller's widths (FEED_W 34,
+SPEED_W 46) and at 6 and 9."""
 import cocotb
 import pytest
 
@@ -78,7 +78,7 @@ def test_scaled_power_examples():
     assert scaled_power(65535, 1, 3) == 21844 and scaled_power(65535, 400, 100, 3) == 32767
 
 
-@pytest.mark.parametrize("feed_w, speed_w", [(50, 62), (6, 9)])
+@pytest.mark.parametrize("feed_w, speed_w", [(34, 46), (6, 9)])
 def test_power_scale(sim, feed_w, speed_w):
     run_cocotb(toplevel="power_scale", test_module="test_power_scale", sim=sim,
                parameters={"FEED_W": feed_w, "SPEED_W": speed_w}, name=f"power_scale_{feed_w}")
