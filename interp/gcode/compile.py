@@ -697,9 +697,10 @@ class Compiler:
         a_i x length_i), below 2^ZW.  A larger block makes the quantum larger and both
         smaller (the speed by 2^block_shift, the budget by 4^block_shift); the quantum stays
         2^block_shift x the acceleration per clock (rounded up to a whole path unit), so the
-        speeds' resolution is that of the acceleration over a block.  The block also holds at least 1/16 path unit of the
-        largest acceleration (2^block_shift x a_pu >= 1/16, up to BLOCK_SHIFT_MAX), so that
-        the rates keep their precision where A is rounded up to 1.  BLOCK_SHIFT_MAX + 1 if the words fit no block."""
+        speeds' resolution is that of the acceleration over a block.  The block also holds
+        at least 1/16 path unit of the largest acceleration (2^block_shift x a_pu >= 1/16, up
+        to BLOCK_SHIFT_MAX), so that the rates keep their precision where A is rounded up to
+        1.  BLOCK_SHIFT_MAX + 1 if the words fit no block."""
         for shift in range(BLOCK_SHIFT_MIN, BLOCK_SHIFT_MAX + 1):
             quantum = max(1, math.ceil((1 << shift) * a_pu))
             fits = speed_pu // quantum <= NW_MAX and (2 << PF) * braking / (quantum * quantum) <= ZW_MAX
@@ -860,7 +861,8 @@ class Compiler:
                              "override": 100}
         slower = {}                     # planned cruise over the speed the hardware holds
         for n, (cmd, p, k, a) in enumerate(zip(moves, plans, scale, a_pu)):
-            feed = _round(p.cruise_mm_s * k)
+            want = p.cruise_mm_s * k
+            feed = _round(want)
             if feed <= 0:
                 slowest = 0.5 / k * 60
                 raise CompileError(f"line {cmd.source}: feed {p.cruise_mm_s * 60:g} mm/min is too slow for "
@@ -868,8 +870,7 @@ class Compiler:
                                    f"at {clock:g} Hz)")
             cmd.feed = min(feed, FEED_MAX)
             held = held_speed(cmd.feed, quantum)
-            slower[id(cmd)] = p.cruise_mm_s * k / held
-            want = p.cruise_mm_s * k
+            slower[id(cmd)] = want / held
             if not 0.99 * want <= held <= 1.01 * want:
                 cause, remedy = (("a path unit, 2^-32 step, per clock", "lower the clock") if quantum == 1 else
                                  ("2^block_shift x the largest acceleration per clock",
@@ -888,7 +889,7 @@ class Compiler:
             cmd.rate = min(1 << PF, math.floor(rate))
             if cmd.rate < 0.99 * rate:
                 self.warn("accel", cmd.source, f"acceleration {p.accel_mm_s2:g} mm/s^2 runs at "
-                          f"{p.accel_mm_s2 * cmd.rate / rate:.3g}: the speed generator's rate is a whole "
+                          f"{p.accel_mm_s2 * cmd.rate / rate:.3g} mm/s^2: the speed generator's rate is a whole "
                           f"{cmd.rate} of 2^{PF} at {clock:g} Hz: lower the clock or raise the axes' accel_mm_s2")
             events = cmd.motion.events
             if id(cmd) in stepped:
