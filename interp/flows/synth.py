@@ -33,6 +33,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from ..cores import UsageError
+from ..gcode import compile as cli
 from ..simulation.runner import ROOT, RTL
 
 BUILD = ROOT / "build" / "synth"
@@ -85,12 +86,13 @@ CORES = [
     Target("step_sync", "step_sync", {}, width=None),
     Target("step_dir", "step_dir", {}, width=None),
     # the path-speed profile generator at the G-code build's widths
-    Target("speed_ramp", "speed_ramp", {"FEED_W": 34, "NW": 24, "PF": 16, "LEN_W": 66, "ZW": 68},
-           width=None),
+    Target("speed_ramp", "speed_ramp", {"FEED_W": cli.FEED_W, "NW": cli.NW, "PF": cli.PF, "LEN_W": cli.LEN_W,
+                                        "ZW": cli.ZW}, width=None),
     # the S-curve filter and the step pacer after it, at the same build's widths
-    Target("jerk_filter", "jerk_filter", {"FEED_W": 34, "MW": 12, "SUM_W": 46}, width=None),
-    Target("step_pacer", "step_pacer", {"FEED_W": 34, "FRAC": 32, "MW": 12, "SUM_W": 46, "GUARD": 8},
+    Target("jerk_filter", "jerk_filter", {"FEED_W": cli.FEED_W, "MW": cli.MW, "SUM_W": cli.FEED_W + cli.MW},
            width=None),
+    Target("step_pacer", "step_pacer", {"FEED_W": cli.FEED_W, "FRAC": cli.FRAC, "MW": cli.MW,
+                                        "SUM_W": cli.FEED_W + cli.MW, "GUARD": 8}, width=None),
     # W: the command fields (X, Y, Z, I, J, K, L) and the cores' coordinates
     Target("motion_top", "motion_top", {"W": WIDTH, "POS_W": WIDTH}, width="W"),
     # the controller's serial link at the boards' clock (12 MHz) and 115200 baud

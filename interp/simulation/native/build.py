@@ -20,6 +20,7 @@ import sys
 import time
 from pathlib import Path
 
+from ...gcode import compile as cli
 from ..runner import PCH_FIX, ROOT, RTL, verilator_bin
 
 HERE = Path(__file__).resolve().parent
@@ -27,8 +28,9 @@ MAIN = HERE / "motion_main.cpp"
 CACHE = ROOT / "build" / "native"
 EXE = "motion_sim"
 
-# motion_top as the CLI builds it (32-bit command fields, feed 2^32 = 1 step per clock).
-CLI_PARAMETERS = {"W": 32, "FRAC": 32, "FEED_W": 34, "NW": 24, "PF": 16, "LEN_W": 66, "ZW": 68, "MW": 12,
+# motion_top as the CLI builds it: the widths the G-code compiler emits commands for (32-bit
+# command fields, feed 2^FRAC = 1 step per clock), its queues and output stage.
+CLI_PARAMETERS = {**{name: getattr(cli, name) for name in ("W", "FRAC", "FEED_W", "NW", "PF", "LEN_W", "ZW", "MW")},
                   "TW": 16, "POS_W": 32, "QDEPTH": 8, "QLW": 4, "SDEPTH": 2}
 # motion_top's own defaults, for the parameters a set leaves out
 DEFAULTS = {"W": 16, "FEED_W": 16, "FRAC": 16, "NW": 16, "PF": 12, "LEN_W": 34, "ZW": 48, "MW": 6,
