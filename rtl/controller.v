@@ -144,8 +144,10 @@ module controller #(
     wire [PF:0]       m_rate;
     wire [LEN_W-1:0]  m_length;
     wire [ZW-1:0]     m_budget;
+    wire [3:0]        block_shift;
     record_unpack #(.W(W), .FEED_W(FEED_W), .NW(NW), .PF(PF), .LEN_W(LEN_W), .ZW(ZW)) u_unpack (
-        .clk(clk), .rst(rst), .flush(flush), .in_valid(q_valid), .in_data(q_data), .in_ready(q_ready),
+        .clk(clk), .rst(rst), .flush(flush), .block_shift(block_shift),
+        .in_valid(q_valid), .in_data(q_data), .in_ready(q_ready),
         .cmd_valid(m_valid), .cmd_kind(m_kind), .cmd_plane(m_plane), .cmd_feed(m_feed),
         .cmd_x(m_x), .cmd_y(m_y), .cmd_z(m_z), .cmd_i(m_i), .cmd_j(m_j), .cmd_k(m_k), .cmd_l(m_l),
         .cmd_limit(m_limit), .cmd_exit(m_exit), .cmd_rate(m_rate), .cmd_cost(m_cost),
@@ -171,7 +173,7 @@ module controller #(
 
     wire [TW-1:0]     pulse_width, dir_setup, dir_hold;
     wire [FEED_W-1:0] quantum;
-    wire [3:0]        block_shift, jerk_shift;
+    wire [3:0]        jerk_shift;
     wire [7:0]        override_percent;
     wire [2:0]        m_step, m_dir;
     wire [POS_W-1:0]  unused_pos_x, unused_pos_y, unused_pos_z;

@@ -13,19 +13,34 @@
 // nibbles give each field's difference length n (field 2t in the low nibble of byte t),
 // then come the n bytes of each field (two's complement, little-endian, sign-extended
 // to the field's bytes and added modulo 2^(8 B)); n > B(field) is an error like kinds
-// 6 and 7.  The register rotates one byte a clock: the byte leaving at the bottom is the
-// previous record's byte of the position entering at the top.
+// 6 and 7, except two codes that send no bytes and have the unpacker form the field:
+//   length n = 13, 14, 15: length = |x|, |y|, |z| x cost (a line's step events x cost),
+//   budget n = 15:         budget = floor(rate x length / 2^(block_shift - 1))
+//                          (= 2 rate length / (A 2^block_shift) for a speed quantum A = 1).
+// A compact head with bit 6 set also says i, j, k and l are zero (a line's, an event's):
+// the table then has 5 bytes (none for those four fields: the table's bytes 2 and 3 are
+// zero, formed in the clocks they would have taken) and those fields' bytes are zero.
+// The register rotates one byte a clock: the byte leaving at the bottom is the
+// previous record's byte of the position entering at the top.  After the last byte of a
+// compact record come DERIVE_CLOCKS = W + ZW + 15 clocks, the same for every compact
+// record: the length's shift-and-add multiplication in place in its bytes (W clocks, the
+// axis's magnitude formed bit-serially), then the budget's (rate in parallel, the length's
+// bits serially, rotated back into place; the product's bits from bit block_shift - 1 on
+// shifted into the budget's bytes), so a record is pushed RECORD_BYTES + 8 +
+// DERIVE_CLOCKS clocks after the previous one from a stream without gaps (plain records
+// RECORD_BYTES + 1).
 module record_unpack #(
     parameter integer W      = 32,  // command field width (>= 6)
     parameter integer FEED_W = 34,  // speed word width (>= 2)
     parameter integer NW     = 24,  // exit speed width (>= 1)
     parameter integer PF     = 16,  // rate fraction bits: cmd_rate is PF + 1 bits (>= 1)
-    parameter integer LEN_W  = 66,  // move length width (>= 1)
-    parameter integer ZW     = 68   // braking budget width (>= 1)
+    parameter integer LEN_W  = 66,  // move length width (2 .. 96; W + FEED_W <= 8 B(LEN_W))
+    parameter integer ZW     = 68   // braking budget width (LEN_W .. 112)
 ) (
     input  wire              clk,
     input  wire              rst,
     input  wire              flush,         // drop the record being assembled
+    input  wire [3:0]        block_shift,   // a derived budget's scale: 2^(block_shift - 1) (>= 1)
     input  wire              in_valid,
     input  wire [7:0]        in_data,
     output wire              in_ready,
@@ -56,21 +71,26 @@ module record_unpack #(
         if (FEED_W < 2) $error("%m: FEED_W must be at least 2");
         if (NW < 1) $error("%m: NW must be at least 1");
         if (PF < 1) $error("%m: PF must be at least 1");
-        if (LEN_W < 1) $error("%m: LEN_W must be at least 1");
-        if (ZW < 1) $error("%m: ZW must be at least 1");
+        if (LEN_W < 2 || LEN_W > 96) $error("%m: LEN_W must be 2 .. 96 (length codes 13 .. 15)");
+        if (ZW < LEN_W || ZW > 112) $error("%m: ZW must be LEN_W .. 112 (budget code 15)");
     end
 
     // bytes of each field and its offset in the record
     localparam integer BF = (FEED_W + 7) / 8, BW = (W + 7) / 8, BN = (NW + 7) / 8;
     localparam integer BR = (PF + 1 + 7) / 8, BL = (LEN_W + 7) / 8, BZ = (ZW + 7) / 8;
     localparam integer O_FEED = 1, O_X = O_FEED + BF;
-    localparam integer O_LIMIT = O_X + 7 * BW, O_EXIT = O_LIMIT + BF, O_RATE = O_EXIT + BN;
+    localparam integer O_I = O_X + 3 * BW, O_LIMIT = O_X + 7 * BW, O_EXIT = O_LIMIT + BF, O_RATE = O_EXIT + BN;
     localparam integer O_COST = O_RATE + BR, O_LENGTH = O_COST + BF, O_BUDGET = O_LENGTH + BL;
     localparam integer RECORD_BYTES = O_BUDGET + BZ;
     localparam integer RB = 8 * RECORD_BYTES;
     localparam integer CW = 8;      // byte counter width: RECORD_BYTES < 256
+    localparam integer SL = 8 * O_LENGTH, SB = 8 * O_BUDGET;      // the length's, budget's bits
+    localparam integer PB = W + FEED_W;                          // |axis| x cost
+    localparam integer DERIVE_CLOCKS = W + ZW + 15;
     initial begin
         if (RECORD_BYTES > 255) $error("%m: a record must be at most 255 bytes");
+        if (PB > 8 * BL) $error("%m: W + FEED_W must be at most 8 B(LEN_W)");
+        if (DERIVE_CLOCKS > 255) $error("%m: W + ZW must be at most 240");
     end
 
     localparam integer TB = 7;      // nibble table bytes of a compact record (14 fields)
@@ -96,27 +116,40 @@ module record_unpack #(
     reg  [RB-1:0]   record;         // byte 0 at bits 7:0 once all bytes are in
     reg  [CW-1:0]   count;          // bytes assembled (the head included)
     reg             compact;        // the record being assembled is compact
+    reg             zero_ijkl;      // ... with head bit 6: i, j, k, l zero, no table bytes for them
     reg  [2:0]      table_count;    // nibble table bytes taken
     reg  [8*TB-1:0] nibbles;        // the table; the next field's length at bits 3:0
     reg  [3:0]      left;           // difference bytes still to come in this field
     reg             carry, sign;    // the field's byte-serial sum: carry, difference sign
     reg             bad_length;     // a difference longer than its field
+    reg  [1:0]      length_axis;    // length code: 1, 2, 3 = |x|, |y|, |z| x cost; 0 none
+    reg             budget_code;    // budget code
+    reg  [7:0]      clock_count;    // clocks of the derivation
+    reg             derived;        // the derivation is over (a compact record)
+    reg             negative, seen; // the axis's sign; a one bit has gone (its magnitude)
+    reg  [PF:0]     partial;        // the budget's multiplication: the product's high part
     wire            whole    = count == RECORD_BYTES[CW-1:0];
+    wire            ready    = whole & (~compact | derived);
     wire            bad      = (cmd_kind[2] & cmd_kind[1]) | bad_length;   // kind 6, 7, a long difference
     wire            in_table = compact & (count == {{(CW-1){1'b0}}, 1'b1}) & (table_count != TB3);
+    wire            skip     = in_table & zero_ijkl & (table_count[2:1] == 2'd1);   // table bytes 2, 3
+    wire            ijkl     = count >= O_I[CW-1:0] && count < O_LIMIT[CW-1:0];     // a byte of i .. l
     wire            body     = compact & (count != {CW{1'b0}}) & ~in_table & ~whole;
 
     // a compact record's next byte: previous byte + difference byte (or its sign) + carry
     wire [7:0] here_bytes  = field_bytes(count);
     wire       field_start = here_bytes != 8'd0;
-    wire [3:0] n_here = field_start ? nibbles[3:0] : left;
+    wire [3:0] code        = nibbles[3:0];
+    wire       length_here = count == O_LENGTH[CW-1:0] && code >= 4'd13;
+    wire       budget_here = count == O_BUDGET[CW-1:0] && code == 4'd15;
+    wire [3:0] n_here = field_start ? (length_here | budget_here ? 4'd0 : code) : left;
     wire       use_in = n_here != 4'd0;
     wire [7:0] delta  = use_in ? in_data : field_start ? 8'd0 : {8{sign}};
     wire [8:0] sum    = {1'b0, record[7:0]} + {1'b0, delta} + {8'd0, carry & ~field_start};
 
-    assign in_ready     = ~whole & ~(body & ~use_in);
-    assign cmd_valid    = whole & ~bad & ~cmd_full;
-    assign record_error = whole & bad;
+    assign in_ready     = ~whole & ~(body & ~use_in) & ~skip;
+    assign cmd_valid    = ready & ~bad & ~cmd_full;
+    assign record_error = ready & bad;
     assign taken        = cmd_valid | record_error;
     assign assembling   = count != {CW{1'b0}};
 
@@ -134,29 +167,68 @@ module record_unpack #(
     assign cmd_exit   = record[8 * O_EXIT   +: NW];
     assign cmd_rate   = record[8 * O_RATE   +: PF + 1];
     assign cmd_cost   = record[8 * O_COST   +: FEED_W];
-    assign cmd_length = record[8 * O_LENGTH +: LEN_W];
-    assign cmd_budget = record[8 * O_BUDGET +: ZW];
+    assign cmd_length = record[SL +: LEN_W];
+    assign cmd_budget = record[SB +: ZW];
+
+    // The derivation, clock c of DERIVE_CLOCKS.  c = 0: the length's bytes take the axis;
+    // c = 1 .. W: a shift-and-add step, its multiplier bit the axis's magnitude's (a
+    // two's complement negated bit-serially: inverted after the first one bit).
+    // c = W + 15 - s + j, j = 0 .. s + ZW - 1 (s = block_shift - 1): the budget's step j,
+    // the length's bit j (j < LEN_W, its bits rotated back into place) times the rate,
+    // product bit j shifted into the budget's bytes from j = s on.
+    function [8*BL-1:0] length_bytes;       // an axis, zero-extended to the length's bytes
+        input [W-1:0] value;
+        begin
+            length_bytes = {(8*BL){1'b0}};
+            length_bytes[W-1:0] = value;
+        end
+    endfunction
+    function [8*BZ-1:0] budget_bytes;       // a budget, zero-extended to its bytes
+        input [ZW-1:0] value;
+        begin
+            budget_bytes = {(8*BZ){1'b0}};
+            budget_bytes[ZW-1:0] = value;
+        end
+    endfunction
+    wire [3:0]      scale    = block_shift == 4'd0 ? 4'd0 : block_shift - 4'd1;
+    wire            deriving = whole & compact & ~derived;
+    wire [W-1:0]    axis     = length_axis == 2'd1 ? cmd_x : length_axis == 2'd2 ? cmd_y : cmd_z;
+    wire            load     = deriving & (length_axis != 2'd0) & (clock_count == 8'd0);
+    wire            multiply = deriving & (length_axis != 2'd0) & (clock_count != 8'd0)
+                               & (clock_count <= W[7:0]);
+    wire [PB-1:0]   product  = record[SL +: PB];
+    wire            bit_m    = product[0] ^ (negative & seen);
+    wire [FEED_W:0] step_sum = {1'b0, product[PB-1:W]} + (bit_m ? {1'b0, cmd_cost} : {(FEED_W+1){1'b0}});
+    wire [7:0]      budget_at = W[7:0] + 8'd15 - {4'd0, scale};
+    wire [7:0]      j        = clock_count - budget_at;
+    wire            budget_step = deriving & budget_code & (clock_count >= budget_at);
+    wire            bit_l    = j < LEN_W[7:0] ? record[SL] : 1'b0;
+    wire [PF+1:0]   rate_sum = {1'b0, partial} + (bit_l ? {1'b0, cmd_rate} : {(PF+2){1'b0}});
 
     wire take    = in_valid & in_ready;
     wire advance = body ? (take | ~use_in) : take & ~in_table;   // a byte of the record is formed
 
     always @(posedge clk) begin
         if (rst | flush) begin
-            count <= {CW{1'b0}}; record <= {RB{1'b0}}; compact <= 1'b0; table_count <= 3'd0;
+            count <= {CW{1'b0}}; record <= {RB{1'b0}}; compact <= 1'b0; zero_ijkl <= 1'b0; table_count <= 3'd0;
             nibbles <= {(8*TB){1'b0}}; left <= 4'd0; carry <= 1'b0; sign <= 1'b0; bad_length <= 1'b0;
+            length_axis <= 2'd0; budget_code <= 1'b0; clock_count <= 8'd0; derived <= 1'b0;
+            negative <= 1'b0; seen <= 1'b0; partial <= {(PF+1){1'b0}};
         end else if (taken) begin
-            count <= {CW{1'b0}};
+            count <= {CW{1'b0}}; clock_count <= 8'd0; derived <= 1'b0; partial <= {(PF+1){1'b0}};
         end else begin
-            if (take & in_table) begin
-                nibbles <= {in_data, nibbles[8*TB-1:8]};
+            if ((take & in_table) | skip) begin
+                nibbles <= {skip ? 8'd0 : in_data, nibbles[8*TB-1:8]};
                 table_count <= table_count + 3'd1;
             end
             if (advance) begin
                 count  <= count + 1'b1;
-                record <= {body ? sum[7:0] : in_data, record[RB-1:8]};
+                record <= {body ? (zero_ijkl & ijkl ? 8'd0 : sum[7:0]) : in_data, record[RB-1:8]};
             end
             if (take && count == {CW{1'b0}}) begin          // the head
-                compact <= in_data[7]; table_count <= 3'd0; bad_length <= 1'b0;
+                compact <= in_data[7]; zero_ijkl <= in_data[7] & in_data[6];
+                table_count <= 3'd0; bad_length <= 1'b0;
+                length_axis <= 2'd0; budget_code <= 1'b0;
             end
             if (body & advance) begin
                 carry <= sum[8];
@@ -164,8 +236,29 @@ module record_unpack #(
                 left  <= n_here - {3'd0, use_in};
                 if (field_start) begin
                     nibbles <= nibbles >> 4;
-                    if ({4'd0, nibbles[3:0]} > here_bytes) bad_length <= 1'b1;
+                    if (length_here) length_axis <= code[1:0];
+                    if (budget_here) budget_code <= 1'b1;
+                    if (!length_here && !budget_here && {4'd0, code} > here_bytes) bad_length <= 1'b1;
                 end
+            end
+            if (deriving) begin
+                clock_count <= clock_count + 8'd1;
+                if (clock_count == DERIVE_CLOCKS[7:0] - 8'd1) derived <= 1'b1;
+            end
+            if (load) begin
+                record[SL +: 8 * BL] <= length_bytes(axis);
+                negative <= axis[W-1];
+                seen     <= 1'b0;
+            end
+            if (multiply) begin
+                record[SL +: PB] <= {step_sum, product[W-1:1]};
+                seen <= seen | product[0];
+            end
+            if (budget_step) begin
+                partial <= rate_sum[PF+1:1];
+                if (j < LEN_W[7:0]) record[SL +: LEN_W] <= {record[SL], record[SL + 1 +: LEN_W - 1]};
+                if (j >= {4'd0, scale})
+                    record[SB +: 8 * BZ] <= budget_bytes({rate_sum[0], record[SB + 1 +: ZW - 1]});
             end
         end
     end

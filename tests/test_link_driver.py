@@ -496,7 +496,7 @@ def test_a_hold_in_the_moment_of_a_pause_is_the_pause():
     from interp.commands.send import compile_build, pause_positions, pause_record
 
     _, compiled = compile_text("G21 G91\nG1 X1 F600\nM0\nG1 X1\nM2\n")
-    stream = encode_program(compiled.commands, compile_build())
+    stream = encode_program(compiled.commands, compile_build(), block_shift=compiled.settings["block_shift"])
     where = pause_positions(compiled, (0, 0, 0))
     assert list(where.values()) == [(100, 0, 0)]
     told = {}

@@ -201,4 +201,5 @@ def test_compact_refuses_long_difference():
     reader = r.RecordReader()
     with pytest.raises(ValueError, match="longer than its field"):
         reader.take(bytes([r.COMPACT]) + table + bytes(6))
-    assert r.compact(r.encode({}), bytes(68)) == bytes([r.COMPACT]) + bytes(7)   # all zero: 8 bytes
+    assert r.compact(r.encode({}), bytes(68)) == bytes([r.COMPACT | r.ZERO_IJKL]) + bytes(5)   # all zero: 6 bytes
+    assert r.compact(r.encode({"i": 1}), bytes(68)) == bytes([r.COMPACT]) + bytes([0, 0, 1]) + bytes(4) + b"\x01"

@@ -238,7 +238,8 @@ def test_a_reset_during_a_run_on_the_rtl(files, at):
         configure(driver, machine.timing(), compiled.settings)
         at = port.at = link.now() + at                  # (seconds into the run)
         with pytest.raises(LinkError, match="reset"):
-            run_program(driver, encode_program(compiled.commands, compile_build()), len(compiled.commands),
+            run_program(driver, encode_program(compiled.commands, compile_build(),
+                                                 block_shift=compiled.settings["block_shift"]), len(compiled.commands),
                         max_seconds=5.0)
         assert port.done and link.now() < at + 1.0
 
@@ -439,7 +440,7 @@ def run_driver(files, steps, noise: float, seed: int = 1, before=None, keys=None
 
     machine = load_machine(str(files / "machine.toml"))
     _, compiled = compile_text(read_program(str(files / program)), machine)
-    stream = encode_program(compiled.commands, compile_build())
+    stream = encode_program(compiled.commands, compile_build(), block_shift=compiled.settings["block_shift"])
     link = SimLink(steps=steps, line_noise=noise, seed=seed, machine=machine)
     if before is not None:
         before(link, stream)

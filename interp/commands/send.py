@@ -545,7 +545,7 @@ class ProgramRun:
         compiled = compile_program(dataclasses.replace(program, moves=moves), self.machine, start_steps=here)
         self.show(compiled.warnings, "warning")
         build = compile_build()
-        stream = encode_program(compiled.commands, build)
+        stream = encode_program(compiled.commands, build, block_shift=compiled.settings["block_shift"])
         if not compiled.commands and last and not self.records and not offsets_changed(self.machine, self.saved,
                                                                                         program.saved):
             print("interp: warning: the program has no command to send", file=sys.stderr)

@@ -97,7 +97,7 @@ class DeviceModel:
         self.enabled = False
         self.fill = False
         self.regs = {"OVERRIDE": 100, "PULSE_WIDTH": 25, "DIR_SETUP": 25, "DIR_HOLD": 25, "QUANTUM_LO": 1,
-                     "QUANTUM_HI": 0, "MOTION": 0, "INPUT_INVERT": 0, "SPINDLE_PERIOD": clock_hz // 20000,
+                     "QUANTUM_HI": 0, "MOTION": 2, "INPUT_INVERT": 0, "SPINDLE_PERIOD": clock_hz // 20000,
                      "OUTPUT_INVERT": 0, "INPUT_FILTER": 0x1F << 16,
                      "SPINDLE_OVERRIDE": 256}   # (its inputs are ideal: no filter delay)
         self.writes: list[tuple[str, int]] = []     # register writes executed, in order
@@ -339,6 +339,7 @@ class DeviceModel:
             size = self.reader.length(self.queue)
             raw = bytes(self.queue[:size])
             del self.queue[:size]
+            self.reader.block_shift = self.regs["MOTION"] & 15      # a budget code's scale
             try:
                 record = decode(self.reader.take(raw), self.build)
             except ValueError:

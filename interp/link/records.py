@@ -19,9 +19,15 @@ difference from the same field of the previous record (all zero after a reset or
 flush): the head, 7 bytes of nibbles (the difference length n of field 2t in the low
 nibble of byte t, 0 .. min(15, B)), then each field's n bytes, two's complement,
 little-endian; the controller sign-extends them and adds them to the field's bytes
-modulo 2^(8 B).  The driver sends compact records (about half the bytes of plain ones
-on CAM programs); the controller's record unpacker takes RECORD_BYTES + 8 clocks for
-one, RECORD_BYTES + 1 for a plain one.
+modulo 2^(8 B).  A compact head with bit 6 set (ZERO_IJKL) says i, j, k and l are zero:
+its table has 5 bytes (none for those four fields) and no bytes follow for them.
+Two codes send no bytes and have the controller form the field:
+length 13, 14, 15 (|x|, |y|, |z| x cost: a line's step events x cost) and budget 15
+(floor(rate x length / 2^(block_shift - 1)), the compiler's budget when the speed
+quantum is 1).  The driver sends compact records, with the codes wherever they give
+the field's value exactly (about a third of the bytes of plain ones on CAM programs);
+the controller's record unpacker takes RECORD_BYTES + 8 + DERIVE_CLOCKS clocks for one
+(DERIVE_CLOCKS = W + ZW + 15, codes or not), RECORD_BYTES + 1 for a plain one.
 """
 from __future__ import annotations
 
@@ -89,14 +95,45 @@ def record_bytes(build=None) -> int:
 
 COMPACT = 0x80                  # head bit 7: a compact record
 TABLE_BYTES = 7                 # its nibble table: 14 fields, one nibble each
+LENGTH_CODES = {13: "x", 14: "y", 15: "z"}     # length formed as |axis| x cost
+BUDGET_CODE = 15                # budget formed as floor(rate x length / 2^(block_shift - 1))
+LENGTH_FIELD, BUDGET_FIELD = 12, 13             # their places in the nibble table
+ZERO_IJKL = 0x40                # compact head bit 6: i, j, k, l zero, a table of 5 bytes
+SHORT_TABLE_BYTES = 5
+IJKL = ("i", "j", "k", "l")     # (fields 4 .. 7: the table's bytes 2 and 3)
+
+
+def derive_clocks(build=None) -> int:
+    """Clocks the record unpacker spends after a compact record's last byte forming its
+    coded fields (the same with or without codes): W + ZW + 15 (115 at the default build)."""
+    b = _build(build)
+    return b.W + b.ZW + 15
+
+
+def derived_length(axis: int, cost: int, build=None) -> int:
+    """A length code's value: |axis| x cost (axis as signed W bits, cost FEED_W bits)."""
+    b = _build(build)
+    axis &= (1 << b.W) - 1
+    if axis >> (b.W - 1):
+        axis = (1 << b.W) - axis
+    return axis * (cost & ((1 << b.FEED_W) - 1))
+
+
+def derived_budget(rate: int, length: int, block_shift: int, build=None) -> int:
+    """The budget code's value: floor(rate x length / 2^(block_shift - 1)) modulo 2^ZW
+    (rate PF + 1 bits, length LEN_W bits; block_shift 0 counts as 1)."""
+    b = _build(build)
+    product = (rate & ((1 << (b.PF + 1)) - 1)) * (length & ((1 << b.LEN_W) - 1))
+    return (product >> max(block_shift - 1, 0)) & ((1 << b.ZW) - 1)
 
 
 def unpack_interval(build=None, compact_records: bool = True) -> int:
     """Clocks between two records the controller's record unpacker hands to motion_top
     from a filled queue: RECORD_BYTES clocks to form the bytes (one a clock) and one to
-    push, and for a compact record (the link's) the 7 clocks of its nibble table (92 at
-    the default build; 85 for plain records).  interp gcode pushes its commands no faster."""
-    return record_bytes(build) + 1 + (TABLE_BYTES if compact_records else 0)
+    push, and for a compact record (the link's) the 7 clocks of its nibble table and the
+    DERIVE_CLOCKS of its coded fields (191 at the default build; 69 for plain records).
+    interp gcode pushes its commands no faster."""
+    return record_bytes(build) + 1 + (TABLE_BYTES + derive_clocks(build) if compact_records else 0)
 
 
 def fields_of(command) -> dict[str, int]:
@@ -183,13 +220,41 @@ def _difference_bytes(difference: int) -> int:
     return n
 
 
-def compact(record: bytes, previous: bytes, build=None) -> bytes | None:
+def _offsets(build) -> dict[str, tuple[int, int]]:
+    """{field: (byte offset in the record, bytes)}."""
+    out, at = {}, 1
+    for name, bits in layout(build):
+        out[name] = (at, nbytes(bits))
+        at += nbytes(bits)
+    return out
+
+
+def compact(record: bytes, previous: bytes, build=None, block_shift: int | None = None) -> bytes | None:
     """A plain record -> its compact form after `previous` (a plain record, or zeros after a
-    reset or flush); None when a field's difference needs more than 15 bytes."""
+    reset or flush); None when a field's difference needs more than 15 bytes.  With the
+    controller's block_shift, a length or budget its code gives exactly is sent as the code."""
     b = _build(build)
+    codes = {}
+    if block_shift is not None:
+        f = decode(record, b)
+        for code, axis in LENGTH_CODES.items():
+            if derived_length(f[axis], f["cost"], b) == f["length"]:
+                codes["length"] = code
+                break
+        if derived_budget(f["rate"], f["length"], block_shift, b) == f["budget"]:
+            codes["budget"] = BUDGET_CODE
+    zero = not any(any(record[at:at + size]) for at, size in (_offsets(b)[name] for name in IJKL))
     nibbles, body, at = [], bytearray(), 1
-    for _, bits in layout(b):
+    for name, bits in layout(b):
         size = nbytes(bits)
+        if zero and name in IJKL:
+            nibbles.append(0)
+            at += size
+            continue
+        if name in codes:
+            nibbles.append(codes[name])
+            at += size
+            continue
         modulus = 1 << (8 * size)
         difference = (int.from_bytes(record[at:at + size], "little")
                       - int.from_bytes(previous[at:at + size], "little")) % modulus
@@ -201,8 +266,25 @@ def compact(record: bytes, previous: bytes, build=None) -> bytes | None:
         nibbles.append(n)
         body += difference.to_bytes(n, "little", signed=True)
         at += size
-    table = bytes(nibbles[2 * t] | nibbles[2 * t + 1] << 4 for t in range(TABLE_BYTES))
-    return bytes([record[0] | COMPACT]) + table + bytes(body)
+    table = bytes(nibbles[2 * t] | nibbles[2 * t + 1] << 4 for t in range(TABLE_BYTES) if not (zero and t in (2, 3)))
+    return bytes([record[0] | COMPACT | (ZERO_IJKL if zero else 0)]) + table + bytes(body)
+
+
+def table_nibbles(data) -> list[int] | None:
+    """The 14 nibbles of the compact record at the start of `data` (zeros for i .. l under
+    ZERO_IJKL); None while its table is not all there."""
+    size = SHORT_TABLE_BYTES if data[0] & ZERO_IJKL else TABLE_BYTES
+    if len(data) < 1 + size:
+        return None
+    table = bytes(data[1:1 + size])
+    if size < TABLE_BYTES:
+        table = table[:2] + bytes(2) + table[2:]
+    return [byte >> shift & 15 for byte in table for shift in (0, 4)]
+
+
+def is_code(field: int, n: int) -> bool:
+    """A nibble that is a code (no bytes follow)."""
+    return (field == LENGTH_FIELD and n in LENGTH_CODES) or (field == BUDGET_FIELD and n == BUDGET_CODE)
 
 
 class RecordReader:
@@ -210,10 +292,11 @@ class RecordReader:
     plain and compact records, the previous record kept (zeros at first, as after a
     reset or flush)."""
 
-    def __init__(self, build=None):
+    def __init__(self, build=None, block_shift: int = 2):
         self.build = _build(build)
         self.size = record_bytes(self.build)
         self.previous = bytes(self.size)
+        self.block_shift = block_shift              # the controller's, for a budget code
 
     def length(self, data) -> int | None:
         """Bytes the record at the start of `data` takes; None while that is not known yet
@@ -222,9 +305,11 @@ class RecordReader:
             return None
         if not data[0] & COMPACT:
             return self.size
-        if len(data) < 1 + TABLE_BYTES:
+        nibbles = table_nibbles(data)
+        if nibbles is None:
             return None
-        return 1 + TABLE_BYTES + sum((byte & 15) + (byte >> 4) for byte in data[1:1 + TABLE_BYTES])
+        table = SHORT_TABLE_BYTES if data[0] & ZERO_IJKL else TABLE_BYTES
+        return 1 + table + sum(0 if is_code(f, n) else n for f, n in enumerate(nibbles))
 
     def whole_records(self, data) -> int:
         """Whole records at the start of `data` (the controller's STATUS.records)."""
@@ -247,11 +332,22 @@ class RecordReader:
             return data
         if len(data) != self.length(data):
             raise ValueError("a compact record's length differs from its table's")
-        out, at, body = bytearray([data[0] & ~COMPACT & 0xFF]), 1, 1 + TABLE_BYTES
-        nibbles = [data[1 + f // 2] >> (4 * (f % 2)) & 15 for f in range(2 * TABLE_BYTES)]
+        zero = bool(data[0] & ZERO_IJKL)
+        out, at = bytearray([data[0] & ~(COMPACT | ZERO_IJKL) & 0xFF]), 1
+        body = 1 + (SHORT_TABLE_BYTES if zero else TABLE_BYTES)
+        nibbles = table_nibbles(data)
         bad = False
-        for n, (_, bits) in zip(nibbles, layout(self.build)):
+        for field, (n, (name, bits)) in enumerate(zip(nibbles, layout(self.build))):
             size = nbytes(bits)
+            if zero and name in IJKL:
+                out += bytes(size)
+                at += size
+                continue
+            if is_code(field, n):
+                value = self._coded_value(name, n, bytes(out))
+                out += value.to_bytes(size, "little")
+                at += size
+                continue
             bad |= n > size
             n = min(n, size)                    # the unpacker takes B bytes of a longer difference
             difference = int.from_bytes(data[body:body + n], "little", signed=True) if n else 0
@@ -263,15 +359,27 @@ class RecordReader:
             raise ValueError("a compact record's difference is longer than its field")
         return self.previous
 
+    def _coded_value(self, name: str, code: int, formed: bytes) -> int:
+        """A coded field's value from the record's fields formed before it."""
+        places = _offsets(self.build)
 
-def encode_program(commands, build=None, compact_records: bool = True) -> bytes:
+        def field(which: str, signed: bool = False) -> int:
+            at, size = places[which]
+            return int.from_bytes(formed[at:at + size], "little", signed=signed)
+        if name == "length":
+            return derived_length(field(LENGTH_CODES[code], True), field("cost"), self.build)
+        return derived_budget(field("rate"), field("length"), self.block_shift, self.build)
+
+
+def encode_program(commands, build=None, compact_records: bool = True, block_shift: int | None = None) -> bytes:
     """All commands' records, concatenated (the DATA frames' byte stream): compact ones
-    (plain where a difference would need more than 15 bytes), or plain ones."""
+    (plain where a difference would need more than 15 bytes; with the controller's
+    block_shift, the length and budget codes wherever they are exact), or plain ones."""
     b = _build(build)
     out, previous = bytearray(), bytes(record_bytes(b))
     for c in commands:
         record = encode(fields_of(c), b)
-        short = compact(record, previous, b) if compact_records else None
+        short = compact(record, previous, b, block_shift) if compact_records else None
         out += short if short is not None else record
         previous = record
     return bytes(out)

@@ -3,8 +3,9 @@
 Migen (the wrapper's Instance, its word-addressed LiteX Wishbone bus and its pads) and run
 as the CPU of a SoC would drive it (cocotbext-wishbone on the LiteX bus, word addresses):
 the constants and the build, the input pads in INPUTS, CONTROL.enable on its pad, and a
-compiled G-code program written to CMD_DATA as the host's compact records (a stream whose
-length is not a multiple of 4: its last write selects only its bytes) ending at its
+compiled G-code program written to CMD_DATA as the host's compact records (with length and
+budget codes; a stream whose length is not a multiple of 4: its last write selects only
+its bytes) ending at its
 programmed position, counted on the step pads and in POS_X/Y/Z."""
 import cocotb
 from cocotb.clock import Clock
@@ -82,7 +83,8 @@ async def soc_drives_the_controller(dut):
     _, compiled = compile_text("G21 G90 G17\nG01 X0.4 Y-0.2 F1200\nG02 X0.6 Y0 I0 J0.2\nG01 Z-0.1 F600\n", machine)
     for name, value in settings_writes(machine.timing(), compiled.settings):
         await tb.write(name, value)
-    stream = records.encode_program(compiled.commands, build)
+    stream = records.encode_program(compiled.commands, build, block_shift=compiled.settings["block_shift"])
+    assert len(stream) < len(records.encode_program(compiled.commands, build)), "no length or budget code"
     assert len(stream) % 4, "the stream's last write is a partial one"
     for value, sel in data_words(stream, fill=0xFF):           # lanes not selected: 0xFF, ignored
         await tb.write("CMD_DATA", value, sel=sel)

@@ -5,8 +5,14 @@ a byte stream with random gaps, against random cmd_full back-pressure: each reco
 6, 7 strobe record_error and are not pushed; a flush mid-record drops the partial record.
 The records come from the host's encoder (interp.link.records), checked against the local one.
 Compact records (differences from the previous record) mixed with plain ones, a flush that
-zeroes the previous record, a difference longer than its field (record_error); and the pace
-from a stream without gaps: RECORD_BYTES + 1 clocks a plain record, RECORD_BYTES + 8 a compact one."""
+zeroes the previous record, a difference longer than its field (record_error); records with
+i .. l zero (head bit 6, a table of 5 bytes) after records without; the length and budget
+codes (fields the unpacker forms: |x|, |y| or |z| x cost, rate x length /
+2^(block_shift - 1)) at random block shifts, against the host's reader; and the pace
+from a stream without gaps: RECORD_BYTES + 1 clocks a plain record, RECORD_BYTES + 8 +
+DERIVE_CLOCKS a compact one, codes or not."""
+from dataclasses import replace
+
 import cocotb
 from cocotb.triggers import FallingEdge, ReadOnly
 
@@ -19,6 +25,7 @@ from interp.testing.controllerkit import (BUILD_PARAMETERS, encode, icarus_in_ma
 from interp.testing.tbkit import TB, seeded_rng
 
 NAMES = ("feed", "x", "y", "z", "i", "j", "k", "l", "limit", "exit", "rate", "cost", "length", "budget")
+IDLE_INPUTS = {"flush": 0, "in_valid": 0, "in_data": 0, "cmd_full": 0, "block_shift": 2}
 
 
 def random_command(rng, b):
@@ -41,7 +48,7 @@ async def random_records(dut):
     b = {k: int(getattr(dut, k).value) for k in BUILD_PARAMETERS if hasattr(dut, k)}
     b.setdefault("MW", 0), b.setdefault("TW", 0), b.setdefault("POS_W", 0)
     tb = TB(dut)
-    await tb.reset({"flush": 0, "in_valid": 0, "in_data": 0, "cmd_full": 0})
+    await tb.reset(IDLE_INPUTS)
     cmds = [random_command(rng, b) for _ in range(40)]
     assert all(encode(c, b) == local_encode(c, b) for c in cmds), "the host's encoder and the local one differ"
     cut = rng.randrange(1, 20)                       # a partial record, flushed, before record 10
@@ -76,10 +83,11 @@ def changed_command(rng, b, previous):
                                        for n in ("limit", "exit", "rate", "cost", "length", "budget")})
 
 
-def compact_stream(rng, b, cmds, plain_share):
-    """(number, command) pairs -> their records after a reset or flush, as (byte, number)."""
+def compact_stream(rng, b, cmds, plain_share, block_shift=None):
+    """(number, command) pairs -> their records after a reset or flush, as (byte, number)
+    (with a block_shift: the length and budget codes wherever they are exact)."""
     numbered = list(cmds)
-    encoded = mixed_records(rng, [c for _, c in numbered], b, plain_share)
+    encoded = mixed_records(rng, [c for _, c in numbered], b, plain_share, block_shift)
     return [(byte, n) for (n, _), record in zip(numbered, encoded) for byte in record]
 
 
@@ -117,7 +125,7 @@ async def compact_records(dut):
     rng = seeded_rng(dut, "compact_records")
     b = {k: int(getattr(dut, k).value) for k in BUILD_PARAMETERS if hasattr(dut, k)}
     tb = TB(dut)
-    await tb.reset({"flush": 0, "in_valid": 0, "in_data": 0, "cmd_full": 0})
+    await tb.reset(IDLE_INPUTS)
     cmds = [random_command(rng, b)]
     for _ in range(59):
         cmds.append(changed_command(rng, b, cmds[-1]))
@@ -136,6 +144,49 @@ async def compact_records(dut):
     assert_pushed(pushed, want)
 
 
+def coded_command(rng, b, command, block_shift):
+    """The command with the length of one of its axes (|axis| x cost) and the budget of
+    its rate and length, each at random (else its own)."""
+    if rng.random() < 0.8:
+        command = replace(command, length=records.derived_length(getattr(command, rng.choice("xyz")),
+                                                                  command.cost, b))
+    if rng.random() < 0.8:
+        command = replace(command, budget=records.derived_budget(command.rate, command.length, block_shift, b))
+    return command
+
+
+@cocotb.test()
+async def coded_records(dut):
+    """Length and budget codes: at block shifts 1 .. 15 (and 0, taken as 1), records whose
+    length is an axis x cost and whose budget is rate x length / 2^(block_shift - 1)
+    come out with exactly those fields, as the host's reader forms them; the codes after
+    other records, plain ones among them, and the reader's record equals the pushed one."""
+    rng = seeded_rng(dut, "coded_records")
+    b = {k: int(getattr(dut, k).value) for k in BUILD_PARAMETERS if hasattr(dut, k)}
+    tb = TB(dut)
+    for block_shift in [0, 1, 15] + rng.sample(range(2, 15), 3):
+        await tb.reset({**IDLE_INPUTS, "block_shift": block_shift})
+        cmds = [random_command(rng, b)]
+        for _ in range(23):
+            cmds.append(changed_command(rng, b, cmds[-1]))
+        cmds = [coded_command(rng, b, c, block_shift) if rng.random() < 0.7 else c for c in cmds]
+        cmds = [replace(c, kind=c.kind % 6) for c in cmds]
+        cmds = [replace(c, i=0, j=0, k=0, l=0) if rng.random() < 0.4 else c for c in cmds]   # a line's
+        stream = compact_stream(rng, b, enumerate(cmds), 0.1, block_shift)
+        reader, coded, short = records.RecordReader(b, block_shift), 0, 0
+        for n in range(len(cmds)):
+            raw = bytes(byte for byte, k in stream if k == n)
+            nibbles = records.table_nibbles(raw) if raw[0] & records.COMPACT else [0] * 14
+            coded += any(records.is_code(f, nibbles[f]) for f in (records.LENGTH_FIELD, records.BUDGET_FIELD))
+            short += bool(raw[0] & records.ZERO_IJKL)
+            assert records.decode(reader.take(raw), b) == records.decode(encode(cmds[n], b), b)
+        assert coded >= len(cmds) // 3, f"only {coded} of {len(cmds)} records use a code"
+        assert short >= len(cmds) // 5, f"only {short} of {len(cmds)} records have i .. l zero"
+        pushed, errors = await run_stream(tb, rng, stream, None, 0.8, rng.choice([0.0, 0.3]))
+        assert errors == 0
+        assert_pushed(pushed, [pushed_fields(c, b) for c in cmds])
+
+
 @cocotb.test()
 async def pace(dut):
     """From a stream without gaps, motion_top never full: pushes RECORD_BYTES + 1 clocks apart
@@ -144,12 +195,14 @@ async def pace(dut):
     b = {k: int(getattr(dut, k).value) for k in BUILD_PARAMETERS if hasattr(dut, k)}
     tb = TB(dut)
     size = records.record_bytes(b)
-    for share, interval in ((1.0, size + 1), (0.0, size + 8)):
-        await tb.reset({"flush": 0, "in_valid": 0, "in_data": 0, "cmd_full": 0})
+    for share, interval in ((1.0, size + 1), (0.0, size + 8 + records.derive_clocks(b))):
+        await tb.reset(IDLE_INPUTS)
         cmds = [random_command(rng, b)]
         for _ in range(7):
             cmds.append(changed_command(rng, b, cmds[-1]))
-        stream = compact_stream(rng, b, enumerate(cmds), share)
+        if not share:                                # half of them with both codes
+            cmds = [coded_command(rng, b, c, 2) if n % 2 else c for n, c in enumerate(cmds)]
+        stream = compact_stream(rng, b, enumerate(cmds), share, block_shift=2)
         at, cycle, pushes = 0, 0, []
         while len(pushes) < len(cmds) and cycle < 2000:
             await FallingEdge(dut.clk)
