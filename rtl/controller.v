@@ -21,7 +21,7 @@
 // returns everything to IDLE with positions 0.
 module controller #(
     parameter integer CLK_HZ   = 50000000,  // clock frequency, Hz (CLOCK_HZ register, reset timings)
-    parameter integer W        = 32,        // command field width (motion_top; 6 .. 255)
+    parameter integer W        = 32,        // command field width (6 .. 255; record_unpack: W + ZW <= 240)
     parameter integer FEED_W   = 34,        // speed word width (motion_top; 2 .. 64)
     parameter integer FRAC     = 32,        // fraction bits of the path units (motion_top)
     parameter integer NW       = 24,        // speed in quanta width (motion_top)

@@ -176,20 +176,6 @@ module record_unpack #(
     // c = W + 15 - s + j, j = 0 .. s + ZW - 1 (s = block_shift - 1): the budget's step j,
     // the length's bit j (j < LEN_W, its bits rotated back into place) times the rate,
     // product bit j shifted into the budget's bytes from j = s on.
-    function [8*BL-1:0] length_bytes;       // an axis, zero-extended to the length's bytes
-        input [W-1:0] value;
-        begin
-            length_bytes = {(8*BL){1'b0}};
-            length_bytes[W-1:0] = value;
-        end
-    endfunction
-    function [8*BZ-1:0] budget_bytes;       // a budget, zero-extended to its bytes
-        input [ZW-1:0] value;
-        begin
-            budget_bytes = {(8*BZ){1'b0}};
-            budget_bytes[ZW-1:0] = value;
-        end
-    endfunction
     wire [3:0]      scale    = block_shift == 4'd0 ? 4'd0 : block_shift - 4'd1;
     wire            deriving = whole & compact & ~derived;
     wire [W-1:0]    axis     = length_axis == 2'd1 ? cmd_x : length_axis == 2'd2 ? cmd_y : cmd_z;
@@ -205,6 +191,7 @@ module record_unpack #(
     wire            bit_l    = j < LEN_W[7:0] ? record[SL] : 1'b0;
     wire [PF+1:0]   rate_sum = {1'b0, partial} + (bit_l ? {1'b0, cmd_rate} : {(PF+2){1'b0}});
 
+    integer b;                      // (the budget bytes' bits above ZW)
     wire take    = in_valid & in_ready;
     wire advance = body ? (take | ~use_in) : take & ~in_table;   // a byte of the record is formed
 
@@ -246,7 +233,7 @@ module record_unpack #(
                 if (clock_count == DERIVE_CLOCKS[7:0] - 8'd1) derived <= 1'b1;
             end
             if (load) begin
-                record[SL +: 8 * BL] <= length_bytes(axis);
+                record[SL +: 8 * BL] <= {{(8 * BL - W){1'b0}}, axis};       // 8 B(LEN_W) > W
                 negative <= axis[W-1];
                 seen     <= 1'b0;
             end
@@ -257,8 +244,10 @@ module record_unpack #(
             if (budget_step) begin
                 partial <= rate_sum[PF+1:1];
                 if (j < LEN_W[7:0]) record[SL +: LEN_W] <= {record[SL], record[SL + 1 +: LEN_W - 1]};
-                if (j >= {4'd0, scale})
-                    record[SB +: 8 * BZ] <= budget_bytes({rate_sum[0], record[SB + 1 +: ZW - 1]});
+                if (j >= {4'd0, scale}) begin
+                    record[SB +: ZW] <= {rate_sum[0], record[SB + 1 +: ZW - 1]};
+                    for (b = ZW; b < 8 * BZ; b = b + 1) record[SB + b] <= 1'b0;   // the bytes' high bits
+                end
             end
         end
     end

@@ -17,7 +17,7 @@ At the default build (W 32, FEED_W 34, NW 24, PF 16, LEN_W 66, ZW 68) a record i
 A compact record (head bit 7 set) carries each of the 14 fields after the head as its
 difference from the same field of the previous record (all zero after a reset or a
 flush): the head, 7 bytes of nibbles (the difference length n of field 2t in the low
-nibble of byte t, 0 .. min(15, B)), then each field's n bytes, two's complement,
+nibble of byte t, 0 .. B, or a code below), then each field's n bytes, two's complement,
 little-endian; the controller sign-extends them and adds them to the field's bytes
 modulo 2^(8 B).  A compact head with bit 6 set (ZERO_IJKL) says i, j, k and l are zero:
 its table has 5 bytes (none for those four fields) and no bytes follow for them.

@@ -190,7 +190,8 @@ async def coded_records(dut):
 @cocotb.test()
 async def pace(dut):
     """From a stream without gaps, motion_top never full: pushes RECORD_BYTES + 1 clocks apart
-    for plain records, RECORD_BYTES + 8 for compact ones."""
+    for plain records, RECORD_BYTES + 8 + DERIVE_CLOCKS for compact ones (with codes, with a
+    table of 5 bytes, or neither)."""
     rng = seeded_rng(dut, "pace")
     b = {k: int(getattr(dut, k).value) for k in BUILD_PARAMETERS if hasattr(dut, k)}
     tb = TB(dut)
@@ -200,8 +201,9 @@ async def pace(dut):
         cmds = [random_command(rng, b)]
         for _ in range(7):
             cmds.append(changed_command(rng, b, cmds[-1]))
-        if not share:                                # half of them with both codes
+        if not share:                                # codes, i .. l zero, both, neither
             cmds = [coded_command(rng, b, c, 2) if n % 2 else c for n, c in enumerate(cmds)]
+            cmds = [replace(c, i=0, j=0, k=0, l=0) if n % 4 >= 2 else c for n, c in enumerate(cmds)]
         stream = compact_stream(rng, b, enumerate(cmds), share, block_shift=2)
         at, cycle, pushes = 0, 0, []
         while len(pushes) < len(cmds) and cycle < 2000:
