@@ -193,6 +193,21 @@ def test_compact_round_trip(previous, fields, kept):
     assert len(short) <= 8 + sum(r.nbytes(sizes[k]) for k in sizes if fields[k] != previous[k])
 
 
+def test_decode_as_the_ports_see_it():
+    """strict=False: the unused head bits and the bits above a field's width are dropped, as
+    the controller's ports drop them (a plain head with bit 6 set, a length code's product
+    above LEN_W); strict decoding refuses both."""
+    b = r.DEFAULT_BUILD
+    record = bytearray(r.encode({"kind": 1, "plane": 2, "x": -5, "length": 7}))
+    record[0] |= 0x48
+    at = 1 + sum(r.nbytes(bits) for name, bits in r.layout(b)[:r.LENGTH_FIELD])
+    record[at + r.nbytes(b.LEN_W) - 1] |= 0x80                      # bit 8 B - 1 > LEN_W
+    with pytest.raises(ValueError):
+        r.decode(bytes(record), b)
+    loose = r.decode(bytes(record), b, strict=False)
+    assert (loose["kind"], loose["plane"], loose["x"], loose["length"]) == (1, 2, -5, 7)
+
+
 def test_compact_refuses_long_difference():
     """A nibble above its field's bytes (exit: 3 bytes) is an error, like the controller's 18;
     the record is still taken (B bytes of that field)."""

@@ -183,14 +183,15 @@ def encode(cmd_fields, build=None) -> bytes:
     return bytes(out)
 
 
-def decode(data: bytes, build=None) -> dict[str, int]:
+def decode(data: bytes, build=None, strict: bool = True) -> dict[str, int]:
     """Record bytes -> the 16 fields (x .. l signed W bits; the inverse of encode for
-    signed values).  ValueError on a wrong length or non-zero unused bits."""
+    signed values).  ValueError on a wrong length or non-zero unused bits; with strict
+    False the unused bits are dropped instead, as the controller's ports drop them."""
     b = _build(build)
     if len(data) != record_bytes(b):
         raise ValueError(f"a record is {record_bytes(b)} bytes, got {len(data)}")
     head = data[0]
-    if head & 0xC8:
+    if head & 0xC8 and strict:
         raise ValueError(f"head byte 0x{head:02X}: bits 3 and 7:6 must be 0")
     out = {"kind": head & 7, "plane": (head >> 4) & 3}
     at = 1
@@ -198,14 +199,16 @@ def decode(data: bytes, build=None) -> dict[str, int]:
         size = nbytes(bits)
         chunk = data[at:at + size]
         at += size
-        if name in SIGNED:
-            value = int.from_bytes(chunk, "little", signed=True)
+        value = int.from_bytes(chunk, "little", signed=name in SIGNED)
+        if not strict:                      # the field's low bits, signed ones as such
+            value &= (1 << bits) - 1
+            if name in SIGNED and value >> (bits - 1):
+                value -= 1 << bits
+        elif name in SIGNED:
             if not -(1 << (bits - 1)) <= value < (1 << (bits - 1)):
                 raise ValueError(f"{name}: bits above {bits} are not a sign extension")
-        else:
-            value = int.from_bytes(chunk, "little")
-            if value >> bits:
-                raise ValueError(f"{name}: bits above {bits} are not zero")
+        elif value >> bits:
+            raise ValueError(f"{name}: bits above {bits} are not zero")
         out[name] = value
     return out
 
