@@ -32,6 +32,7 @@ the controller's record unpacker takes RECORD_BYTES + 8 + DERIVE_CLOCKS clocks f
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
+from functools import lru_cache
 
 from ..gcode import compile as _gc
 
@@ -223,8 +224,9 @@ def _difference_bytes(difference: int) -> int:
     return n
 
 
-def _offsets(build) -> dict[str, tuple[int, int]]:
-    """{field: (byte offset in the record, bytes)}."""
+@lru_cache(maxsize=None)
+def _offsets(build: Build) -> dict[str, tuple[int, int]]:
+    """{field: (byte offset in the record, bytes)} (formed once per build)."""
     out, at = {}, 1
     for name, bits in layout(build):
         out[name] = (at, nbytes(bits))
@@ -273,10 +275,15 @@ def compact(record: bytes, previous: bytes, build=None, block_shift: int | None 
     return bytes([record[0] | COMPACT | (ZERO_IJKL if zero else 0)]) + table + bytes(body)
 
 
+def table_bytes(head: int) -> int:
+    """Nibble-table bytes of a compact record with this head: 5 under ZERO_IJKL, else 7."""
+    return SHORT_TABLE_BYTES if head & ZERO_IJKL else TABLE_BYTES
+
+
 def table_nibbles(data) -> list[int] | None:
     """The 14 nibbles of the compact record at the start of `data` (zeros for i .. l under
     ZERO_IJKL); None while its table is not all there."""
-    size = SHORT_TABLE_BYTES if data[0] & ZERO_IJKL else TABLE_BYTES
+    size = table_bytes(data[0])
     if len(data) < 1 + size:
         return None
     table = bytes(data[1:1 + size])
@@ -311,8 +318,7 @@ class RecordReader:
         nibbles = table_nibbles(data)
         if nibbles is None:
             return None
-        table = SHORT_TABLE_BYTES if data[0] & ZERO_IJKL else TABLE_BYTES
-        return 1 + table + sum(0 if is_code(f, n) else n for f, n in enumerate(nibbles))
+        return 1 + table_bytes(data[0]) + sum(0 if is_code(f, n) else n for f, n in enumerate(nibbles))
 
     def whole_records(self, data) -> int:
         """Whole records at the start of `data` (the controller's STATUS.records)."""
@@ -337,7 +343,7 @@ class RecordReader:
             raise ValueError("a compact record's length differs from its table's")
         zero = bool(data[0] & ZERO_IJKL)
         out, at = bytearray([data[0] & ~(COMPACT | ZERO_IJKL) & 0xFF]), 1
-        body = 1 + (SHORT_TABLE_BYTES if zero else TABLE_BYTES)
+        body = 1 + table_bytes(data[0])
         nibbles = table_nibbles(data)
         bad = False
         for field, (n, (name, bits)) in enumerate(zip(nibbles, layout(self.build))):
