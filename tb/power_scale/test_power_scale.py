@@ -68,7 +68,7 @@ async def against_the_model(dut):
     model = PowerScale(speed_w)
     tb = TB(dut)
     await tb.reset(IDLE)
-    await scoreboard(tb, model, inputs(rng, 100 * model.rounds, feed_w, speed_w), context="power_scale")
+    await scoreboard(tb, model, inputs(rng, 200 * model.rounds, feed_w, speed_w), context="power_scale")
     assert model.divided > 20, f"only {model.divided} sequences divided"
 
 
