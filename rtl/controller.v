@@ -21,7 +21,7 @@
 // returns everything to IDLE with positions 0.
 module controller #(
     parameter integer CLK_HZ   = 50000000,  // clock frequency, Hz (CLOCK_HZ register, reset timings)
-    parameter integer W        = 32,        // command field width (6 .. 255; record_unpack: W + ZW <= 240)
+    parameter integer W        = 32,        // command field width (6 .. 255; record_unpack: max(W, 64 + FEED_W, 65 + PF) + ZW <= 496)
     parameter integer FEED_W   = 34,        // speed word width (motion_top; 2 .. 64)
     parameter integer FRAC     = 32,        // fraction bits of the path units (motion_top)
     parameter integer NW       = 24,        // speed in quanta width (motion_top)
@@ -145,8 +145,11 @@ module controller #(
     wire [LEN_W-1:0]  m_length;
     wire [ZW-1:0]     m_budget;
     wire [3:0]        block_shift;
+    wire [31:0]       limit_scale, rate_scale;      // the limit and rate codes' scales
+    wire [5:0]        limit_shift, rate_shift;
     record_unpack #(.W(W), .FEED_W(FEED_W), .NW(NW), .PF(PF), .LEN_W(LEN_W), .ZW(ZW)) u_unpack (
         .clk(clk), .rst(rst), .flush(flush), .block_shift(block_shift),
+        .limit_scale(limit_scale), .limit_shift(limit_shift), .rate_scale(rate_scale), .rate_shift(rate_shift),
         .in_valid(q_valid), .in_data(q_data), .in_ready(q_ready),
         .cmd_valid(m_valid), .cmd_kind(m_kind), .cmd_plane(m_plane), .cmd_feed(m_feed),
         .cmd_x(m_x), .cmd_y(m_y), .cmd_z(m_z), .cmd_i(m_i), .cmd_j(m_j), .cmd_k(m_k), .cmd_l(m_l),
@@ -327,6 +330,7 @@ module controller #(
         .hold(hold), .enable(enabled), .fill(fill), .probe_stop(probe_stop), .abort_strobe(abort), .clear_strobe(clear), .arm_strobe(probe_arm),
         .override_percent(override_percent), .pulse_width(pulse_width), .dir_setup(dir_setup),
         .dir_hold(dir_hold), .quantum(quantum), .block_shift(block_shift), .jerk_shift(jerk_shift),
+        .limit_scale(limit_scale), .limit_shift(limit_shift), .rate_scale(rate_scale), .rate_shift(rate_shift),
         .input_invert(input_invert), .output_invert(output_invert),
         .filter_period(filter_period), .filter_mask(filter_mask), .spindle_period(spindle_period), .spindle_scale(spindle_scale),
         .position_write(position_write), .position_value(position_value),

@@ -12,7 +12,8 @@
 // [0] hold (RW; also set by `hold_set`, a pause event or the probe's touch, which wins
 // over a CONTROL write in the same clock), write-1
 // strobes [1] abort, [2] clear, [3] probe_arm, [4] enable (RW), [5] fill (RW),
-// [6] probe_stop (RW: the armed probe's touch sets hold).  QUANTUM_LO/HI and MOTION are
+// [6] probe_stop (RW: the armed probe's touch sets hold).  QUANTUM_LO/HI, MOTION and the
+// code scales LIMIT_SCALE / RATE_SCALE are
 // taken only while `busy` is low, and fill rises only then (or with abort in the same
 // write): a write while busy keeps them and sets STATUS.refused (until CONTROL.clear).
 // POS_X/Y/Z: a write while not busy sets that position counter (`position_write`, the
@@ -87,6 +88,10 @@ module controller_regs #(
     output reg  [FEED_W-1:0] quantum,
     output reg  [3:0]        block_shift,
     output reg  [3:0]        jerk_shift,
+    output reg  [31:0]       limit_scale,   // record_unpack's limit code
+    output reg  [5:0]        limit_shift,
+    output reg  [31:0]       rate_scale,    // ... and rate code
+    output reg  [5:0]        rate_shift,
     output reg  [4:0]        input_invert,
     output reg  [15:0]       output_invert,
     output reg  [15:0]       filter_period,     // INPUT_FILTER: clocks a sample of input_filter, 0 = off
@@ -152,7 +157,8 @@ module controller_regs #(
     // QUANTUM and MOTION are taken only while nothing runs (the speed generator and the
     // S-curve filter hold them constant): a write while busy is refused and flagged
     wire   speed_write   = write && (address == REG_QUANTUM_LO[7:0] || address == REG_QUANTUM_HI[7:0] ||
-                                     address == REG_MOTION[7:0]);
+                                     address == REG_MOTION[7:0] || address == REG_LIMIT_SCALE[7:0] ||
+                                     address == REG_RATE_SCALE[7:0]);
     // fill would reset motion_top under a running program: it rises only while not busy,
     // or with abort in the same write (which flushes)
     wire   fill_refused  = control_write & wb_dat_w[5] & ~fill & busy & ~wb_dat_w[1];
@@ -205,7 +211,7 @@ module controller_regs #(
         words[REG_DIR_HOLD[7:2] * 32 +: 32]       = {{(32 - TW){1'b0}}, dir_hold};
         words[REG_QUANTUM_LO[7:2] * 32 +: 32]     = quantum_wide[31:0];
         words[REG_QUANTUM_HI[7:2] * 32 +: 32]     = quantum_wide[63:32];
-        words[REG_MOTION[7:2] * 32 +: 32]         = {24'd0, jerk_shift, block_shift};
+        words[REG_MOTION[7:2] * 32 +: 32]         = {10'd0, rate_shift, 2'd0, limit_shift, jerk_shift, block_shift};
         words[REG_INPUT_INVERT[7:2] * 32 +: 32]   = {27'd0, input_invert};
         words[REG_SPINDLE_PERIOD[7:2] * 32 +: 32] = {16'd0, spindle_period};
         words[REG_OUTPUTS[7:2] * 32 +: 32]        = {duty, outputs};
@@ -215,6 +221,8 @@ module controller_regs #(
         words[REG_OUTPUT_INVERT[7:2] * 32 +: 32]  = {16'd0, output_invert};
         words[REG_INPUT_FILTER[7:2] * 32 +: 32]   = {11'd0, filter_mask, filter_period};
         words[REG_SPINDLE_OVERRIDE[7:2] * 32 +: 32] = {22'd0, spindle_scale};
+        words[REG_LIMIT_SCALE[7:2] * 32 +: 32]    = limit_scale;
+        words[REG_RATE_SCALE[7:2] * 32 +: 32]     = rate_scale;
     end
     wire [31:0] value = words[address[7:2] * 32 +: 32];
 
@@ -241,6 +249,10 @@ module controller_regs #(
             quantum          <= {{(FEED_W-1){1'b0}}, 1'b1};
             block_shift      <= 4'd2;
             jerk_shift       <= 4'd0;
+            limit_scale      <= 32'd0;
+            limit_shift      <= 6'd0;
+            rate_scale       <= 32'd0;
+            rate_shift       <= 6'd0;
             input_invert     <= INPUT_INVERT_RESET[4:0];
             output_invert    <= OUTPUT_INVERT_RESET[15:0];
             filter_period    <= 16'd0;
@@ -268,7 +280,13 @@ module controller_regs #(
                     REG_DIR_HOLD[7:0]:       dir_hold <= wb_dat_w[TW-1:0];
                     REG_QUANTUM_LO[7:0]:     quantum <= quantum_lo[FEED_W-1:0];
                     REG_QUANTUM_HI[7:0]:     quantum <= quantum_hi[FEED_W-1:0];
-                    REG_MOTION[7:0]:         {jerk_shift, block_shift} <= wb_dat_w[7:0];
+                    REG_MOTION[7:0]: begin
+                        {jerk_shift, block_shift} <= wb_dat_w[7:0];
+                        limit_shift <= wb_dat_w[13:8];
+                        rate_shift  <= wb_dat_w[21:16];
+                    end
+                    REG_LIMIT_SCALE[7:0]:    limit_scale <= wb_dat_w;
+                    REG_RATE_SCALE[7:0]:     rate_scale <= wb_dat_w;
                     REG_INPUT_INVERT[7:0]:   input_invert <= wb_dat_w[4:0];
                     REG_OUTPUT_INVERT[7:0]:  output_invert <= wb_dat_w[15:0];
                     REG_INPUT_FILTER[7:0]:   {filter_mask, filter_period} <= wb_dat_w[20:0];

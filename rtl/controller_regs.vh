@@ -37,6 +37,8 @@ localparam [7:0] REG_EXECUTED = 8'h78;  // RO Executed records
 localparam [7:0] REG_OUTPUT_INVERT = 8'h7C;  // RW Output polarity
 localparam [7:0] REG_INPUT_FILTER = 8'h80;  // RW Input filter
 localparam [7:0] REG_SPINDLE_OVERRIDE = 8'h84;  // RW Spindle override
+localparam [7:0] REG_LIMIT_SCALE = 8'h88;  // RW Limit scale
+localparam [7:0] REG_RATE_SCALE = 8'h8C;  // RW Rate scale
 // ID
 localparam integer ID_VALUE_LSB = 0;
 localparam integer ID_VALUE_WIDTH = 32;
@@ -171,6 +173,10 @@ localparam integer MOTION_BLOCK_SHIFT_LSB = 0;
 localparam integer MOTION_BLOCK_SHIFT_WIDTH = 4;
 localparam integer MOTION_JERK_SHIFT_LSB = 4;
 localparam integer MOTION_JERK_SHIFT_WIDTH = 4;
+localparam integer MOTION_LIMIT_SHIFT_LSB = 8;
+localparam integer MOTION_LIMIT_SHIFT_WIDTH = 6;
+localparam integer MOTION_RATE_SHIFT_LSB = 16;
+localparam integer MOTION_RATE_SHIFT_WIDTH = 6;
 // INPUT_INVERT
 localparam integer INPUT_INVERT_ESTOP_LSB = 0;
 localparam integer INPUT_INVERT_ESTOP_WIDTH = 1;
@@ -241,4 +247,10 @@ localparam integer INPUT_FILTER_MASK_WIDTH = 5;
 // SPINDLE_OVERRIDE
 localparam integer SPINDLE_OVERRIDE_SCALE_LSB = 0;
 localparam integer SPINDLE_OVERRIDE_SCALE_WIDTH = 10;
+// LIMIT_SCALE
+localparam integer LIMIT_SCALE_VALUE_LSB = 0;
+localparam integer LIMIT_SCALE_VALUE_WIDTH = 32;
+// RATE_SCALE
+localparam integer RATE_SCALE_VALUE_LSB = 0;
+localparam integer RATE_SCALE_VALUE_WIDTH = 32;
 /* verilator lint_on UNUSEDPARAM */

@@ -13,7 +13,10 @@
 // nibbles give each field's difference length n (field 2t in the low nibble of byte t),
 // then come the n bytes of each field (two's complement, little-endian, sign-extended
 // to the field's bytes and added modulo 2^(8 B)); n > B(field) is an error like kinds
-// 6 and 7, except two codes that send no bytes and have the unpacker form the field:
+// 6 and 7, except codes that send no bytes and have the unpacker form the field:
+//   limit n = 15:          limit = floor(cost x limit_scale / 2^limit_shift) (a line's
+//                          axis ceiling: its axes' top speed per unit of cost),
+//   rate n = 15:           rate = floor(cost x rate_scale / 2^rate_shift) (its acceleration),
 //   length n = 13, 14, 15: length = |x|, |y|, |z| x cost (a line's step events x cost),
 //   budget n = 15:         budget = floor(rate x length / 2^(block_shift - 1))
 //                          (= 2 rate length / (A 2^block_shift) for a speed quantum A = 1).
@@ -22,13 +25,16 @@
 // zero, formed in the clocks they would have taken) and those fields' bytes are zero.
 // The register rotates one byte a clock: the byte leaving at the bottom is the
 // previous record's byte of the position entering at the top.  After the last byte of a
-// compact record come DERIVE_CLOCKS = W + ZW + 15 clocks, the same for every compact
-// record: the length's shift-and-add multiplication in place in its bytes (W clocks, the
-// axis's magnitude formed bit-serially), then the budget's (rate in parallel, the length's
-// bits serially, rotated back into place; the product's bits from bit block_shift - 1 on
-// shifted into the budget's bytes), so a record is pushed RECORD_BYTES + 8 +
-// DERIVE_CLOCKS clocks after the previous one from a stream without gaps (plain records
-// RECORD_BYTES + 1).
+// compact record come DERIVE_CLOCKS = T + ZW + 15 clocks (T = max(W, 64 + max(FEED_W,
+// PF + 1))), the same for every compact record: the length's shift-and-add
+// multiplication in place in its bytes (W clocks, the axis's magnitude formed
+// bit-serially) and beside it the limit's and the rate's (the scale in parallel, the
+// cost's bits serially by index; the product's bits from bit `shift` on shifted into the
+// field's bytes, ending at clock 64 + the field's width), then the budget's (rate in
+// parallel, the length's bits serially, rotated back into place; the product's bits from
+// bit block_shift - 1 on shifted into the budget's bytes), so a record is pushed
+// RECORD_BYTES + 8 + DERIVE_CLOCKS clocks after the previous one from a stream without
+// gaps (plain records RECORD_BYTES + 1).
 module record_unpack #(
     parameter integer W      = 32,  // command field width (>= 6)
     parameter integer FEED_W = 34,  // speed word width (>= 2)
@@ -41,6 +47,10 @@ module record_unpack #(
     input  wire              rst,
     input  wire              flush,         // drop the record being assembled
     input  wire [3:0]        block_shift,   // a derived budget's scale: 2^(block_shift - 1) (>= 1)
+    input  wire [31:0]       limit_scale,   // a derived limit's: cost x limit_scale / 2^limit_shift
+    input  wire [5:0]        limit_shift,
+    input  wire [31:0]       rate_scale,    // a derived rate's: cost x rate_scale / 2^rate_shift
+    input  wire [5:0]        rate_shift,
     input  wire              in_valid,
     input  wire [7:0]        in_data,
     output wire              in_ready,
@@ -73,6 +83,7 @@ module record_unpack #(
         if (PF < 1) $error("%m: PF must be at least 1");
         if (LEN_W < 2 || LEN_W > 96) $error("%m: LEN_W must be 2 .. 96 (length codes 13 .. 15)");
         if (ZW < LEN_W || ZW > 112) $error("%m: ZW must be LEN_W .. 112 (budget code 15)");
+        if (FEED_W > 120) $error("%m: FEED_W must be at most 120 (limit code 15)");
     end
 
     // bytes of each field and its offset in the record
@@ -84,13 +95,17 @@ module record_unpack #(
     localparam integer RECORD_BYTES = O_BUDGET + BZ;
     localparam integer RB = 8 * RECORD_BYTES;
     localparam integer CW = 8;      // byte counter width: RECORD_BYTES < 256
+    localparam integer SPAN = 64;   // clock at which a scaled field's first bit is formed (shift <= 63)
+    localparam integer SCALED_END = SPAN + (FEED_W > PF + 1 ? FEED_W : PF + 1);  // ... and its last one + 1
+    localparam integer T = W > SCALED_END ? W : SCALED_END;         // the budget's start at block_shift 16
     localparam integer SL = 8 * O_LENGTH, SB = 8 * O_BUDGET;      // the length's, budget's bits
     localparam integer PB = W + FEED_W;                          // |axis| x cost
-    localparam integer DERIVE_CLOCKS = W + ZW + 15;
+    localparam integer DERIVE_CLOCKS = T + ZW + 15;
+    localparam integer SL_LIMIT = 8 * O_LIMIT, SL_RATE = 8 * O_RATE;  // the limit's, rate's bits
     initial begin
         if (RECORD_BYTES > 255) $error("%m: a record must be at most 255 bytes");
         if (PB > 8 * BL) $error("%m: W + FEED_W must be at most 8 B(LEN_W)");
-        if (DERIVE_CLOCKS > 255) $error("%m: W + ZW must be at most 240");
+        if (DERIVE_CLOCKS > 511) $error("%m: max(W, 64 + FEED_W, 65 + PF) + ZW must be at most 496");
     end
 
     localparam integer TB = 7;      // nibble table bytes of a compact record (14 fields)
@@ -124,10 +139,12 @@ module record_unpack #(
     reg             bad_length;     // a difference longer than its field
     reg  [1:0]      length_axis;    // length code: 1, 2, 3 = |x|, |y|, |z| x cost; 0 none
     reg             budget_code;    // budget code
-    reg  [7:0]      clock_count;    // clocks of the derivation
+    reg  [8:0]      clock_count;    // clocks of the derivation
     reg             derived;        // the derivation is over (a compact record)
     reg             negative, seen; // the axis's sign; a one bit has gone (its magnitude)
     reg  [PF:0]     partial;        // the budget's multiplication: the product's high part
+    reg             limit_code, rate_code;          // limit, rate codes
+    reg  [31:0]     limit_partial, rate_partial;    // their multiplications' high parts
     wire            whole    = count == RECORD_BYTES[CW-1:0];
     wire            ready    = whole & (~compact | derived);
     wire            bad      = (cmd_kind[2] & cmd_kind[1]) | bad_length;   // kind 6, 7, a long difference
@@ -142,7 +159,10 @@ module record_unpack #(
     wire [3:0] code        = nibbles[3:0];
     wire       length_here = count == O_LENGTH[CW-1:0] && code >= 4'd13;
     wire       budget_here = count == O_BUDGET[CW-1:0] && code == 4'd15;
-    wire [3:0] n_here = field_start ? (length_here | budget_here ? 4'd0 : code) : left;
+    wire       limit_here  = count == O_LIMIT[CW-1:0] && code == 4'd15;
+    wire       rate_here   = count == O_RATE[CW-1:0] && code == 4'd15;
+    wire       code_here   = length_here | budget_here | limit_here | rate_here;
+    wire [3:0] n_here = field_start ? (code_here ? 4'd0 : code) : left;
     wire       use_in = n_here != 4'd0;
     wire [7:0] delta  = use_in ? in_data : field_start ? 8'd0 : {8{sign}};
     wire [8:0] sum    = {1'b0, record[7:0]} + {1'b0, delta} + {8'd0, carry & ~field_start};
@@ -173,23 +193,37 @@ module record_unpack #(
     // The derivation, clock c of DERIVE_CLOCKS.  c = 0: the length's bytes take the axis;
     // c = 1 .. W: a shift-and-add step, its multiplier bit the axis's magnitude's (a
     // two's complement negated bit-serially: inverted after the first one bit).
-    // c = W + 15 - s + j, j = 0 .. s + ZW - 1 (s = block_shift - 1): the budget's step j,
+    // c = SPAN - shift + j, j = 0 .. shift + width - 1: the limit's (rate's) step j, the
+    // cost's bit j times the scale, product bit j shifted into the field from j = shift on.
+    // c = T + 15 - s + j, j = 0 .. s + ZW - 1 (s = block_shift - 1): the budget's step j,
     // the length's bit j (j < LEN_W, its bits rotated back into place) times the rate,
     // product bit j shifted into the budget's bytes from j = s on.
     wire [3:0]      scale    = block_shift == 4'd0 ? 4'd0 : block_shift - 4'd1;
     wire            deriving = whole & compact & ~derived;
     wire [W-1:0]    axis     = length_axis == 2'd1 ? cmd_x : length_axis == 2'd2 ? cmd_y : cmd_z;
-    wire            load     = deriving & (length_axis != 2'd0) & (clock_count == 8'd0);
-    wire            multiply = deriving & (length_axis != 2'd0) & (clock_count != 8'd0)
-                               & (clock_count <= W[7:0]);
+    wire            load     = deriving & (length_axis != 2'd0) & (clock_count == 9'd0);
+    wire            multiply = deriving & (length_axis != 2'd0) & (clock_count != 9'd0)
+                               & (clock_count <= W[8:0]);
     wire [PB-1:0]   product  = record[SL +: PB];
     wire            bit_m    = product[0] ^ (negative & seen);
     wire [FEED_W:0] step_sum = {1'b0, product[PB-1:W]} + (bit_m ? {1'b0, cmd_cost} : {(FEED_W+1){1'b0}});
-    wire [7:0]      budget_at = W[7:0] + 8'd15 - {4'd0, scale};
-    wire [7:0]      j        = clock_count - budget_at;
+    wire [8:0]      budget_at = T[8:0] + 9'd15 - {5'd0, scale};
+    wire [8:0]      j        = clock_count - budget_at;
     wire            budget_step = deriving & budget_code & (clock_count >= budget_at);
-    wire            bit_l    = j < LEN_W[7:0] ? record[SL] : 1'b0;
-    wire [PF+1:0]   rate_sum = {1'b0, partial} + (bit_l ? {1'b0, cmd_rate} : {(PF+2){1'b0}});
+    wire            bit_l    = j < LEN_W[8:0] ? record[SL] : 1'b0;
+    wire [PF+1:0]   budget_sum = {1'b0, partial} + (bit_l ? {1'b0, cmd_rate} : {(PF+2){1'b0}});
+    // the limit's and the rate's steps: j = c + shift - SPAN, the product's bit into the field at c >= SPAN
+    wire [9:0]      limit_j  = {1'b0, clock_count} + {4'd0, limit_shift} - SPAN[9:0];
+    wire [9:0]      rate_j   = {1'b0, clock_count} + {4'd0, rate_shift} - SPAN[9:0];
+    wire            limit_step = deriving & limit_code & ~limit_j[9] & (clock_count < SPAN[8:0] + FEED_W[8:0]);
+    wire            rate_step  = deriving & rate_code & ~rate_j[9] & (clock_count < SPAN[8:0] + PF[8:0] + 9'd1);
+    wire            emit     = clock_count >= SPAN[8:0];
+    wire [FEED_W-1:0] cost_l = cmd_cost >> limit_j;      // the cost's bit j at bit 0 (0 from j = FEED_W on)
+    wire [FEED_W-1:0] cost_r = cmd_cost >> rate_j;
+    wire            bit_lc   = cost_l[0];
+    wire            bit_rc   = cost_r[0];
+    wire [32:0]     limit_sum = {1'b0, limit_partial} + (bit_lc ? {1'b0, limit_scale} : 33'd0);
+    wire [32:0]     rate_sum = {1'b0, rate_partial} + (bit_rc ? {1'b0, rate_scale} : 33'd0);
 
     integer b;                      // (the budget bytes' bits above ZW)
     wire take    = in_valid & in_ready;
@@ -199,10 +233,12 @@ module record_unpack #(
         if (rst | flush) begin
             count <= {CW{1'b0}}; record <= {RB{1'b0}}; compact <= 1'b0; zero_ijkl <= 1'b0; table_count <= 3'd0;
             nibbles <= {(8*TB){1'b0}}; left <= 4'd0; carry <= 1'b0; sign <= 1'b0; bad_length <= 1'b0;
-            length_axis <= 2'd0; budget_code <= 1'b0; clock_count <= 8'd0; derived <= 1'b0;
+            length_axis <= 2'd0; budget_code <= 1'b0; clock_count <= 9'd0; derived <= 1'b0;
             negative <= 1'b0; seen <= 1'b0; partial <= {(PF+1){1'b0}};
+            limit_code <= 1'b0; rate_code <= 1'b0; limit_partial <= 32'd0; rate_partial <= 32'd0;
         end else if (taken) begin
-            count <= {CW{1'b0}}; clock_count <= 8'd0; derived <= 1'b0; partial <= {(PF+1){1'b0}};
+            count <= {CW{1'b0}}; clock_count <= 9'd0; derived <= 1'b0; partial <= {(PF+1){1'b0}};
+            limit_partial <= 32'd0; rate_partial <= 32'd0;
         end else begin
             if ((take & in_table) | skip) begin
                 nibbles <= {skip ? 8'd0 : in_data, nibbles[8*TB-1:8]};
@@ -215,7 +251,7 @@ module record_unpack #(
             if (take && count == {CW{1'b0}}) begin          // the head
                 compact <= in_data[7]; zero_ijkl <= in_data[7] & in_data[6];
                 table_count <= 3'd0; bad_length <= 1'b0;
-                length_axis <= 2'd0; budget_code <= 1'b0;
+                length_axis <= 2'd0; budget_code <= 1'b0; limit_code <= 1'b0; rate_code <= 1'b0;
             end
             if (body & advance) begin
                 carry <= sum[8];
@@ -225,12 +261,14 @@ module record_unpack #(
                     nibbles <= nibbles >> 4;
                     if (length_here) length_axis <= code[1:0];
                     if (budget_here) budget_code <= 1'b1;
-                    if (!length_here && !budget_here && {4'd0, code} > here_bytes) bad_length <= 1'b1;
+                    if (limit_here) limit_code <= 1'b1;
+                    if (rate_here) rate_code <= 1'b1;
+                    if (!code_here && {4'd0, code} > here_bytes) bad_length <= 1'b1;
                 end
             end
             if (deriving) begin
-                clock_count <= clock_count + 8'd1;
-                if (clock_count == DERIVE_CLOCKS[7:0] - 8'd1) derived <= 1'b1;
+                clock_count <= clock_count + 9'd1;
+                if (clock_count == DERIVE_CLOCKS[8:0] - 9'd1) derived <= 1'b1;
             end
             if (load) begin
                 record[SL +: 8 * BL] <= {{(8 * BL - W){1'b0}}, axis};       // 8 B(LEN_W) > W
@@ -241,17 +279,31 @@ module record_unpack #(
                 record[SL +: PB] <= {step_sum, product[W-1:1]};
                 seen <= seen | product[0];
             end
+            if (limit_step) begin
+                limit_partial <= limit_sum[32:1];
+                if (emit) begin
+                    record[SL_LIMIT +: FEED_W] <= {limit_sum[0], record[SL_LIMIT + 1 +: FEED_W - 1]};
+                    for (b = FEED_W; b < 8 * BF; b = b + 1) record[SL_LIMIT + b] <= 1'b0;
+                end
+            end
+            if (rate_step) begin
+                rate_partial <= rate_sum[32:1];
+                if (emit) begin
+                    record[SL_RATE +: PF + 1] <= {rate_sum[0], record[SL_RATE + 1 +: PF]};
+                    for (b = PF + 1; b < 8 * BR; b = b + 1) record[SL_RATE + b] <= 1'b0;
+                end
+            end
             if (budget_step) begin
-                partial <= rate_sum[PF+1:1];
-                if (j < LEN_W[7:0]) record[SL +: LEN_W] <= {record[SL], record[SL + 1 +: LEN_W - 1]};
-                if (j >= {4'd0, scale}) begin
-                    record[SB +: ZW] <= {rate_sum[0], record[SB + 1 +: ZW - 1]};
+                partial <= budget_sum[PF+1:1];
+                if (j < LEN_W[8:0]) record[SL +: LEN_W] <= {record[SL], record[SL + 1 +: LEN_W - 1]};
+                if (j >= {5'd0, scale}) begin
+                    record[SB +: ZW] <= {budget_sum[0], record[SB + 1 +: ZW - 1]};
                     for (b = ZW; b < 8 * BZ; b = b + 1) record[SB + b] <= 1'b0;   // the bytes' high bits
                 end
             end
         end
     end
 
-    wire unused = &{1'b0, record};      // the unused high bits of the fields
+    wire unused = &{1'b0, record, cost_l[FEED_W-1:1], cost_r[FEED_W-1:1]};   // the unused high bits of the fields
 endmodule
 `default_nettype wire

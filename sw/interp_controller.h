@@ -253,6 +253,14 @@ extern "C" {
 #define CONTROLLER__MOTION__JERK_SHIFT_bp 4
 #define CONTROLLER__MOTION__JERK_SHIFT_bw 4
 #define CONTROLLER__MOTION__JERK_SHIFT_reset 0x0
+#define CONTROLLER__MOTION__LIMIT_SHIFT_bm 0x3f00
+#define CONTROLLER__MOTION__LIMIT_SHIFT_bp 8
+#define CONTROLLER__MOTION__LIMIT_SHIFT_bw 6
+#define CONTROLLER__MOTION__LIMIT_SHIFT_reset 0x0
+#define CONTROLLER__MOTION__RATE_SHIFT_bm 0x3f0000
+#define CONTROLLER__MOTION__RATE_SHIFT_bp 16
+#define CONTROLLER__MOTION__RATE_SHIFT_bw 6
+#define CONTROLLER__MOTION__RATE_SHIFT_reset 0x0
 
 // reg - controller::INPUT_INVERT
 #define CONTROLLER__INPUT_INVERT__ESTOP_bm 0x1
@@ -394,6 +402,18 @@ extern "C" {
 #define CONTROLLER__SPINDLE_OVERRIDE__SCALE_bw 10
 #define CONTROLLER__SPINDLE_OVERRIDE__SCALE_reset 0x100
 
+// reg - controller::LIMIT_SCALE
+#define CONTROLLER__LIMIT_SCALE__VALUE_bm 0xffffffff
+#define CONTROLLER__LIMIT_SCALE__VALUE_bp 0
+#define CONTROLLER__LIMIT_SCALE__VALUE_bw 32
+#define CONTROLLER__LIMIT_SCALE__VALUE_reset 0x0
+
+// reg - controller::RATE_SCALE
+#define CONTROLLER__RATE_SCALE__VALUE_bm 0xffffffff
+#define CONTROLLER__RATE_SCALE__VALUE_bp 0
+#define CONTROLLER__RATE_SCALE__VALUE_bw 32
+#define CONTROLLER__RATE_SCALE__VALUE_reset 0x0
+
 // addrmap - controller
 typedef struct __attribute__ ((__packed__)) {
     uint32_t ID;
@@ -430,10 +450,12 @@ typedef struct __attribute__ ((__packed__)) {
     uint32_t OUTPUT_INVERT;
     uint32_t INPUT_FILTER;
     uint32_t SPINDLE_OVERRIDE;
+    uint32_t LIMIT_SCALE;
+    uint32_t RATE_SCALE;
 } controller_t;
 
 
-static_assert(sizeof(controller_t) == 0x88, "Packing error");
+static_assert(sizeof(controller_t) == 0x90, "Packing error");
 
 #ifdef __cplusplus
 }

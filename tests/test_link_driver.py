@@ -57,7 +57,7 @@ def test_every_record_once_in_order(noise, count):
     # the settings arrived (each write executed exactly once, in order)
     assert [w for w in model.writes if w[0] != "CONTROL"] == [
         ("PULSE_WIDTH", 30), ("DIR_SETUP", 40), ("DIR_HOLD", 50), ("QUANTUM_LO", 5), ("QUANTUM_HI", 7),
-        ("MOTION", 3 | 2 << 4), ("OVERRIDE", 120), ("SPINDLE_OVERRIDE", 256)]
+        ("MOTION", 3 | 2 << 4), ("LIMIT_SCALE", 0), ("RATE_SCALE", 0), ("OVERRIDE", 120), ("SPINDLE_OVERRIDE", 256)]
     if noise:
         assert model.errors > 0 and driver.recoveries > 0           # the noise did hit, and was recovered
 
@@ -468,7 +468,7 @@ def test_controller_reset_mid_stream_is_one_line_error():
 
 @pytest.mark.parametrize("reset_at, earlier, hold, why", [
     (0.2, 0, False, "was it reset"),                  # while the records stream: a NAK names it
-    (0.7, 0, False, "with records still to run"),     # all sent, some running: idle with records missing
+    (0.45, 0, False, "with records still to run"),     # all sent, some running: idle with records missing
     (0.7, 5, False, "EXECUTED went back"),            # ... after an earlier program: the count went back
     (0.7, 0, True, "was it reset"),                   # held ('!') from the start, waiting for credit:
                                                       # the credit probe's ACK names it
@@ -496,7 +496,7 @@ def test_a_hold_in_the_moment_of_a_pause_is_the_pause():
     from interp.commands.send import compile_build, pause_positions, pause_record
 
     _, compiled = compile_text("G21 G91\nG1 X1 F600\nM0\nG1 X1\nM2\n")
-    stream = encode_program(compiled.commands, compile_build(), block_shift=compiled.settings["block_shift"])
+    stream = encode_program(compiled.commands, compile_build(), codes=compiled)
     where = pause_positions(compiled, (0, 0, 0))
     assert list(where.values()) == [(100, 0, 0)]
     told = {}

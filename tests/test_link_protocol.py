@@ -218,3 +218,55 @@ def test_compact_refuses_long_difference():
         reader.take(bytes([r.COMPACT]) + table + bytes(6))
     assert r.compact(r.encode({}), bytes(68)) == bytes([r.COMPACT | r.ZERO_IJKL]) + bytes(5)   # all zero: 6 bytes
     assert r.compact(r.encode({"i": 1}), bytes(68)) == bytes([r.COMPACT]) + bytes([0, 0, 1]) + bytes(4) + b"\x01"
+
+
+def test_limit_and_rate_codes_of_a_compiled_program():
+    """The compiler's scales give every line's limit and rate exactly, so interp send sends
+    them as codes; the controller's reader, with those scales, forms the compiled fields,
+    and with other scales it would not (the codes are the only bytes of those fields)."""
+    from interp.commands.gcode import compile_text
+    from interp.gcode.compile import scale_of
+
+    moves = "".join(f"G1 X{x:.3f} Y{y:.3f} Z{z:.3f}\n" for x, y, z in
+                    ((3.1, 0.7, 0), (1.2, 5.5, -0.3), (-2.2, 4.0, 0.1), (0.4, 0.1, 1.9), (7.7, -3.3, 0)))
+    _, compiled = compile_text("G21 G90 F2400\n" + moves + "M2\n")
+    codes = r.Codes.of(compiled)
+    assert codes.limit_scale >> 31 == 1 and codes.rate_scale >> 31 == 1       # 32 significant bits
+    assert scale_of(0.75) == (3 << 30, 32) and scale_of(0.0) == (0, 0)
+    stream = r.encode_program(compiled.commands, codes=codes)
+    reader, at, lines = r.RecordReader(codes=codes), 0, 0
+    for cmd in compiled.commands:
+        size = reader.length(stream[at:])
+        record = stream[at:at + size]
+        if cmd.kind == 0 and cmd.cost:
+            nibbles = r.table_nibbles(record)
+            assert nibbles[r.LIMIT_FIELD] == nibbles[r.RATE_FIELD] == r.SCALED_CODE
+            lines += 1
+            other = r.RecordReader(codes=r.Codes(codes.block_shift))
+            other.previous = reader.previous
+            assert r.decode(other.take(record))["limit"] != cmd.limit
+        assert r.decode(reader.take(record)) == dict(zip(r.FIELD_NAMES, cmd.fields()))
+        at += size
+    assert lines == 5 and at == len(stream)
+    assert len(stream) < len(r.encode_program(compiled.commands, codes=codes.block_shift))
+
+
+def test_scales_follow_the_binding_axis():
+    """With a slow Z, the compiler picks X's and Y's top speed (most of the lines), and the
+    Z-dominant line's limit goes as a difference."""
+    from interp.commands.gcode import compile_text
+    from interp.gcode.machine import load_machine
+
+    machine = load_machine(sets=["axis.z.max_rate_mm_min=600"])
+    moves = "G1 X3 Y1\nG1 X-1 Y4\nG1 X2 Y-2\nG1 X0.1 Z2\n"
+    _, compiled = compile_text("G21 G91 F3000\n" + moves + "M2\n", machine)
+    codes = r.Codes.of(compiled)
+    stream = r.encode_program(compiled.commands, codes=codes)
+    reader, at, coded = r.RecordReader(codes=codes), 0, []
+    for cmd in compiled.commands:
+        size = reader.length(stream[at:])
+        if cmd.kind == 0 and cmd.cost:
+            coded.append(r.table_nibbles(stream[at:at + size])[r.LIMIT_FIELD] == r.SCALED_CODE)
+        assert r.decode(reader.take(stream[at:at + size])) == dict(zip(r.FIELD_NAMES, cmd.fields()))
+        at += size
+    assert coded == [True, True, True, False]

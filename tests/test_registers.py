@@ -28,10 +28,10 @@ CONTRACT = {"ID": 0x00, "VERSION": 0x04, "BUILD0": 0x08, "BUILD1": 0x0C, "CLOCK_
             "PULSE_WIDTH": 0x48, "DIR_SETUP": 0x4C, "DIR_HOLD": 0x50, "QUANTUM_LO": 0x54, "QUANTUM_HI": 0x58,
             "MOTION": 0x5C, "INPUT_INVERT": 0x60, "SPINDLE_PERIOD": 0x64, "OUTPUTS": 0x68, "LINK_FRAMES": 0x6C,
             "LINK_ERRORS": 0x70, "CMD_DATA": 0x74, "EXECUTED": 0x78, "OUTPUT_INVERT": 0x7C,
-            "INPUT_FILTER": 0x80, "SPINDLE_OVERRIDE": 0x84}
+            "INPUT_FILTER": 0x80, "SPINDLE_OVERRIDE": 0x84, "LIMIT_SCALE": 0x88, "RATE_SCALE": 0x8C}
 WRITABLE = {"CONTROL", "OVERRIDE", "PULSE_WIDTH", "DIR_SETUP", "DIR_HOLD", "QUANTUM_LO", "QUANTUM_HI", "MOTION",
             "INPUT_INVERT", "SPINDLE_PERIOD", "POS_X", "POS_Y", "POS_Z", "OUTPUT_INVERT",
-            "INPUT_FILTER", "SPINDLE_OVERRIDE"}        # (POS_*: set at rest, homing)
+            "INPUT_FILTER", "SPINDLE_OVERRIDE", "LIMIT_SCALE", "RATE_SCALE"}   # (POS_*: set at rest, homing)
 
 
 @pytest.fixture(scope="module")
@@ -213,10 +213,10 @@ def test_every_register_is_described():
 
 @pytest.mark.parametrize("bad, where", [
     ("reg { field { sw = rw; } a[3:0] = 4'd0; } X @ 0x02;\n", "overlaps with 'ID'"),
-    ("reg { field { sw = rw; } a[3:0] = 4'd0; } X @ 0x8A;\n", "X: address 0x8A is not a multiple of 4"),
+    ("reg { field { sw = rw; } a[3:0] = 4'd0; } X @ 0x92;\n", "X: address 0x92 is not a multiple of 4"),
     ("reg { field { sw = rw; } a[3:0] = 4'd0; } X @ 0x100;\n", "X: address 0x100 is beyond the register block's read-back table"),
-    ("reg { field { sw = rw; } a[3:0] = 4'd0; } STATUS @ 0x88;\n", "Multiple declarations of instance 'STATUS'"),
-    ("reg { field { sw = rw; } a[3:0] = 4'd0 } Y @ 0x88;\n", "error: missing ';'"),
+    ("reg { field { sw = rw; } a[3:0] = 4'd0; } STATUS @ 0x90;\n", "Multiple declarations of instance 'STATUS'"),
+    ("reg { field { sw = rw; } a[3:0] = 4'd0 } Y @ 0x90;\n", "error: missing ';'"),
 ])
 def test_bad_rdl_is_one_line(tmp_path, bad, where):
     """A broken .rdl: exit status 1, one line naming the file, no traceback."""
@@ -243,7 +243,7 @@ def test_missing_rdl_is_one_line(tmp_path, capsys):
 # ignore writes, wb_adr[1:0] ignored, every access acknowledged within 2 clocks.
 DEFAULT_BUILD = {"CLK_HZ": 50_000_000, "W": 32, "FEED_W": 34, "FRAC": 32, "NW": 24, "PF": 16, "LEN_W": 66,
                  "ZW": 68, "MW": 12, "TW": 16, "POS_W": 32, "QUEUE_AW": 12, "CURVES": 1}
-UNKNOWN = (0x88, 0xC0, 0xFC)
+UNKNOWN = (0x90, 0xC0, 0xFC)
 
 _BENCH = """`timescale 1ns/1ps
 `default_nettype none
@@ -370,14 +370,14 @@ def test_controller_implements_the_map(tmp_path):
 
 def test_map_check_catches_a_wrong_value():
     """The comparison fails on a wrong reset, a writable read-only register and a slow ack."""
-    accesses = [(0, 0x44, 0), (1, 0x00, 0xFFFF_FFFF), (0, 0x00, 0), (0, 0x88, 0)]
-    lines = ["R 44 00000064 1", "W 00 ffffffff 1", "R 00 494e5450 2", "R 88 00000000 1"]
+    accesses = [(0, 0x44, 0), (1, 0x00, 0xFFFF_FFFF), (0, 0x00, 0), (0, 0x90, 0)]
+    lines = ["R 44 00000064 1", "W 00 ffffffff 1", "R 00 494e5450 2", "R 90 00000000 1"]
     assert map_mismatches(accesses, lines) == []
-    lines = ["R 44 00000063 1", "W 00 ffffffff 1", "R 00 ffffffff 3", "R 88 00000001 1"]
+    lines = ["R 44 00000063 1", "W 00 ffffffff 1", "R 00 ffffffff 3", "R 90 00000001 1"]
     assert map_mismatches(accesses, lines) == ["R OVERRIDE: 0x00000063, want 0x00000064",
                                                "R ID: acknowledged after 3 clocks (at most 2)",
                                                "R ID: 0xFFFFFFFF, want 0x494E5450 (after writing 0xFFFFFFFF)",
-                                               "R 0x88: 0x00000001, want 0x00000000"]
+                                               "R 0x90: 0x00000001, want 0x00000000"]
 
 
 def test_bad_option_is_one_line(capsys):

@@ -36,7 +36,7 @@ def test_send_sim_model(capsys, program):
     code, out, err = run(capsys, "send", program, "--sim-model")
     _, compiled = gcode.compile_text(PROGRAM)
     assert code == 0, err
-    size = len(encode_program(compiled.commands, block_shift=compiled.settings["block_shift"]))                   # compact records
+    size = len(encode_program(compiled.commands, codes=compiled))                   # compact records
     assert 8 * len(compiled.commands) <= size < 42 * len(compiled.commands)
     assert out.startswith(f"sent {len(compiled.commands)} records ({size} bytes)")
     assert err == ""
@@ -52,7 +52,7 @@ def test_send_sim_model_noise(capsys, program):
 def test_send_corpus_program(capsys):
     code, out, err = run(capsys, "send", str(CORPUS / "ugs_square.nc"), "--sim-model")
     _, compiled = gcode.compile_text((CORPUS / "ugs_square.nc").read_text())
-    assert code == 0 and out.startswith(f"sent 101 records ({len(encode_program(compiled.commands, block_shift=compiled.settings['block_shift']))} bytes)")
+    assert code == 0 and out.startswith(f"sent 101 records ({len(encode_program(compiled.commands, codes=compiled))} bytes)")
 
 
 def test_the_model_follows_arcs_in_every_plane(capsys, tmp_path):

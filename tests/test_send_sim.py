@@ -235,11 +235,11 @@ def test_a_reset_during_a_run_on_the_rtl(files, at):
         port = ResetAt(link, None)
         driver = Driver(port, baud=link.baud)
         driver.connect()
-        configure(driver, machine.timing(), compiled.settings)
+        configure(driver, machine.timing(), compiled.settings, compiled)
         at = port.at = link.now() + at                  # (seconds into the run)
         with pytest.raises(LinkError, match="reset"):
             run_program(driver, encode_program(compiled.commands, compile_build(),
-                                                 block_shift=compiled.settings["block_shift"]), len(compiled.commands),
+                                                 codes=compiled), len(compiled.commands),
                         max_seconds=5.0)
         assert port.done and link.now() < at + 1.0
 
@@ -440,14 +440,14 @@ def run_driver(files, steps, noise: float, seed: int = 1, before=None, keys=None
 
     machine = load_machine(str(files / "machine.toml"))
     _, compiled = compile_text(read_program(str(files / program)), machine)
-    stream = encode_program(compiled.commands, compile_build(), block_shift=compiled.settings["block_shift"])
+    stream = encode_program(compiled.commands, compile_build(), codes=compiled)
     link = SimLink(steps=steps, line_noise=noise, seed=seed, machine=machine)
     if before is not None:
         before(link, stream)
     driver = Driver(link, baud=link.baud)
     driver.connect()
     check_controller(driver, compile_build(), machine.clock_hz)
-    configure(driver, machine.timing(), compiled.settings)
+    configure(driver, machine.timing(), compiled.settings, compiled)
     outcome = run_program(driver, stream, len(compiled.commands), override=override,
                           keys=None if keys is None else lambda: keys(link))
     registers = {name: driver.read_register(name) for name in ("POS_X", "POS_Y", "POS_Z", "EXECUTED",

@@ -98,7 +98,7 @@ def measure_rate(baud: int, records: int, machine=None, seed: int = 1, line_nois
         driver = Driver(link, baud=baud)
         driver.connect()
         check_controller(driver, compile_build(), machine.clock_hz)
-        configure(driver, machine.timing(), compiled.settings)
+        configure(driver, machine.timing(), compiled.settings, compiled)
         driver.write_register("CONTROL", p.CONTROL_ABORT | p.CONTROL_CLEAR | p.CONTROL_ENABLE)
         base = driver.read_register("EXECUTED")
         start = link.now()
@@ -132,7 +132,7 @@ def dense_programs(only: str | None = None, count: int | None = None, machine=No
         if compiled.commands and compiled.machine_time_s > 0:
             out.append((path.name, len(compiled.commands), compiled.machine_time_s, list(compiled.command_time),
                         len(encode_program(compiled.commands, compile_build(),
-                                                           block_shift=compiled.settings["block_shift"]))))
+                                                           codes=compiled))))
     out.sort(key=lambda row: -row[1] / row[2])
     return out[:count] if count else out
 

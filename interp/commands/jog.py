@@ -76,8 +76,8 @@ def relative_move(driver: Driver, machine: Machine, limits: Machine, delta_mm, r
     words = " ".join(f"{a}{d:.6f}" for a, d in zip("XYZ", delta_mm) if d)
     _, compiled = compile_text(f"G21 G91 G1 {words} F{rate:.6f}\n", limits, start_steps=read_position(driver),
                                saved={})
-    configure(driver, machine.timing(), compiled.settings)
-    return run_program(driver, encode_program(compiled.commands, compile_build(), block_shift=compiled.settings["block_shift"]),
+    configure(driver, machine.timing(), compiled.settings, compiled)
+    return run_program(driver, encode_program(compiled.commands, compile_build(), codes=compiled),
                        len(compiled.commands),
                        keys=keys)
 

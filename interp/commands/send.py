@@ -545,13 +545,13 @@ class ProgramRun:
         compiled = compile_program(dataclasses.replace(program, moves=moves), self.machine, start_steps=here)
         self.show(compiled.warnings, "warning")
         build = compile_build()
-        stream = encode_program(compiled.commands, build, block_shift=compiled.settings["block_shift"])
+        stream = encode_program(compiled.commands, build, codes=compiled)
         if not compiled.commands and last and not self.records and not offsets_changed(self.machine, self.saved,
                                                                                         program.saved):
             print("interp: warning: the program has no command to send", file=sys.stderr)
         if any(c.kind == CURVE for c in compiled.commands):
             check_controller(self.driver, build, self.machine.clock_hz, curves=True)
-        configure(self.driver, self.machine.timing(), compiled.settings)
+        configure(self.driver, self.machine.timing(), compiled.settings, compiled)
         if self.interactive and not self.records:
             print(f"interp send: {len(compiled.commands)} records, {len(stream)} bytes; {KEYS_HELP}",
                   file=sys.stderr)

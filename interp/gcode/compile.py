@@ -206,6 +206,8 @@ class Compiled:
     command_time: list[float] = field(default_factory=list)             # machine seconds at each command's end
     # the harness's settings: speed_quantum (A), block_shift, jerk_shift, override
     settings: dict[str, int] = field(default_factory=dict)
+    # the record unpacker's limit and rate codes: limit_scale, limit_shift, rate_scale, rate_shift
+    codes: dict[str, int] = field(default_factory=dict)
     plans: list = field(default_factory=list)       # planner.Plan of each move command, in order
     profile: str = "trapezoid"
     costs: str = "true"
@@ -226,6 +228,33 @@ def held_speed(feed: int, quantum: int) -> int:
     """The cruise speed_ramp holds for a feed word: whole quanta, at least one (its cap lowers n
     while n A > feed, down to 1)."""
     return max(1, feed // quantum) * quantum
+
+
+SCALE_BITS, SHIFT_MAX = 32, 63              # LIMIT_SCALE / RATE_SCALE, MOTION's limit_shift / rate_shift
+
+
+def scale_of(ratio: float) -> tuple[int, int]:
+    """(scale, shift) with scale / 2^shift nearest `ratio`: scale below 2^32, the largest shift
+    up to 63 that keeps it there."""
+    if ratio <= 0:
+        return 0, 0
+    shift = max(0, min(SHIFT_MAX, SCALE_BITS - 1 - math.floor(math.log2(ratio))))
+    while shift and round(ratio * (1 << shift)) >> SCALE_BITS:
+        shift -= 1
+    return min(round(ratio * (1 << shift)), (1 << SCALE_BITS) - 1), shift
+
+
+def fit_scale(pairs, ratios, width: int) -> tuple[int, int]:
+    """Of the candidate ratios' (scale, shift), the one for which floor(cost x scale /
+    2^shift) mod 2^width equals the value of most (cost, value) pairs; (0, 0) without pairs."""
+    best, hits = (0, 0), 0
+    mask = (1 << width) - 1
+    for candidate in dict.fromkeys(scale_of(r) for r in ratios):
+        scale, shift = candidate
+        count = sum(1 for cost, value in pairs if (cost * scale >> shift) & mask == value)
+        if count > hits:
+            best, hits = candidate, count
+    return best
 
 
 def _round(value: float) -> int:
@@ -688,6 +717,20 @@ class Compiler:
                                f"raise motion.jerk_mm_s3 or lower the clock")
         return block_shift, jerk_shift
 
+    def code_scales(self, moves, block_shift: int, quantum: int) -> dict[str, int]:
+        """The scales of the record unpacker's limit and rate codes (LIMIT_SCALE, RATE_SCALE and
+        MOTION's shifts): a line whose dominant axis binds has limit = floor(cost x the axis's
+        top speed in steps per clock) and rate = floor(cost x its acceleration's rate per unit
+        of cost); of the axes' values, the one that gives the program's commands exactly most
+        often (interp send sends the code only where it does)."""
+        speeds = [a.max_rate_mm_min / 60 * a.steps_per_mm / self.clock for a in self.axes]
+        accels = [a.accel_mm_s2 * a.steps_per_mm / self.clock ** 2 * (1 << (block_shift + PF)) / quantum
+                  for a in self.axes]
+        costed = [c for c in moves if c.cost]
+        limit = fit_scale([(c.cost, c.limit) for c in costed], speeds, FEED_W)
+        rate = fit_scale([(c.cost, c.rate) for c in costed], accels, PF + 1)
+        return {"limit_scale": limit[0], "limit_shift": limit[1], "rate_scale": rate[0], "rate_shift": rate[1]}
+
     @staticmethod
     def least_block_shift(a_pu: float, speed_pu: float, braking: float) -> int:
         """The smallest block_shift >= BLOCK_SHIFT_MIN at which the profile's words hold the
@@ -904,6 +947,7 @@ class Compiler:
                 raise CompileError(f"line {cmd.source}: the move is too long or too fast for cmd_length / "
                                    f"cmd_budget / the speed in quanta")
         self.hardware_exits(moves)
+        self.out.codes = self.code_scales(moves, block_shift, quantum)
         # machine time: the plan's trapezoids, the dwells; the S-curve's filter adds its window
         # (2^(jerk_shift + block_shift) clocks) to every run between two stops
         window = (1 << (block_shift + jerk_shift)) / clock if self.profile_name != "trapezoid" else 0.0

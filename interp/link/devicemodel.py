@@ -27,7 +27,7 @@ from collections import deque
 from . import protocol as p
 from ..gcode.compile import EVENT_CODES
 from ..models.motion import to_machine
-from .records import DEFAULT_BUILD, Build, RecordReader, decode, record_bytes
+from .records import DEFAULT_BUILD, Build, Codes, RecordReader, decode, record_bytes
 
 
 PROBE_OVERSHOOT = 3         # steps the machine runs past the probe's touch while it stops
@@ -99,7 +99,7 @@ class DeviceModel:
         self.regs = {"OVERRIDE": 100, "PULSE_WIDTH": 25, "DIR_SETUP": 25, "DIR_HOLD": 25, "QUANTUM_LO": 1,
                      "QUANTUM_HI": 0, "MOTION": 2, "INPUT_INVERT": 0, "SPINDLE_PERIOD": clock_hz // 20000,
                      "OUTPUT_INVERT": 0, "INPUT_FILTER": 0x1F << 16,
-                     "SPINDLE_OVERRIDE": 256}   # (its inputs are ideal: no filter delay)
+                     "SPINDLE_OVERRIDE": 256, "LIMIT_SCALE": 0, "RATE_SCALE": 0}   # (its inputs are ideal: no filter delay)
         self.writes: list[tuple[str, int]] = []     # register writes executed, in order
         self.write_states: list[int] = []           # ... and the state each found
 
@@ -339,7 +339,9 @@ class DeviceModel:
             size = self.reader.length(self.queue)
             raw = bytes(self.queue[:size])
             del self.queue[:size]
-            self.reader.block_shift = self.regs["MOTION"] & 15      # a budget code's scale
+            motion = self.regs["MOTION"]                # the coded fields' scales
+            self.reader.codes = Codes(motion & 15, self.regs["LIMIT_SCALE"], motion >> 8 & 63,
+                                      self.regs["RATE_SCALE"], motion >> 16 & 63)
             try:
                 record = decode(self.reader.take(raw), self.build, strict=False)   # as the ports see it
             except ValueError:

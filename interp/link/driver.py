@@ -23,7 +23,7 @@ from typing import ClassVar
 
 from . import protocol as p
 from ..models.speed_ramp import BLOCK_SHIFT_MIN
-from .records import DEFAULT_BUILD, Build, record_bytes
+from .records import DEFAULT_BUILD, Build, Codes, record_bytes
 
 REG = p.REGISTER_ADDRESSES
 MAX_REFUSALS = 8            # NAK 4 in a row without progress before the driver gives up
@@ -480,13 +480,18 @@ def check_controller(driver: Driver, build: Build = DEFAULT_BUILD, clock_hz: flo
     return v
 
 
-def settings_writes(timing: dict, settings: dict) -> list[tuple[str, int]]:
+def settings_writes(timing: dict, settings: dict, codes=None) -> list[tuple[str, int]]:
     """The register writes of the machine settings `interp gcode` runs with (step timing,
-    speed quantum, profile shifts, feed override; the spindle override at 100 %), in order: for a driver, a bench or firmware."""
+    speed quantum, profile shifts, feed override; the spindle override at 100 %) and of the
+    record codes' scales (`codes`: a compiled program's, see records.Codes.of; none: 0), in
+    order: for a driver, a bench or firmware."""
     quantum = int(settings.get("speed_quantum", 1))
+    c = Codes.of(codes) or Codes()
+    motion = (int(settings.get("block_shift", BLOCK_SHIFT_MIN)) | int(settings.get("jerk_shift", 0)) << 4
+              | c.limit_shift << 8 | c.rate_shift << 16)
     return [("PULSE_WIDTH", int(timing["pulse_width"])), ("DIR_SETUP", int(timing["setup"])),
             ("DIR_HOLD", int(timing["hold"])), ("QUANTUM_LO", quantum & 0xFFFFFFFF), ("QUANTUM_HI", quantum >> 32),
-            ("MOTION", int(settings.get("block_shift", BLOCK_SHIFT_MIN)) | int(settings.get("jerk_shift", 0)) << 4),
+            ("MOTION", motion), ("LIMIT_SCALE", c.limit_scale), ("RATE_SCALE", c.rate_scale),
             ("OVERRIDE", int(settings.get("override", 100))), ("SPINDLE_OVERRIDE", spindle_scale(100))]
 
 
@@ -567,12 +572,13 @@ def check_idle(driver: Driver) -> None:
                         "wait for its program to end or abort it")
 
 
-def configure(driver: Driver, timing: dict, settings: dict) -> None:
-    """The machine settings `interp gcode` runs with, written through the link.  The
-    controller takes the speed settings (QUANTUM, MOTION) only while it is not busy (ALARM
-    is not: it flushes): LinkError when it is busy with a program, or did not take them."""
+def configure(driver: Driver, timing: dict, settings: dict, codes=None) -> None:
+    """The machine settings `interp gcode` runs with and the record codes' scales, written
+    through the link.  The controller takes the speed settings (QUANTUM, MOTION, the
+    scales) only while it is not busy (ALARM is not: it flushes): LinkError when it is busy
+    with a program, or did not take them."""
     check_idle(driver)
-    writes = settings_writes(timing, settings)
+    writes = settings_writes(timing, settings, codes)
     for name, value in writes:
         driver.write_register(name, value)
     for name, value in writes:

@@ -217,7 +217,7 @@ def kept_bits(register: str) -> int:
 
 STATUS_REFUSED = 1 << _registers.FIELDS["STATUS.refused"][0]
 # taken only while the controller is not busy (a write while busy: STATUS.refused)
-SPEED_SETTINGS = ("QUANTUM_LO", "QUANTUM_HI", "MOTION")
+SPEED_SETTINGS = ("QUANTUM_LO", "QUANTUM_HI", "MOTION", "LIMIT_SCALE", "RATE_SCALE")
 # ERROR codes beyond motion_top's 1..10
 ERROR_ABORT_AT_SPEED = 19     # CONTROL.abort while the machine moved (ALARM until CONTROL.clear)
 ERROR_TEXT = {16: "e-stop", 17: "limit switch", 18: "record error (a bad record reached the unpacker)",

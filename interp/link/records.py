@@ -21,13 +21,15 @@ nibble of byte t, 0 .. B, or a code below), then each field's n bytes, two's com
 little-endian; the controller sign-extends them and adds them to the field's bytes
 modulo 2^(8 B).  A compact head with bit 6 set (ZERO_IJKL) says i, j, k and l are zero:
 its table has 5 bytes (none for those four fields) and no bytes follow for them.
-Two codes send no bytes and have the controller form the field:
-length 13, 14, 15 (|x|, |y|, |z| x cost: a line's step events x cost) and budget 15
-(floor(rate x length / 2^(block_shift - 1)), the compiler's budget when the speed
-quantum is 1).  The driver sends compact records, with the codes wherever they give
-the field's value exactly (about a third of the bytes of plain ones on CAM programs);
-the controller's record unpacker takes RECORD_BYTES + 8 + DERIVE_CLOCKS clocks for one
-(DERIVE_CLOCKS = W + ZW + 15, codes or not), RECORD_BYTES + 1 for a plain one.
+Codes send no bytes and have the controller form the field: limit 15 and rate 15
+(floor(cost x LIMIT_SCALE / 2^limit_shift), floor(cost x RATE_SCALE / 2^rate_shift):
+a line's axis ceiling and acceleration), length 13, 14, 15 (|x|, |y|, |z| x cost: a
+line's step events x cost) and budget 15 (floor(rate x length / 2^(block_shift - 1)),
+the compiler's budget when the speed quantum is 1).  The driver sends compact records,
+with the codes wherever they give the field's value exactly (a quarter to a third of
+the bytes of plain ones on CAM programs); the controller's record unpacker takes
+RECORD_BYTES + 8 + DERIVE_CLOCKS clocks for one (DERIVE_CLOCKS = max(W, 64 + max(FEED_W,
+PF + 1)) + ZW + 15, codes or not), RECORD_BYTES + 1 for a plain one.
 """
 from __future__ import annotations
 
@@ -98,17 +100,54 @@ COMPACT = 0x80                  # head bit 7: a compact record
 TABLE_BYTES = 7                 # its nibble table: 14 fields, one nibble each
 LENGTH_CODES = {13: "x", 14: "y", 15: "z"}     # length formed as |axis| x cost
 BUDGET_CODE = 15                # budget formed as floor(rate x length / 2^(block_shift - 1))
-LENGTH_FIELD, BUDGET_FIELD = 12, 13             # their places in the nibble table
+SCALED_CODE = 15                # limit, rate formed as floor(cost x scale / 2^shift)
+LIMIT_FIELD, RATE_FIELD = 8, 10                 # places in the nibble table
+LENGTH_FIELD, BUDGET_FIELD = 12, 13
+SPAN = 64                       # the unpacker's clock of a scaled field's first bit (shifts 0 .. 63)
 ZERO_IJKL = 0x40                # compact head bit 6: i, j, k, l zero, a table of 5 bytes
 SHORT_TABLE_BYTES = 5
 IJKL = ("i", "j", "k", "l")     # (fields 4 .. 7: the table's bytes 2 and 3)
 
 
+@dataclass(frozen=True)
+class Codes:
+    """What the controller forms coded fields with: MOTION.block_shift (the budget code),
+    LIMIT_SCALE, RATE_SCALE and MOTION's limit_shift, rate_shift (the limit and rate codes;
+    a scale of 0 forms 0).  The controller's values after a reset are the defaults."""
+
+    block_shift: int = 2
+    limit_scale: int = 0
+    limit_shift: int = 0
+    rate_scale: int = 0
+    rate_shift: int = 0
+
+    @classmethod
+    def of(cls, source) -> "Codes | None":
+        """None (no codes), a Codes, a block_shift, a dict of the fields, or a compiled
+        program (interp.gcode.compile.Compiled: its settings' block_shift and its codes)."""
+        if source is None or isinstance(source, Codes):
+            return source
+        if isinstance(source, int):
+            return cls(block_shift=source)
+        if hasattr(source, "settings") and hasattr(source, "codes"):
+            source = {**source.codes, "block_shift": source.settings.get("block_shift", 2)}
+        return cls(**{k: int(v) for k, v in dict(source).items() if k in cls.__dataclass_fields__})
+
+
 def derive_clocks(build=None) -> int:
     """Clocks the record unpacker spends after a compact record's last byte forming its
-    coded fields (the same with or without codes): W + ZW + 15 (115 at the default build)."""
+    coded fields (the same with or without codes): max(W, 64 + max(FEED_W, PF + 1)) + ZW + 15
+    (181 at the default build)."""
     b = _build(build)
-    return b.W + b.ZW + 15
+    return max(b.W, SPAN + max(b.FEED_W, b.PF + 1)) + b.ZW + 15
+
+
+def derived_scaled(cost: int, scale: int, shift: int, bits: int, build=None) -> int:
+    """A limit or rate code's value: floor(cost x scale / 2^shift) modulo 2^bits (cost FEED_W
+    bits, scale 32 bits, shift 6 bits)."""
+    b = _build(build)
+    product = (cost & ((1 << b.FEED_W) - 1)) * (scale & 0xFFFFFFFF)
+    return (product >> (shift & 63)) & ((1 << bits) - 1)
 
 
 def derived_length(axis: int, cost: int, build=None) -> int:
@@ -132,7 +171,7 @@ def unpack_interval(build=None, compact_records: bool = True) -> int:
     """Clocks between two records the controller's record unpacker hands to motion_top
     from a filled queue: RECORD_BYTES clocks to form the bytes (one a clock) and one to
     push, and for a compact record (the link's) the 7 clocks of its nibble table and the
-    DERIVE_CLOCKS of its coded fields (191 at the default build; 69 for plain records).
+    DERIVE_CLOCKS of its coded fields (257 at the default build; 69 for plain records).
     interp gcode pushes its commands no faster."""
     return record_bytes(build) + 1 + (TABLE_BYTES + derive_clocks(build) if compact_records else 0)
 
@@ -234,19 +273,24 @@ def _offsets(build: Build) -> dict[str, tuple[int, int]]:
     return out
 
 
-def compact(record: bytes, previous: bytes, build=None, block_shift: int | None = None) -> bytes | None:
+def compact(record: bytes, previous: bytes, build=None, codes=None) -> bytes | None:
     """A plain record -> its compact form after `previous` (a plain record, or zeros after a
     reset or flush); None when a field's difference needs more than 15 bytes.  With the
-    controller's block_shift, a length or budget its code gives exactly is sent as the code."""
+    controller's Codes (or anything Codes.of takes), a field its code gives exactly is sent
+    as the code."""
     b = _build(build)
-    codes = {}
-    if block_shift is not None:
+    settings, codes = Codes.of(codes), {}
+    if settings is not None:
         f = decode(record, b)
+        if derived_scaled(f["cost"], settings.limit_scale, settings.limit_shift, b.FEED_W, b) == f["limit"]:
+            codes["limit"] = SCALED_CODE
+        if derived_scaled(f["cost"], settings.rate_scale, settings.rate_shift, b.PF + 1, b) == f["rate"]:
+            codes["rate"] = SCALED_CODE
         for code, axis in LENGTH_CODES.items():
             if derived_length(f[axis], f["cost"], b) == f["length"]:
                 codes["length"] = code
                 break
-        if derived_budget(f["rate"], f["length"], block_shift, b) == f["budget"]:
+        if derived_budget(f["rate"], f["length"], settings.block_shift, b) == f["budget"]:
             codes["budget"] = BUDGET_CODE
     zero = not any(any(record[at:at + size]) for at, size in (_offsets(b)[name] for name in IJKL))
     nibbles, body, at = [], bytearray(), 1
@@ -294,7 +338,8 @@ def table_nibbles(data) -> list[int] | None:
 
 def is_code(field: int, n: int) -> bool:
     """A nibble that is a code (no bytes follow)."""
-    return (field == LENGTH_FIELD and n in LENGTH_CODES) or (field == BUDGET_FIELD and n == BUDGET_CODE)
+    return ((field == LENGTH_FIELD and n in LENGTH_CODES) or (field == BUDGET_FIELD and n == BUDGET_CODE)
+            or (field in (LIMIT_FIELD, RATE_FIELD) and n == SCALED_CODE))
 
 
 class RecordReader:
@@ -302,11 +347,11 @@ class RecordReader:
     plain and compact records, the previous record kept (zeros at first, as after a
     reset or flush)."""
 
-    def __init__(self, build=None, block_shift: int = 2):
+    def __init__(self, build=None, codes=None):
         self.build = _build(build)
         self.size = record_bytes(self.build)
         self.previous = bytes(self.size)
-        self.block_shift = block_shift              # the controller's, for a budget code
+        self.codes = Codes.of(codes) or Codes()     # the controller's, for the coded fields
 
     def length(self, data) -> int | None:
         """Bytes the record at the start of `data` takes; None while that is not known yet
@@ -345,50 +390,56 @@ class RecordReader:
         out, at = bytearray([data[0] & ~(COMPACT | ZERO_IJKL) & 0xFF]), 1
         body = 1 + table_bytes(data[0])
         nibbles = table_nibbles(data)
-        bad = False
+        bad, coded = False, []
         for field, (n, (name, bits)) in enumerate(zip(nibbles, layout(self.build))):
             size = nbytes(bits)
             if zero and name in IJKL:
                 out += bytes(size)
                 at += size
                 continue
-            if is_code(field, n):
-                value = self._coded_value(name, n, bytes(out))
-                out += value.to_bytes(size, "little")
-                at += size
-                continue
+            if is_code(field, n):               # formed once all the bytes are in, as the unpacker does
+                coded.append((name, n, at, size))
+                n = 0
             bad |= n > size
             n = min(n, size)                    # the unpacker takes B bytes of a longer difference
             difference = int.from_bytes(data[body:body + n], "little", signed=True) if n else 0
             value = (int.from_bytes(self.previous[at:at + size], "little") + difference) % (1 << (8 * size))
             out += value.to_bytes(size, "little")
             at, body = at + size, body + n
+        for name, code, at, size in coded:      # limit, rate, length, budget: in record order
+            out[at:at + size] = self._coded_value(name, code, bytes(out)).to_bytes(size, "little")
         self.previous = bytes(out)
         if bad:
             raise ValueError("a compact record's difference is longer than its field")
         return self.previous
 
     def _coded_value(self, name: str, code: int, formed: bytes) -> int:
-        """A coded field's value from the record's fields formed before it."""
+        """A coded field's value from the record's other fields and the coded ones before it."""
         places = _offsets(self.build)
 
         def field(which: str, signed: bool = False) -> int:
             at, size = places[which]
             return int.from_bytes(formed[at:at + size], "little", signed=signed)
+        c, b = self.codes, self.build
+        if name == "limit":
+            return derived_scaled(field("cost"), c.limit_scale, c.limit_shift, b.FEED_W, b)
+        if name == "rate":
+            return derived_scaled(field("cost"), c.rate_scale, c.rate_shift, b.PF + 1, b)
         if name == "length":
-            return derived_length(field(LENGTH_CODES[code], True), field("cost"), self.build)
-        return derived_budget(field("rate"), field("length"), self.block_shift, self.build)
+            return derived_length(field(LENGTH_CODES[code], True), field("cost"), b)
+        return derived_budget(field("rate"), field("length"), c.block_shift, b)
 
 
-def encode_program(commands, build=None, compact_records: bool = True, block_shift: int | None = None) -> bytes:
+def encode_program(commands, build=None, compact_records: bool = True, codes=None) -> bytes:
     """All commands' records, concatenated (the DATA frames' byte stream): compact ones
-    (plain where a difference would need more than 15 bytes; with the controller's
-    block_shift, the length and budget codes wherever they are exact), or plain ones."""
+    (plain where a difference would need more than 15 bytes; with the controller's Codes,
+    or the compiled program they come from, the codes wherever they are exact), or plain
+    ones."""
     b = _build(build)
     out, previous = bytearray(), bytes(record_bytes(b))
     for c in commands:
         record = encode(fields_of(c), b)
-        short = compact(record, previous, b, block_shift) if compact_records else None
+        short = compact(record, previous, b, codes) if compact_records else None
         out += short if short is not None else record
         previous = record
     return bytes(out)

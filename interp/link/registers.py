@@ -44,6 +44,8 @@ REG_EXECUTED = 0x78
 REG_OUTPUT_INVERT = 0x7C
 REG_INPUT_FILTER = 0x80
 REG_SPINDLE_OVERRIDE = 0x84
+REG_LIMIT_SCALE = 0x88
+REG_RATE_SCALE = 0x8C
 
 REGISTERS = {
     "ID": REG_ID,
@@ -80,6 +82,8 @@ REGISTERS = {
     "OUTPUT_INVERT": REG_OUTPUT_INVERT,
     "INPUT_FILTER": REG_INPUT_FILTER,
     "SPINDLE_OVERRIDE": REG_SPINDLE_OVERRIDE,
+    "LIMIT_SCALE": REG_LIMIT_SCALE,
+    "RATE_SCALE": REG_RATE_SCALE,
 }
 
 # register -> access of the register as a whole (ro, rw, wo)
@@ -118,6 +122,8 @@ ACCESS = {
     "OUTPUT_INVERT": "rw",
     "INPUT_FILTER": "rw",
     "SPINDLE_OVERRIDE": "rw",
+    "LIMIT_SCALE": "rw",
+    "RATE_SCALE": "rw",
 }
 
 FIELDS = {
@@ -176,6 +182,8 @@ FIELDS = {
     "QUANTUM_HI.value": (0, 2, "rw"),
     "MOTION.block_shift": (0, 4, "rw"),
     "MOTION.jerk_shift": (4, 4, "rw"),
+    "MOTION.limit_shift": (8, 6, "rw"),
+    "MOTION.rate_shift": (16, 6, "rw"),
     "INPUT_INVERT.estop": (0, 1, "rw"),
     "INPUT_INVERT.limit_x": (1, 1, "rw"),
     "INPUT_INVERT.limit_y": (2, 1, "rw"),
@@ -206,6 +214,8 @@ FIELDS = {
     "INPUT_FILTER.period": (0, 16, "rw"),
     "INPUT_FILTER.mask": (16, 5, "rw"),
     "SPINDLE_OVERRIDE.scale": (0, 10, "rw"),
+    "LIMIT_SCALE.value": (0, 32, "rw"),
+    "RATE_SCALE.value": (0, 32, "rw"),
 }
 
 RESETS = {
@@ -243,6 +253,8 @@ RESETS = {
     "OUTPUT_INVERT": 0x00000000,
     "INPUT_FILTER": 0x001F0000,
     "SPINDLE_OVERRIDE": 0x00000100,
+    "LIMIT_SCALE": 0x00000000,
+    "RATE_SCALE": 0x00000000,
 }
 
 # fields whose value is a two's-complement number

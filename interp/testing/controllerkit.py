@@ -53,15 +53,15 @@ def encode(cmd: Command, build: dict) -> bytes:
     return records.encode(cmd, build)
 
 
-def mixed_records(rng, commands, build, plain_share: float, block_shift: int | None = None) -> list[bytes]:
+def mixed_records(rng, commands, build, plain_share: float, codes=None) -> list[bytes]:
     """The commands' records as a stream after a reset or flush sends them: compact ones
-    (interp.link.records.compact; with the controller's block_shift, its length and
-    budget codes where they are exact), each plain instead with probability plain_share."""
+    (interp.link.records.compact; with the controller's codes (records.Codes.of), the
+    codes where they are exact), each plain instead with probability plain_share."""
     from ..link import records
     previous, out = bytes(records.record_bytes(build)), []
     for c in commands:
         record = records.encode(c, build)
-        short = records.compact(record, previous, build, block_shift)
+        short = records.compact(record, previous, build, codes)
         out.append(record if short is None or rng.random() < plain_share else short)
         previous = record
     return out

@@ -108,7 +108,8 @@ async def registers(dut):
         assert got == want[name], f"{name} after reset: {got:#x}, want {want[name]:#x}"
         assert tb.last_ack <= 2, f"{name}: ack after {tb.last_ack} cycles"
     rw = {"OVERRIDE": 0xFF, "PULSE_WIDTH": tw_mask, "DIR_SETUP": tw_mask, "DIR_HOLD": tw_mask,
-          "QUANTUM_LO": feed_mask & 0xFFFFFFFF, "QUANTUM_HI": feed_mask >> 32, "MOTION": 0xFF,
+          "QUANTUM_LO": feed_mask & 0xFFFFFFFF, "QUANTUM_HI": feed_mask >> 32, "MOTION": 0x3F3FFF,
+          "LIMIT_SCALE": 0xFFFFFFFF, "RATE_SCALE": 0xFFFFFFFF,
           "SPINDLE_PERIOD": 0xFFFF, "POS_X": 0xFFFFFFFF, "POS_Y": 0xFFFFFFFF, "POS_Z": 0xFFFFFFFF,
           "OUTPUT_INVERT": 0xFFFF, "INPUT_FILTER": 0x1FFFFF, "SPINDLE_OVERRIDE": 0x3FF}
     for name, mask in rw.items():
@@ -134,7 +135,7 @@ async def registers(dut):
     assert await tb.read("CONTROL") == 0 and int(dut.enable.value) == 0
     # unknown addresses and CMD_DATA read 0; writes there change nothing
     snapshot = {n: await tb.read(n) for n in names}
-    for address in (0x88, 0xA4, 0xFC, 0x89, 0x03):
+    for address in (0x90, 0xA4, 0xFC, 0x91, 0x03):
         await tb.write(address, 0xFFFFFFFF)
         assert await tb.read(address) == (0 if address != 0x03 else 0x494E5450), f"address {address:#x}"
     assert {n: await tb.read(n) for n in names} == snapshot
@@ -669,7 +670,7 @@ async def gcode_program(dut):
     text = ("G21 G90 G17\nM3 S12000\nM8\nG01 X1 F1200\nG03 X1.5 Y0.5 I0 J0.5\nG03 X1 Y1 Z-0.3 I-0.5 J0\n"
             "G01 X0\nG18 G02 X-0.4 Z-0.3 I-0.2 K0\nG17 G00 X0.2 Y0.1 Z0.2\nM9\nM2\n")
     _, compiled = compile_text(text, machine, costs="true")
-    for name, value in settings_writes(machine.timing(), compiled.settings):
+    for name, value in settings_writes(machine.timing(), compiled.settings, compiled):
         await tb.write(name, value)
     data = b"".join(
         __import__("interp.testing.controllerkit", fromlist=["encode"]).encode(c, tb.build) for c in compiled.commands)
@@ -701,7 +702,7 @@ async def laser_program(dut):
 
     async def run(text, during=None):
         _, compiled = compile_text(text, machine, costs="true", start_steps=tuple(await tb.position()))
-        for name, value in settings_writes(machine.timing(), compiled.settings):
+        for name, value in settings_writes(machine.timing(), compiled.settings, compiled):
             await tb.write(name, value)
         sender = cocotb.start_soon(tb.send(b"".join(encode(c, tb.build) for c in compiled.commands)))
         powers = []
@@ -737,7 +738,7 @@ async def laser_program(dut):
 
 @cocotb.test()
 async def settings_wait_for_idle(dut):
-    """QUANTUM_LO / HI and MOTION are taken only while not busy, and CONTROL.fill rises only
+    """QUANTUM_LO / HI, MOTION and the code scales are taken only while not busy, and CONTROL.fill rises only
     then (it would reset motion_top): written mid-move they keep their values, the move's steps come at the same cycles (from its first step on) as
     without the writes and end at its position, STATUS.refused is set until CONTROL.clear,
     and no error latches; at IDLE the same writes are taken."""
@@ -749,13 +750,16 @@ async def settings_wait_for_idle(dut):
         tb.steps.edges.clear()
         await tb.send(tb.records(cmds))
         await tb.wait_steps(3)
-        quantum, motion = await tb.read("QUANTUM_LO"), await tb.read("MOTION")
+        kept = ("QUANTUM_LO", "QUANTUM_HI", "MOTION", "LIMIT_SCALE", "RATE_SCALE")
+        before = [await tb.read(n) for n in kept]
         if meddle:
-            await tb.write("QUANTUM_LO", 4 * quantum)
+            await tb.write("QUANTUM_LO", 4 * before[0])
             await tb.write("QUANTUM_HI", 1)
             await tb.write("MOTION", 0x31)
+            await tb.write("LIMIT_SCALE", 12345)
+            await tb.write("RATE_SCALE", 678)
             await tb.write("CONTROL", await tb.read("CONTROL") | FILL)
-            assert [await tb.read(n) for n in ("QUANTUM_LO", "QUANTUM_HI", "MOTION")] == [quantum, 0, motion]
+            assert [await tb.read(n) for n in kept] == before
             assert not await tb.read("CONTROL") & FILL
             assert await tb.read("STATUS") & REFUSED and await tb.read("ERROR") == 0
         await tb.wait_idle()

@@ -81,9 +81,9 @@ async def soc_drives_the_controller(dut):
     # a program, as the firmware would: the settings, then the records through CMD_DATA
     machine = load_machine(clock_hz=CLOCK_HZ)
     _, compiled = compile_text("G21 G90 G17\nG01 X0.4 Y-0.2 F1200\nG02 X0.6 Y0 I0 J0.2\nG01 Z-0.1 F600\n", machine)
-    for name, value in settings_writes(machine.timing(), compiled.settings):
+    for name, value in settings_writes(machine.timing(), compiled.settings, compiled):
         await tb.write(name, value)
-    stream = records.encode_program(compiled.commands, build, block_shift=compiled.settings["block_shift"])
+    stream = records.encode_program(compiled.commands, build, codes=compiled)
     assert len(stream) < len(records.encode_program(compiled.commands, build)), "no length or budget code"
     assert len(stream) % 4, "the stream's last write is a partial one"
     for value, sel in data_words(stream, fill=0xFF):           # lanes not selected: 0xFF, ignored

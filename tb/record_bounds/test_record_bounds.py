@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """record_bounds: a seeded stream of plain and compact records (the host's encoder,
 interp.link.records) written with random gaps: `last` is high exactly with the last byte of
-every record (the host's RecordReader gives the lengths; the length and budget codes send
-no bytes; a compact head with bit 6 set has a table of 5 bytes); a flush mid-record makes the next byte a head again."""
+every record (the host's RecordReader gives the lengths; the limit, rate, length and budget
+codes send no bytes; a compact head with bit 6 set has a table of 5 bytes); a flush mid-record makes the next byte a head again."""
 import cocotb
 from cocotb.triggers import FallingEdge, ReadOnly
 
@@ -18,10 +18,11 @@ BUILDS = (records.Build(), records.Build(**{k: motion_build.PARAMETERS[k] for k 
 
 def random_stream(rng, build, count):
     """`count` records of random fields, each compact or plain at random, after a reset;
-    many with a length of an axis x cost and a budget of rate x length (their codes, no
-    bytes)."""
+    many with a limit and a rate of cost x scale, a length of an axis x cost and a budget
+    of rate x length (their codes, no bytes)."""
     size = records.record_bytes(build)
-    block_shift = rng.randint(0, 15)
+    codes = records.Codes(rng.randint(0, 15), rng.getrandbits(32), rng.randrange(64), rng.getrandbits(32),
+                          rng.randrange(64))
     previous, commands = bytes(size), []
     for _ in range(count):
         fields = {name: rng.getrandbits(bits) for name, bits in records.layout(build)}
@@ -30,15 +31,20 @@ def random_stream(rng, build, count):
         fields.update(kind=rng.randint(0, 5), plane=rng.randint(0, 3))
         if rng.random() < 0.5:
             fields.update({name: records.decode(previous, build)[name] for name in ("limit", "rate")})
+        elif rng.random() < 0.6:
+            fields["limit"] = records.derived_scaled(fields["cost"], codes.limit_scale, codes.limit_shift,
+                                                     build.FEED_W, build)
+            fields["rate"] = records.derived_scaled(fields["cost"], codes.rate_scale, codes.rate_shift,
+                                                    build.PF + 1, build)
         if rng.random() < 0.4:
             fields.update(i=0, j=0, k=0, l=0)               # a line's: a table of 5 bytes
         if rng.random() < 0.5:
             fields["length"] = records.derived_length(fields[rng.choice("xyz")], fields["cost"], build)
         if rng.random() < 0.5:
-            fields["budget"] = records.derived_budget(fields["rate"], fields["length"], block_shift, build)
+            fields["budget"] = records.derived_budget(fields["rate"], fields["length"], codes.block_shift, build)
         commands.append(fields)
         previous = records.encode(fields, build)
-    return mixed_records(rng, commands, build, 0.3, block_shift)
+    return mixed_records(rng, commands, build, 0.3, codes)
 
 
 @cocotb.test()
@@ -59,6 +65,9 @@ async def bounds(dut):
     assert any(r[0] & records.COMPACT and records.table_nibbles(r)[records.BUDGET_FIELD] == records.BUDGET_CODE
                for r in recs), "no budget code"
     assert any(r[0] & records.ZERO_IJKL for r in recs), "no table of 5 bytes"
+    for field in (records.LIMIT_FIELD, records.RATE_FIELD):
+        assert any(r[0] & records.COMPACT and records.table_nibbles(r)[field] == records.SCALED_CODE
+                   for r in recs), f"no code in field {field}"
     at, lasts = 0, 0
     while at < len(stream) or at == flush_at:
         await FallingEdge(dut.clk)

@@ -25,7 +25,14 @@ from interp.testing.controllerkit import (BUILD_PARAMETERS, encode, icarus_in_ma
 from interp.testing.tbkit import TB, seeded_rng
 
 NAMES = ("feed", "x", "y", "z", "i", "j", "k", "l", "limit", "exit", "rate", "cost", "length", "budget")
-IDLE_INPUTS = {"flush": 0, "in_valid": 0, "in_data": 0, "cmd_full": 0, "block_shift": 2}
+IDLE_INPUTS = {"flush": 0, "in_valid": 0, "in_data": 0, "cmd_full": 0, "block_shift": 2,
+               "limit_scale": 0, "limit_shift": 0, "rate_scale": 0, "rate_shift": 0}
+
+
+def code_inputs(codes):
+    """The unpacker's inputs of a records.Codes."""
+    return {name: getattr(codes, name) for name in ("block_shift", "limit_scale", "limit_shift",
+                                                    "rate_scale", "rate_shift")}
 
 
 def random_command(rng, b):
@@ -83,11 +90,11 @@ def changed_command(rng, b, previous):
                                        for n in ("limit", "exit", "rate", "cost", "length", "budget")})
 
 
-def compact_stream(rng, b, cmds, plain_share, block_shift=None):
+def compact_stream(rng, b, cmds, plain_share, codes=None):
     """(number, command) pairs -> their records after a reset or flush, as (byte, number)
-    (with a block_shift: the length and budget codes wherever they are exact)."""
+    (with records.Codes: the codes wherever they are exact)."""
     numbered = list(cmds)
-    encoded = mixed_records(rng, [c for _, c in numbered], b, plain_share, block_shift)
+    encoded = mixed_records(rng, [c for _, c in numbered], b, plain_share, codes)
     return [(byte, n) for (n, _), record in zip(numbered, encoded) for byte in record]
 
 
@@ -144,43 +151,56 @@ async def compact_records(dut):
     assert_pushed(pushed, want)
 
 
-def coded_command(rng, b, command, block_shift):
-    """The command with the length of one of its axes (|axis| x cost) and the budget of
-    its rate and length, each at random (else its own)."""
+def coded_command(rng, b, command, codes):
+    """The command with the limit and the rate of its cost (records.Codes' scales), the
+    length of one of its axes (|axis| x cost) and the budget of its rate and length, each
+    at random (else its own)."""
+    if rng.random() < 0.6:
+        command = replace(command, limit=records.derived_scaled(command.cost, codes.limit_scale, codes.limit_shift,
+                                                                b["FEED_W"], b))
+    if rng.random() < 0.6:
+        command = replace(command, rate=records.derived_scaled(command.cost, codes.rate_scale, codes.rate_shift,
+                                                               b["PF"] + 1, b))
     if rng.random() < 0.8:
         command = replace(command, length=records.derived_length(getattr(command, rng.choice("xyz")),
                                                                   command.cost, b))
     if rng.random() < 0.8:
-        command = replace(command, budget=records.derived_budget(command.rate, command.length, block_shift, b))
+        command = replace(command, budget=records.derived_budget(command.rate, command.length, codes.block_shift, b))
     return command
 
 
 @cocotb.test()
 async def coded_records(dut):
-    """Length and budget codes: at block shifts 1 .. 15 (and 0, taken as 1), records whose
-    length is an axis x cost and whose budget is rate x length / 2^(block_shift - 1)
-    come out with exactly those fields, as the host's reader forms them; the codes after
-    other records, plain ones among them, and the reader's record equals the pushed one."""
+    """Limit, rate, length and budget codes: at block shifts 1 .. 15 (and 0, taken as 1) and
+    random scales at shifts 0 .. 63, records whose limit and rate are cost x scale /
+    2^shift, whose length is an axis x cost and whose budget is rate x length /
+    2^(block_shift - 1) come out with exactly those fields, as the host's reader forms
+    them; the codes after other records, plain ones among them, and the reader's record
+    equals the pushed one."""
     rng = seeded_rng(dut, "coded_records")
     b = {k: int(getattr(dut, k).value) for k in BUILD_PARAMETERS if hasattr(dut, k)}
     tb = TB(dut)
-    for block_shift in [0, 1, 15] + rng.sample(range(2, 15), 3):
-        await tb.reset({**IDLE_INPUTS, "block_shift": block_shift})
+    shifts = [(0, 63), (63, 0)] + [(rng.randrange(64), rng.randrange(64)) for _ in range(4)]
+    for block_shift, (limit_shift, rate_shift) in zip([0, 1, 15] + rng.sample(range(2, 15), 3), shifts):
+        codes = records.Codes(block_shift, rng.getrandbits(32), limit_shift, rng.getrandbits(32), rate_shift)
+        await tb.reset({**IDLE_INPUTS, **code_inputs(codes)})
         cmds = [random_command(rng, b)]
         for _ in range(23):
             cmds.append(changed_command(rng, b, cmds[-1]))
-        cmds = [coded_command(rng, b, c, block_shift) if rng.random() < 0.7 else c for c in cmds]
+        cmds = [coded_command(rng, b, c, codes) if rng.random() < 0.7 else c for c in cmds]
         cmds = [replace(c, kind=c.kind % 6) for c in cmds]
         cmds = [replace(c, i=0, j=0, k=0, l=0) if rng.random() < 0.4 else c for c in cmds]   # a line's
-        stream = compact_stream(rng, b, enumerate(cmds), 0.1, block_shift)
-        reader, coded, short = records.RecordReader(b, block_shift), 0, 0
+        stream = compact_stream(rng, b, enumerate(cmds), 0.1, codes)
+        reader, coded, scaled, short = records.RecordReader(b, codes), 0, 0, 0
         for n in range(len(cmds)):
             raw = bytes(byte for byte, k in stream if k == n)
             nibbles = records.table_nibbles(raw) if raw[0] & records.COMPACT else [0] * 14
             coded += any(records.is_code(f, nibbles[f]) for f in (records.LENGTH_FIELD, records.BUDGET_FIELD))
+            scaled += any(records.is_code(f, nibbles[f]) for f in (records.LIMIT_FIELD, records.RATE_FIELD))
             short += bool(raw[0] & records.ZERO_IJKL)
             assert records.decode(reader.take(raw), b) == records.decode(encode(cmds[n], b), b)
-        assert coded >= len(cmds) // 3, f"only {coded} of {len(cmds)} records use a code"
+        assert coded >= len(cmds) // 3, f"only {coded} of {len(cmds)} records use a length or budget code"
+        assert scaled >= len(cmds) // 4, f"only {scaled} of {len(cmds)} records use a limit or rate code"
         assert short >= len(cmds) // 5, f"only {short} of {len(cmds)} records have i .. l zero"
         pushed, errors = await run_stream(tb, rng, stream, None, 0.8, rng.choice([0.0, 0.3]))
         assert errors == 0
@@ -196,17 +216,18 @@ async def pace(dut):
     b = {k: int(getattr(dut, k).value) for k in BUILD_PARAMETERS if hasattr(dut, k)}
     tb = TB(dut)
     size = records.record_bytes(b)
+    codes = records.Codes(2, rng.getrandbits(32), rng.randrange(64), rng.getrandbits(32), rng.randrange(64))
     for share, interval in ((1.0, size + 1), (0.0, size + 8 + records.derive_clocks(b))):
-        await tb.reset(IDLE_INPUTS)
+        await tb.reset({**IDLE_INPUTS, **code_inputs(codes)})
         cmds = [random_command(rng, b)]
         for _ in range(7):
             cmds.append(changed_command(rng, b, cmds[-1]))
         if not share:                                # codes, i .. l zero, both, neither
-            cmds = [coded_command(rng, b, c, 2) if n % 2 else c for n, c in enumerate(cmds)]
+            cmds = [coded_command(rng, b, c, codes) if n % 2 else c for n, c in enumerate(cmds)]
             cmds = [replace(c, i=0, j=0, k=0, l=0) if n % 4 >= 2 else c for n, c in enumerate(cmds)]
-        stream = compact_stream(rng, b, enumerate(cmds), share, block_shift=2)
+        stream = compact_stream(rng, b, enumerate(cmds), share, codes)
         at, cycle, pushes = 0, 0, []
-        while len(pushes) < len(cmds) and cycle < 2000:
+        while len(pushes) < len(cmds) and cycle < 4000:
             await FallingEdge(dut.clk)
             tb.drive({"in_valid": int(at < len(stream)), "in_data": stream[at][0] if at < len(stream) else 0})
             await ReadOnly()
