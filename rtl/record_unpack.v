@@ -14,9 +14,10 @@
 // then come the n bytes of each field (two's complement, little-endian, sign-extended
 // to the field's bytes and added modulo 2^(8 B)); n > B(field) is an error like kinds
 // 6 and 7, except codes that send no bytes and have the unpacker form the field:
-//   limit n = 15:          limit = floor(cost x limit_scale / 2^limit_shift) (a line's
-//                          axis ceiling: its axes' top speed per unit of cost),
-//   rate n = 15:           rate = floor(cost x rate_scale / 2^rate_shift) (its acceleration),
+//   limit n = 15:          limit = floor(cost x limit_scale / 2^limit_shift) mod 2^FEED_W
+//                          (a line's axis ceiling: its axes' top speed per unit of cost),
+//   rate n = 15:           rate = floor(cost x rate_scale / 2^rate_shift) mod 2^(PF + 1)
+//                          (its acceleration),
 //   length n = 13, 14, 15: length = |x|, |y|, |z| x cost (a line's step events x cost),
 //   budget n = 15:         budget = floor(rate x length / 2^(block_shift - 1))
 //                          (= 2 rate length / (A 2^block_shift) for a speed quantum A = 1).
@@ -83,7 +84,6 @@ module record_unpack #(
         if (PF < 1) $error("%m: PF must be at least 1");
         if (LEN_W < 2 || LEN_W > 96) $error("%m: LEN_W must be 2 .. 96 (length codes 13 .. 15)");
         if (ZW < LEN_W || ZW > 112) $error("%m: ZW must be LEN_W .. 112 (budget code 15)");
-        if (FEED_W > 120) $error("%m: FEED_W must be at most 120 (limit code 15)");
     end
 
     // bytes of each field and its offset in the record

@@ -583,7 +583,8 @@ def configure(driver: Driver, timing: dict, settings: dict, codes=None) -> None:
         driver.write_register(name, value)
     for name, value in writes:
         if name in p.SPEED_SETTINGS and driver.read_register(name) != value:
-            raise LinkError(f"the controller did not take {name} (it became busy): send again when it is idle")
+            raise LinkError(f"the controller did not take {name} (it became busy: send again when it is idle; "
+                            "or a bitstream without it: build and load the current one)")
 
 
 POLLED = ("EXECUTED", "QUEUE_FREE", *POSITION, "ERROR", "STATUS")   # STATUS after EXECUTED: the end test

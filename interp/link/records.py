@@ -22,7 +22,8 @@ little-endian; the controller sign-extends them and adds them to the field's byt
 modulo 2^(8 B).  A compact head with bit 6 set (ZERO_IJKL) says i, j, k and l are zero:
 its table has 5 bytes (none for those four fields) and no bytes follow for them.
 Codes send no bytes and have the controller form the field: limit 15 and rate 15
-(floor(cost x LIMIT_SCALE / 2^limit_shift), floor(cost x RATE_SCALE / 2^rate_shift):
+(floor(cost x LIMIT_SCALE / 2^limit_shift), floor(cost x RATE_SCALE / 2^rate_shift), modulo
+2^FEED_W and 2^(PF + 1):
 a line's axis ceiling and acceleration), length 13, 14, 15 (|x|, |y|, |z| x cost: a
 line's step events x cost) and budget 15 (floor(rate x length / 2^(block_shift - 1)),
 the compiler's budget when the speed quantum is 1).  The driver sends compact records,
@@ -120,6 +121,12 @@ class Codes:
     limit_shift: int = 0
     rate_scale: int = 0
     rate_shift: int = 0
+
+    def __post_init__(self):
+        for name, top in (("block_shift", 15), ("limit_scale", 0xFFFFFFFF), ("limit_shift", 63),
+                          ("rate_scale", 0xFFFFFFFF), ("rate_shift", 63)):
+            if not 0 <= getattr(self, name) <= top:
+                raise ValueError(f"{name} {getattr(self, name)} is not 0 .. {top}")
 
     @classmethod
     def of(cls, source) -> "Codes | None":

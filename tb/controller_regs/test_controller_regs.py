@@ -86,10 +86,11 @@ async def bus_and_fields(dut):
     assert (await access(tb, REG["EXECUTED"]))[1] == 0xDEADBEEF
     # the speed settings while busy: refused (the registers and outputs keep their values),
     # STATUS.refused (bit 7) until CONTROL.clear; the other settings are taken
-    for name in ("QUANTUM_LO", "QUANTUM_HI", "MOTION"):
+    for name in ("QUANTUM_LO", "QUANTUM_HI", "MOTION", "LIMIT_SCALE", "RATE_SCALE"):
         await access(tb, REG[name], 0x5A)
     await access(tb, REG["OVERRIDE"], 42)
     assert (int(dut.quantum.value), int(dut.block_shift.value), int(dut.jerk_shift.value)) == (1, 2, 0)
+    assert [int(getattr(dut, n).value) for n in ("limit_scale", "limit_shift", "rate_scale", "rate_shift")] == [0] * 4
     assert (await access(tb, REG["OVERRIDE"]))[1] == 42
     assert (await access(tb, REG["STATUS"]))[1] == 3 | 8 | 16 | 32 | 128 | 200 << 8
     await access(tb, REG["CONTROL"], 0b00100)
@@ -109,10 +110,15 @@ async def bus_and_fields(dut):
     tb.drive({"busy": 0})
     await access(tb, REG["QUANTUM_LO"], 0x12345678)
     await access(tb, REG["QUANTUM_HI"], 0xFFFFFFFF)
-    await access(tb, REG["MOTION"], 0x5A)
+    await access(tb, REG["MOTION"], 0xFFEDC05A)                 # the code shifts: bits 13:8, 21:16
+    await access(tb, REG["LIMIT_SCALE"], 0x89ABCDEF)
+    await access(tb, REG["RATE_SCALE"], 0xFEDCBA98)
     assert int(dut.quantum.value) == 0xFF12345678
     assert (await access(tb, REG["QUANTUM_HI"]))[1] == 0xFF
     assert (int(dut.block_shift.value), int(dut.jerk_shift.value)) == (0xA, 0x5)
+    assert [int(getattr(dut, n).value) for n in ("limit_scale", "limit_shift", "rate_scale", "rate_shift")] \
+        == [0x89ABCDEF, 0x00, 0xFEDCBA98, 0x2D]
+    assert (await access(tb, REG["MOTION"]))[1] == 0x2D005A
     assert not (await access(tb, REG["STATUS"]))[1] & 128
 
 

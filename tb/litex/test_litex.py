@@ -3,8 +3,8 @@
 Migen (the wrapper's Instance, its word-addressed LiteX Wishbone bus and its pads) and run
 as the CPU of a SoC would drive it (cocotbext-wishbone on the LiteX bus, word addresses):
 the constants and the build, the input pads in INPUTS, CONTROL.enable on its pad, and a
-compiled G-code program written to CMD_DATA as the host's compact records (with length and
-budget codes; a stream whose length is not a multiple of 4: its last write selects only
+compiled G-code program written to CMD_DATA as the host's compact records (with their
+codes; a stream whose length is not a multiple of 4: its last write selects only
 its bytes) ending at its
 programmed position, counted on the step pads and in POS_X/Y/Z."""
 import cocotb
@@ -84,7 +84,7 @@ async def soc_drives_the_controller(dut):
     for name, value in settings_writes(machine.timing(), compiled.settings, compiled):
         await tb.write(name, value)
     stream = records.encode_program(compiled.commands, build, codes=compiled)
-    assert len(stream) < len(records.encode_program(compiled.commands, build)), "no length or budget code"
+    assert len(stream) < len(records.encode_program(compiled.commands, build)), "no code"
     assert len(stream) % 4, "the stream's last write is a partial one"
     for value, sel in data_words(stream, fill=0xFF):           # lanes not selected: 0xFF, ignored
         await tb.write("CMD_DATA", value, sel=sel)

@@ -6,9 +6,10 @@ a byte stream with random gaps, against random cmd_full back-pressure: each reco
 The records come from the host's encoder (interp.link.records), checked against the local one.
 Compact records (differences from the previous record) mixed with plain ones, a flush that
 zeroes the previous record, a difference longer than its field (record_error); records with
-i .. l zero (head bit 6, a table of 5 bytes) after records without; the length and budget
-codes (fields the unpacker forms: |x|, |y| or |z| x cost, rate x length /
-2^(block_shift - 1)) at random block shifts, against the host's reader; and the pace
+i .. l zero (head bit 6, a table of 5 bytes) after records without; the limit, rate, length
+and budget codes (fields the unpacker forms: cost x scale / 2^shift, |x|, |y| or |z| x
+cost, rate x length / 2^(block_shift - 1)) at random block shifts, scales (0 and 2^32 - 1
+among them) and shifts, against the host's reader; and the pace
 from a stream without gaps: RECORD_BYTES + 1 clocks a plain record, RECORD_BYTES + 8 +
 DERIVE_CLOCKS a compact one, codes or not."""
 from dataclasses import replace
@@ -181,12 +182,16 @@ async def coded_records(dut):
     b = {k: int(getattr(dut, k).value) for k in BUILD_PARAMETERS if hasattr(dut, k)}
     tb = TB(dut)
     shifts = [(0, 63), (63, 0)] + [(rng.randrange(64), rng.randrange(64)) for _ in range(4)]
-    for block_shift, (limit_shift, rate_shift) in zip([0, 1, 15] + rng.sample(range(2, 15), 3), shifts):
-        codes = records.Codes(block_shift, rng.getrandbits(32), limit_shift, rng.getrandbits(32), rate_shift)
+    scales = [(0, 0xFFFFFFFF), (0xFFFFFFFF, 0)] + [(rng.getrandbits(32), rng.getrandbits(32)) for _ in range(4)]
+    for block_shift, (limit_shift, rate_shift), (limit_scale, rate_scale) in zip(
+            [0, 1, 15] + rng.sample(range(2, 15), 3), shifts, scales):
+        codes = records.Codes(block_shift, limit_scale, limit_shift, rate_scale, rate_shift)
         await tb.reset({**IDLE_INPUTS, **code_inputs(codes)})
         cmds = [random_command(rng, b)]
         for _ in range(23):
             cmds.append(changed_command(rng, b, cmds[-1]))
+        extremes = (0, (1 << b["FEED_W"]) - 1)                  # the cost's
+        cmds = [replace(c, cost=rng.choice(extremes)) if rng.random() < 0.15 else c for c in cmds]
         cmds = [coded_command(rng, b, c, codes) if rng.random() < 0.7 else c for c in cmds]
         cmds = [replace(c, kind=c.kind % 6) for c in cmds]
         cmds = [replace(c, i=0, j=0, k=0, l=0) if rng.random() < 0.4 else c for c in cmds]   # a line's
