@@ -24,14 +24,14 @@ def random_stream(rng, build, count):
     codes = records.Codes(rng.randint(0, 15), rng.getrandbits(32), rng.randrange(64), rng.getrandbits(32),
                           rng.randrange(64))
     previous, commands = bytes(size), []
-    for _ in range(count):
+    for n in range(count):
         fields = {name: rng.getrandbits(bits) for name, bits in records.layout(build)}
         for name in records.SIGNED:                         # small moves: short differences
             fields[name] = rng.randint(-300, 300)
         fields.update(kind=rng.randint(0, 5), plane=rng.randint(0, 3))
-        if rng.random() < 0.5:
+        if n % 3 and rng.random() < 0.5:
             fields.update({name: records.decode(previous, build)[name] for name in ("limit", "rate")})
-        elif rng.random() < 0.6:
+        elif n % 3 == 0 or rng.random() < 0.6:
             fields["limit"] = records.derived_scaled(fields["cost"], codes.limit_scale, codes.limit_shift,
                                                      build.FEED_W, build)
             fields["rate"] = records.derived_scaled(fields["cost"], codes.rate_scale, codes.rate_shift,

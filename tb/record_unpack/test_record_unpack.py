@@ -152,20 +152,20 @@ async def compact_records(dut):
     assert_pushed(pushed, want)
 
 
-def coded_command(rng, b, command, codes):
+def coded_command(rng, b, command, codes, every=False):
     """The command with the limit and the rate of its cost (records.Codes' scales), the
     length of one of its axes (|axis| x cost) and the budget of its rate and length, each
-    at random (else its own)."""
-    if rng.random() < 0.6:
+    at random (else its own), or all four with `every`."""
+    if every or rng.random() < 0.6:
         command = replace(command, limit=records.derived_scaled(command.cost, codes.limit_scale, codes.limit_shift,
                                                                 b["FEED_W"], b))
-    if rng.random() < 0.6:
+    if every or rng.random() < 0.6:
         command = replace(command, rate=records.derived_scaled(command.cost, codes.rate_scale, codes.rate_shift,
                                                                b["PF"] + 1, b))
-    if rng.random() < 0.8:
+    if every or rng.random() < 0.8:
         command = replace(command, length=records.derived_length(getattr(command, rng.choice("xyz")),
                                                                   command.cost, b))
-    if rng.random() < 0.8:
+    if every or rng.random() < 0.8:
         command = replace(command, budget=records.derived_budget(command.rate, command.length, codes.block_shift, b))
     return command
 
@@ -192,21 +192,27 @@ async def coded_records(dut):
             cmds.append(changed_command(rng, b, cmds[-1]))
         extremes = (0, (1 << b["FEED_W"]) - 1)                  # the cost's
         cmds = [replace(c, cost=rng.choice(extremes)) if rng.random() < 0.15 else c for c in cmds]
-        cmds = [coded_command(rng, b, c, codes) if rng.random() < 0.7 else c for c in cmds]
+        every = {n for n in range(len(cmds)) if n % 4 == 1}                # all four codes
+        cmds = [coded_command(rng, b, c, codes, n in every) if n in every or rng.random() < 0.7 else c
+                for n, c in enumerate(cmds)]
         cmds = [replace(c, kind=c.kind % 6) for c in cmds]
-        cmds = [replace(c, i=0, j=0, k=0, l=0) if rng.random() < 0.4 else c for c in cmds]   # a line's
+        zeroed = {n for n in range(len(cmds)) if n % 3 == 0 or rng.random() < 0.2}   # a line's i .. l
+        cmds = [replace(c, i=0, j=0, k=0, l=0) if n in zeroed else c for n, c in enumerate(cmds)]
         stream = compact_stream(rng, b, enumerate(cmds), 0.1, codes)
-        reader, coded, scaled, short = records.RecordReader(b, codes), 0, 0, 0
+        reader, coded, short = records.RecordReader(b, codes), 0, 0
+        fields = (records.LIMIT_FIELD, records.RATE_FIELD, records.LENGTH_FIELD, records.BUDGET_FIELD)
         for n in range(len(cmds)):
             raw = bytes(byte for byte, k in stream if k == n)
-            nibbles = records.table_nibbles(raw) if raw[0] & records.COMPACT else [0] * 14
-            coded += any(records.is_code(f, nibbles[f]) for f in (records.LENGTH_FIELD, records.BUDGET_FIELD))
-            scaled += any(records.is_code(f, nibbles[f]) for f in (records.LIMIT_FIELD, records.RATE_FIELD))
-            short += bool(raw[0] & records.ZERO_IJKL)
+            if raw[0] & records.COMPACT:                # (10 % go plain)
+                nibbles = records.table_nibbles(raw)
+                if n in every:
+                    assert all(records.is_code(f, nibbles[f]) for f in fields), f"record {n}: {nibbles}"
+                    coded += 1
+                if n in zeroed:
+                    assert raw[0] & records.ZERO_IJKL, f"record {n}: i .. l zero, head {raw[0]:#x}"
+                    short += 1
             assert records.decode(reader.take(raw), b) == records.decode(encode(cmds[n], b), b)
-        assert coded >= len(cmds) // 3, f"only {coded} of {len(cmds)} records use a length or budget code"
-        assert scaled >= len(cmds) // 4, f"only {scaled} of {len(cmds)} records use a limit or rate code"
-        assert short >= len(cmds) // 5, f"only {short} of {len(cmds)} records have i .. l zero"
+        assert coded and short, f"{coded} compact records with every code, {short} with i .. l zero"
         pushed, errors = await run_stream(tb, rng, stream, None, 0.8, rng.choice([0.0, 0.3]))
         assert errors == 0
         assert_pushed(pushed, [pushed_fields(c, b) for c in cmds])
