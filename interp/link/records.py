@@ -140,6 +140,14 @@ class Codes:
             source = {**source.codes, "block_shift": source.settings.get("block_shift", 2)}
         return cls(**{k: int(v) for k, v in dict(source).items() if k in cls.__dataclass_fields__})
 
+    def limit(self, cost: int, build=None) -> int:
+        """The limit code's value for this cost."""
+        return derived_scaled(cost, self.limit_scale, self.limit_shift, _build(build).FEED_W, build)
+
+    def rate(self, cost: int, build=None) -> int:
+        """The rate code's value for this cost."""
+        return derived_scaled(cost, self.rate_scale, self.rate_shift, _build(build).PF + 1, build)
+
 
 def derive_clocks(build=None) -> int:
     """Clocks the record unpacker spends after a compact record's last byte forming its
@@ -289,9 +297,9 @@ def compact(record: bytes, previous: bytes, build=None, codes=None) -> bytes | N
     settings, codes = Codes.of(codes), {}
     if settings is not None:
         f = decode(record, b)
-        if derived_scaled(f["cost"], settings.limit_scale, settings.limit_shift, b.FEED_W, b) == f["limit"]:
+        if settings.limit(f["cost"], b) == f["limit"]:
             codes["limit"] = SCALED_CODE
-        if derived_scaled(f["cost"], settings.rate_scale, settings.rate_shift, b.PF + 1, b) == f["rate"]:
+        if settings.rate(f["cost"], b) == f["rate"]:
             codes["rate"] = SCALED_CODE
         for code, axis in LENGTH_CODES.items():
             if derived_length(f[axis], f["cost"], b) == f["length"]:
@@ -428,10 +436,8 @@ class RecordReader:
             at, size = places[which]
             return int.from_bytes(formed[at:at + size], "little", signed=signed)
         c, b = self.codes, self.build
-        if name == "limit":
-            return derived_scaled(field("cost"), c.limit_scale, c.limit_shift, b.FEED_W, b)
-        if name == "rate":
-            return derived_scaled(field("cost"), c.rate_scale, c.rate_shift, b.PF + 1, b)
+        if name in ("limit", "rate"):
+            return getattr(c, name)(field("cost"), b)
         if name == "length":
             return derived_length(field(LENGTH_CODES[code], True), field("cost"), b)
         return derived_budget(field("rate"), field("length"), c.block_shift, b)

@@ -32,10 +32,7 @@ def random_stream(rng, build, count):
         if n % 3 and rng.random() < 0.5:
             fields.update({name: records.decode(previous, build)[name] for name in ("limit", "rate")})
         elif n % 3 == 0 or rng.random() < 0.6:
-            fields["limit"] = records.derived_scaled(fields["cost"], codes.limit_scale, codes.limit_shift,
-                                                     build.FEED_W, build)
-            fields["rate"] = records.derived_scaled(fields["cost"], codes.rate_scale, codes.rate_shift,
-                                                    build.PF + 1, build)
+            fields["limit"], fields["rate"] = codes.limit(fields["cost"], build), codes.rate(fields["cost"], build)
         if rng.random() < 0.4:
             fields.update(i=0, j=0, k=0, l=0)               # a line's: a table of 5 bytes
         if rng.random() < 0.5:

@@ -157,11 +157,9 @@ def coded_command(rng, b, command, codes, every=False):
     length of one of its axes (|axis| x cost) and the budget of its rate and length, each
     at random (else its own), or all four with `every`."""
     if every or rng.random() < 0.6:
-        command = replace(command, limit=records.derived_scaled(command.cost, codes.limit_scale, codes.limit_shift,
-                                                                b["FEED_W"], b))
+        command = replace(command, limit=codes.limit(command.cost, b))
     if every or rng.random() < 0.6:
-        command = replace(command, rate=records.derived_scaled(command.cost, codes.rate_scale, codes.rate_shift,
-                                                               b["PF"] + 1, b))
+        command = replace(command, rate=codes.rate(command.cost, b))
     if every or rng.random() < 0.8:
         command = replace(command, length=records.derived_length(getattr(command, rng.choice("xyz")),
                                                                   command.cost, b))
