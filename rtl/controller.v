@@ -147,7 +147,7 @@ module controller #(
     wire [3:0]        block_shift;
     wire [31:0]       limit_scale, rate_scale;      // the limit and rate codes' scales
     wire [5:0]        limit_shift, rate_shift;
-    record_unpack #(.W(W), .FEED_W(FEED_W), .NW(NW), .PF(PF), .LEN_W(LEN_W), .ZW(ZW)) u_unpack (
+    record_unpack #(.W(W), .FEED_W(FEED_W), .FRAC(FRAC), .NW(NW), .PF(PF), .LEN_W(LEN_W), .ZW(ZW)) u_unpack (
         .clk(clk), .rst(rst), .flush(flush), .block_shift(block_shift),
         .limit_scale(limit_scale), .limit_shift(limit_shift), .rate_scale(rate_scale), .rate_shift(rate_shift),
         .in_valid(q_valid), .in_data(q_data), .in_ready(q_ready),

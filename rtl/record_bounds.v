@@ -5,9 +5,10 @@
 // the whole records waiting (STATUS.records).  A record whose head has bit 7 clear is
 // RECORD_BYTES bytes; a compact one (bit 7 set, see record_unpack) is the head, 7 bytes
 // of nibbles (5 with head bit 6 set: i, j, k, l zero), and as many more bytes as its
-// nibbles add up to, less the codes that send no bytes (a limit or a rate nibble of 15,
-// the low nibbles of the table's last bytes but two and but one; the last table byte: a
-// length nibble of 13 .. 15, a budget nibble of 15).
+// nibbles add up to, less the codes that send no bytes (the table's last byte but two:
+// a limit nibble, low, of 14 or 15; the last but one: a rate nibble, low, of 15, a cost
+// nibble, high, of 12 .. 15; the last: a length nibble, low, of 13 .. 15, a budget
+// nibble, high, of 15).
 // `flush` (and rst) make the next byte a head.
 module record_bounds #(
     parameter integer RECORD_BYTES = 68    // bytes of a whole record (9 .. 255)
@@ -33,9 +34,11 @@ module record_bounds #(
     wire [7:0] table_end = zero_ijkl ? 8'd5 : 8'd7;  // the last table byte
     wire       in_table = compact & (at != 8'd0) & (at <= table_end);
     wire       codes    = at == table_end;            // the length's and budget's nibbles
-    wire       scaled   = at == table_end - 8'd2 || at == table_end - 8'd1;   // limit's, rate's (low)
-    wire [3:0] low      = (codes && data[3:0] >= 4'd13) || (scaled && data[3:0] == 4'd15) ? 4'd0 : data[3:0];
-    wire [3:0] high     = codes && data[7:4] == 4'd15 ? 4'd0 : data[7:4];
+    wire       limits   = at == table_end - 8'd2;     // the limit's (low) and exit's
+    wire       rates    = at == table_end - 8'd1;     // the rate's (low) and cost's
+    wire [3:0] low      = (codes && data[3:0] >= 4'd13) || (limits && data[3:0] >= 4'd14)
+                          || (rates && data[3:0] == 4'd15) ? 4'd0 : data[3:0];
+    wire [3:0] high     = (codes && data[7:4] == 4'd15) || (rates && data[7:4] >= 4'd12) ? 4'd0 : data[7:4];
     wire [7:0] length_now = head ? (data[7] ? (data[6] ? 8'd6 : 8'd8) : RB32[7:0])
                           : length + (in_table ? {4'd0, low} + {4'd0, high} : 8'd0);
     assign last = write & (at + 8'd1 == length_now);

@@ -14,6 +14,10 @@
 // then come the n bytes of each field (two's complement, little-endian, sign-extended
 // to the field's bytes and added modulo 2^(8 B)); n > B(field) is an error like kinds
 // 6 and 7, except codes that send no bytes and have the unpacker form the field:
+//   cost n = 12:           cost = 0 (a flat arc's),
+//   cost n = 13, 14, 15:   cost = round(2^FRAC sqrt(x^2 + y^2 + z^2) / |x|, |y|, |z|)
+//                          mod 2^FEED_W (a line's true length per step event: line_cost),
+//   limit n = 14:          limit = feed,
 //   limit n = 15:          limit = floor(cost x limit_scale / 2^limit_shift) mod 2^FEED_W
 //                          (a line's axis ceiling: its axes' top speed per unit of cost),
 //   rate n = 15:           rate = floor(cost x rate_scale / 2^rate_shift) mod 2^(PF + 1)
@@ -25,9 +29,11 @@
 // the table then has 5 bytes (none for those four fields: the table's bytes 2 and 3 are
 // zero, formed in the clocks they would have taken) and those fields' bytes are zero.
 // The register rotates one byte a clock: the byte leaving at the bottom is the
-// previous record's byte of the position entering at the top.  After the last byte of a
-// compact record come DERIVE_CLOCKS = T + ZW + 15 clocks (T = max(W, 64 + max(FEED_W,
-// PF + 1))), the same for every compact record: the length's shift-and-add
+// previous record's byte of the position entering at the top (a limit = feed byte is
+// the feed's, a fixed number of bytes above it).  After the last byte of a compact record
+// come DERIVE_CLOCKS = C + T + ZW + 15 clocks (C = 4 W + FRAC + 7, T = max(W, 64 +
+// max(FEED_W, PF + 1))), the same for every compact record: first line_cost's C clocks
+// for the cost (its result taken the clock after), then the length's shift-and-add
 // multiplication in place in its bytes (W clocks, the axis's magnitude formed
 // bit-serially) and beside it the limit's and the rate's (the scale in parallel, the
 // cost's bits serially by index; the product's bits from bit `shift` on shifted into the
@@ -38,7 +44,8 @@
 // gaps (plain records RECORD_BYTES + 1).
 module record_unpack #(
     parameter integer W      = 32,  // command field width (>= 6)
-    parameter integer FEED_W = 34,  // speed word width (>= 2)
+    parameter integer FEED_W = 34,  // speed word width (2 .. 88: cost codes 12 .. 15)
+    parameter integer FRAC   = 32,  // fraction bits of the path units: an axial step costs 2^FRAC (1 .. 64)
     parameter integer NW     = 24,  // exit speed width (>= 1)
     parameter integer PF     = 16,  // rate fraction bits: cmd_rate is PF + 1 bits (>= 1)
     parameter integer LEN_W  = 66,  // move length width (2 .. 96; W + FEED_W <= 8 B(LEN_W))
@@ -79,7 +86,8 @@ module record_unpack #(
 );
     initial begin
         if (W < 6) $error("%m: W must be at least 6");
-        if (FEED_W < 2) $error("%m: FEED_W must be at least 2");
+        if (FEED_W < 2 || FEED_W > 88) $error("%m: FEED_W must be 2 .. 88 (cost codes 12 .. 15)");
+        if (FRAC < 1 || FRAC > 64) $error("%m: FRAC must be 1 .. 64");
         if (NW < 1) $error("%m: NW must be at least 1");
         if (PF < 1) $error("%m: PF must be at least 1");
         if (LEN_W < 2 || LEN_W > 96) $error("%m: LEN_W must be 2 .. 96 (length codes 13 .. 15)");
@@ -100,12 +108,15 @@ module record_unpack #(
     localparam integer T = W > SCALED_END ? W : SCALED_END;         // the budget's start at block_shift 16
     localparam integer SL = 8 * O_LENGTH, SB = 8 * O_BUDGET;      // the length's, budget's bits
     localparam integer PB = W + FEED_W;                          // |axis| x cost
-    localparam integer DERIVE_CLOCKS = T + ZW + 15;
+    localparam integer COST_CLOCKS = 4 * W + FRAC + 7;              // line_cost's, and one to take its cost
+    localparam integer FORM_CLOCKS = T + ZW + 15;                   // then the others'
+    localparam integer DERIVE_CLOCKS = COST_CLOCKS + FORM_CLOCKS;
+    localparam integer FEED_SLOT = 8 * (RECORD_BYTES - O_LIMIT + O_FEED);   // a new feed byte, as a limit byte enters
     localparam integer SL_LIMIT = 8 * O_LIMIT, SL_RATE = 8 * O_RATE;  // the limit's, rate's bits
     initial begin
         if (RECORD_BYTES > 255) $error("%m: a record must be at most 255 bytes");
         if (PB > 8 * BL) $error("%m: W + FEED_W must be at most 8 B(LEN_W)");
-        if (DERIVE_CLOCKS > 511) $error("%m: max(W, 64 + FEED_W, 65 + PF) + ZW must be at most 496");
+        if (FORM_CLOCKS > 511) $error("%m: max(W, 64 + FEED_W, 65 + PF) + ZW must be at most 496");
     end
 
     localparam integer TB = 7;      // nibble table bytes of a compact record (14 fields)
@@ -139,6 +150,10 @@ module record_unpack #(
     reg             bad_length;     // a difference longer than its field
     reg  [1:0]      length_axis;    // length code: 1, 2, 3 = |x|, |y|, |z| x cost; 0 none
     reg             budget_code;    // budget code
+    reg  [1:0]      cost_axis;      // cost code: 1, 2, 3 = |x|, |y|, |z| is the step events; 0 none
+    reg  [1:0]      fill;           // this field's bytes: 0 the sums, 1 zero (cost 12), 2 the feed's (limit 14)
+    reg             cost_started;   // line_cost runs for this record
+    reg             costed;         // ... and its cost is taken: the other codes' clocks
     reg  [8:0]      clock_count;    // clocks of the derivation
     reg             derived;        // the derivation is over (a compact record)
     reg             negative, seen; // the axis's sign; a one bit has gone (its magnitude)
@@ -160,8 +175,12 @@ module record_unpack #(
     wire       length_here = count == O_LENGTH[CW-1:0] && code >= 4'd13;
     wire       budget_here = count == O_BUDGET[CW-1:0] && code == 4'd15;
     wire       limit_here  = count == O_LIMIT[CW-1:0] && code == 4'd15;
+    wire       feed_here   = count == O_LIMIT[CW-1:0] && code == 4'd14;
     wire       rate_here   = count == O_RATE[CW-1:0] && code == 4'd15;
-    wire       code_here   = length_here | budget_here | limit_here | rate_here;
+    wire       zero_here   = count == O_COST[CW-1:0] && code == 4'd12;
+    wire       cost_here   = count == O_COST[CW-1:0] && code >= 4'd13;
+    wire       code_here   = length_here | budget_here | limit_here | feed_here | rate_here | zero_here | cost_here;
+    wire [1:0] fill_now    = field_start ? {feed_here, zero_here} : fill;
     wire [3:0] n_here = field_start ? (code_here ? 4'd0 : code) : left;
     wire       use_in = n_here != 4'd0;
     wire [7:0] delta  = use_in ? in_data : field_start ? 8'd0 : {8{sign}};
@@ -191,6 +210,7 @@ module record_unpack #(
     assign cmd_budget = record[SB +: ZW];
 
     // The derivation, clock c of DERIVE_CLOCKS.  c = 0: the length's bytes take the axis;
+    // (Those clock numbers count from line_cost's cost taken, COST_CLOCKS after the last byte.)
     // c = 1 .. W: a shift-and-add step, its multiplier bit the axis's magnitude's (a
     // two's complement negated bit-serially: inverted after the first one bit).
     // c = SPAN - shift + j, j = 0 .. shift + width - 1: the limit's (rate's) step j, the
@@ -199,7 +219,9 @@ module record_unpack #(
     // the length's bit j (j < LEN_W, its bits rotated back into place) times the rate,
     // product bit j shifted into the budget's bytes from j = s on.
     wire [3:0]      scale    = block_shift == 4'd0 ? 4'd0 : block_shift - 4'd1;
-    wire            deriving = whole & compact & ~derived;
+    wire            deriving = whole & compact & ~derived & costed;    // the other codes' clocks
+    wire            cost_done;
+    wire [FEED_W-1:0] line_cost_value;
     wire [W-1:0]    axis     = length_axis == 2'd1 ? cmd_x : length_axis == 2'd2 ? cmd_y : cmd_z;
     wire            load     = deriving & (length_axis != 2'd0) & (clock_count == 9'd0);
     wire            multiply = deriving & (length_axis != 2'd0) & (clock_count != 9'd0)
@@ -225,7 +247,12 @@ module record_unpack #(
     wire [32:0]     limit_sum = {1'b0, limit_partial} + (bit_lc ? {1'b0, limit_scale} : 33'd0);
     wire [32:0]     rate_sum = {1'b0, rate_partial} + (bit_rc ? {1'b0, rate_scale} : 33'd0);
 
-    integer b;                      // (the budget bytes' bits above ZW)
+    // the cost code's arithmetic, first after a compact record's last byte (whatever its codes)
+    line_cost #(.W(W), .FEED_W(FEED_W), .FRAC(FRAC)) u_cost (
+        .clk(clk), .rst(rst | flush), .start(whole & compact & ~cost_started),
+        .x(cmd_x), .y(cmd_y), .z(cmd_z), .axis(cost_axis), .cost(line_cost_value), .done(cost_done));
+
+    integer b;                      // (the fields' bytes' bits above their widths)
     wire take    = in_valid & in_ready;
     wire advance = body ? (take | ~use_in) : take & ~in_table;   // a byte of the record is formed
 
@@ -236,8 +263,10 @@ module record_unpack #(
             length_axis <= 2'd0; budget_code <= 1'b0; clock_count <= 9'd0; derived <= 1'b0;
             negative <= 1'b0; seen <= 1'b0; partial <= {(PF+1){1'b0}};
             limit_code <= 1'b0; rate_code <= 1'b0; limit_partial <= 32'd0; rate_partial <= 32'd0;
+            cost_axis <= 2'd0; fill <= 2'd0; cost_started <= 1'b0; costed <= 1'b0;
         end else if (taken) begin
             count <= {CW{1'b0}}; clock_count <= 9'd0; derived <= 1'b0; partial <= {(PF+1){1'b0}};
+            cost_started <= 1'b0; costed <= 1'b0;
             limit_partial <= 32'd0; rate_partial <= 32'd0;
         end else begin
             if ((take & in_table) | skip) begin
@@ -246,12 +275,14 @@ module record_unpack #(
             end
             if (advance) begin
                 count  <= count + 1'b1;
-                record <= {body ? (zero_ijkl & ijkl ? 8'd0 : sum[7:0]) : in_data, record[RB-1:8]};
+                record <= {~body ? in_data : (zero_ijkl & ijkl) | fill_now[0] ? 8'd0
+                                   : fill_now[1] ? record[FEED_SLOT +: 8] : sum[7:0], record[RB-1:8]};
             end
             if (take && count == {CW{1'b0}}) begin          // the head
                 compact <= in_data[7]; zero_ijkl <= in_data[7] & in_data[6];
                 table_count <= 3'd0; bad_length <= 1'b0;
                 length_axis <= 2'd0; budget_code <= 1'b0; limit_code <= 1'b0; rate_code <= 1'b0;
+                cost_axis <= 2'd0; fill <= 2'd0;
             end
             if (body & advance) begin
                 carry <= sum[8];
@@ -259,6 +290,8 @@ module record_unpack #(
                 left  <= n_here - {3'd0, use_in};
                 if (field_start) begin
                     nibbles <= nibbles >> 4;
+                    fill    <= fill_now;
+                    if (cost_here) cost_axis <= code[1:0];
                     if (length_here) length_axis <= code[1:0];
                     if (budget_here) budget_code <= 1'b1;
                     if (limit_here) limit_code <= 1'b1;
@@ -266,9 +299,17 @@ module record_unpack #(
                     if (!code_here && {4'd0, code} > here_bytes) bad_length <= 1'b1;
                 end
             end
+            if (whole & compact & ~cost_started) cost_started <= 1'b1;
+            if (cost_done) begin
+                costed <= 1'b1;
+                if (cost_axis != 2'd0) begin
+                    record[8 * O_COST +: FEED_W] <= line_cost_value;
+                    for (b = FEED_W; b < 8 * BF; b = b + 1) record[8 * O_COST + b] <= 1'b0;
+                end
+            end
             if (deriving) begin
                 clock_count <= clock_count + 9'd1;
-                if (clock_count == DERIVE_CLOCKS[8:0] - 9'd1) derived <= 1'b1;
+                if (clock_count == FORM_CLOCKS[8:0] - 9'd1) derived <= 1'b1;
             end
             if (load) begin
                 record[SL +: 8 * BL] <= {{(8 * BL - W){1'b0}}, axis};       // 8 B(LEN_W) > W

@@ -240,7 +240,7 @@ def test_controls_reach_the_harness_in_cycles(fakes, nc, tmp_path, capsys):
     assert seen["controls"] == [(250000, "override", 50), (500000, "hold", 0), (750000, "resume", 0),
                                 (1000000, "hold", 0), (1500000, "resume", 0)]
     assert seen["settings"]["override"] == 150 and seen["settings"]["jerk_shift"] > 0
-    assert seen["push_interval"] == 257                 # the record unpacker's pace (68-byte compact records, 181 clocks for codes)
+    assert seen["push_interval"] == 424                 # the record unpacker's pace (68-byte compact records, 348 clocks for codes)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "monitor: " in capsys.readouterr().out
 

@@ -270,3 +270,43 @@ def test_scales_follow_the_binding_axis():
         assert r.decode(reader.take(stream[at:at + size])) == dict(zip(r.FIELD_NAMES, cmd.fields()))
         at += size
     assert coded == [True, True, True, False]
+
+
+def test_cost_and_feed_codes():
+    """Every line's cost goes as the code of its largest axis (the controller forms it from
+    x, y, z: round(2^FRAC sqrt(x^2 + y^2 + z^2) / |axis|), the compiler's true length per
+    step event), every flat arc's cost of 0 as the zero code, and a limit equal to the feed
+    as the feed code; the reader forms the compiled fields exactly; a reader that took the
+    cost code's axis for another would not."""
+    from interp.commands.gcode import compile_text
+
+    program = "G21 G90 F600\nG1 X3.1 Y0.7\nG2 X5.1 Y2.7 I0 J2\nG1 X4 Y9 Z-1\nG3 X2 Y7 I-2 J0\nG1 X0 Y0 Z-3.5\nM2\n"
+    _, compiled = compile_text(program)
+    codes = r.Codes.of(compiled)
+    commands = [cmd.fields() for cmd in compiled.commands]
+    commands.append(commands[0][:10] + (commands[0][2],) + commands[0][11:])      # limit = feed
+    stream = r.encode_program(commands, codes=codes)
+    reader, at, seen = r.RecordReader(codes=codes), 0, []
+    for fields in commands:
+        size = reader.length(stream[at:])
+        record, want = stream[at:at + size], dict(zip(r.FIELD_NAMES, fields))
+        nibbles = r.table_nibbles(record)
+        if want["kind"] in (0, 1, 2):
+            axes = [abs(want[a]) for a in "xyz"]
+            seen.append((want["kind"], nibbles[r.COST_FIELD], nibbles[r.LIMIT_FIELD]))
+            if want["kind"] == 0:
+                assert nibbles[r.COST_FIELD] == 13 + axes.index(max(axes))
+                other = r.RecordReader(codes=codes)
+                other.previous = reader.previous
+                wrong = bytearray(record)
+                place = 1 + r.COST_FIELD // 2 - (2 if record[0] & r.ZERO_IJKL else 0)   # (a table of 5 bytes)
+                axis = {13: 14, 14: 15, 15: 13}[nibbles[r.COST_FIELD]]                 # another axis
+                wrong[place] = wrong[place] & 0x0F | axis << 4
+                assert r.decode(other.take(bytes(wrong)))["cost"] != want["cost"]
+            else:
+                assert nibbles[r.COST_FIELD] == r.ZERO_COST_CODE
+        assert r.decode(reader.take(record)) == want
+        at += size
+    assert at == len(stream)
+    assert [k for k, _, _ in seen] == [0, 1, 0, 2, 0, 0] and seen[-1][2] == r.FEED_CODE
+    assert r.derived_cost(3, -4, 0, "y") == 5 << 30 and r.derived_cost(0, 0, 0, "x") == 0

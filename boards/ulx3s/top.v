@@ -23,7 +23,7 @@ module top #(
     parameter integer PLL_CLKFB_DIV = 3,      // PLL feedback divider (1 .. 128)
     parameter integer PLL_CLKOP_DIV = 40,     // PLL output divider: VCO / CLK_HZ (1 .. 128)
     parameter integer BAUD       = 115200,    // UART bit rate (host side: interp send --baud)
-    parameter integer CURVES     = 1,         // curve core (kind 3): 1 present, 0 left out (kind 3 refused with error 1; 3400 LUT4s less)
+    parameter integer CURVES     = 0,         // curve core (kind 3): 0 left out (kind 3 refused with error 1), 1 present (3400 LUT4s more: a 45F or 85F)
     parameter integer INPUT_INVERT  = 0,      // active-low inputs from the reset on: INPUT_INVERT's bits (0 .. 31)
     parameter integer OUTPUT_INVERT = 0,      // active-low pins from the reset on: OUTPUT_INVERT's bits (0 .. 65535)
     parameter integer RESET_BITS = 4          // power-on reset lasts 2^RESET_BITS - 1 clocks (1 .. 24)

@@ -534,7 +534,7 @@ def add_parser(sub) -> None:
     p.add_argument("--vcd", metavar="FILE", help="waveform file")
     p.add_argument("--push-interval", type=int, metavar="N",
                    help="clocks from one command's push into motion_top to the next, at least (default: "
-                        "RECORD_BYTES + 8 + DERIVE_CLOCKS, 257: the controller's record unpacker on the link's "
+                        "RECORD_BYTES + 8 + DERIVE_CLOCKS, 424: the controller's record unpacker on the link's "
                         "compact records; "
                         "1: motion_top fed directly)")
     p.add_argument("--plot", metavar="FILE.png", help="PNG of the stepped XY path over the programmed one")

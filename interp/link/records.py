@@ -23,17 +23,20 @@ modulo 2^(8 B).  A compact head with bit 6 set (ZERO_IJKL) says i, j, k and l ar
 its table has 5 bytes (none for those four fields) and no bytes follow for them.
 Codes send no bytes and have the controller form the field: limit 15 and rate 15
 (floor(cost x LIMIT_SCALE / 2^limit_shift), floor(cost x RATE_SCALE / 2^rate_shift), modulo
-2^FEED_W and 2^(PF + 1):
-a line's axis ceiling and acceleration), length 13, 14, 15 (|x|, |y|, |z| x cost: a
-line's step events x cost) and budget 15 (floor(rate x length / 2^(block_shift - 1)),
-the compiler's budget when the speed quantum is 1).  The driver sends compact records,
-with the codes wherever they give the field's value exactly (a quarter to a third of
-the bytes of plain ones on CAM programs); the controller's record unpacker takes
-RECORD_BYTES + 8 + DERIVE_CLOCKS clocks for one (DERIVE_CLOCKS = max(W, 64 + max(FEED_W,
-PF + 1)) + ZW + 15, codes or not), RECORD_BYTES + 1 for a plain one.
+2^FEED_W and 2^(PF + 1): a line's axis ceiling and acceleration), limit 14 (the record's
+feed), cost 12 (zero: a flat arc's), cost 13, 14, 15 (round(2^FRAC sqrt(x^2 + y^2 + z^2) /
+|x|, |y|, |z|): a line's true length per step event), length 13, 14, 15 (|x|, |y|, |z| x
+cost: a line's step events x cost) and budget 15 (floor(rate x length / 2^(block_shift -
+1)), the compiler's budget when the speed quantum is 1).  The driver sends compact records,
+with the codes wherever they give the field's value exactly (a fifth to a third of the
+bytes of plain ones on CAM programs); the controller's record unpacker takes
+RECORD_BYTES + 8 + DERIVE_CLOCKS clocks for one (DERIVE_CLOCKS = 4 W + FRAC + 7 for the
+cost, then max(W, 64 + max(FEED_W, PF + 1)) + ZW + 15, codes or not), RECORD_BYTES + 1
+for a plain one.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass
 from functools import lru_cache
 
@@ -102,6 +105,10 @@ TABLE_BYTES = 7                 # its nibble table: 14 fields, one nibble each
 LENGTH_CODES = {13: "x", 14: "y", 15: "z"}     # length formed as |axis| x cost
 BUDGET_CODE = 15                # budget formed as floor(rate x length / 2^(block_shift - 1))
 SCALED_CODE = 15                # limit, rate formed as floor(cost x scale / 2^shift)
+FEED_CODE = 14                  # limit formed as the record's feed
+ZERO_COST_CODE = 12             # cost formed as 0 (a flat arc's)
+COST_CODES = {13: "x", 14: "y", 15: "z"}       # cost formed from x, y, z (a line's: line_cost)
+COST_FIELD = 11
 LIMIT_FIELD, RATE_FIELD = 8, 10                 # places in the nibble table
 LENGTH_FIELD, BUDGET_FIELD = 12, 13
 SPAN = 64                       # the unpacker's clock of a scaled field's first bit (shifts 0 .. 63)
@@ -149,12 +156,19 @@ class Codes:
         return derived_scaled(cost, self.rate_scale, self.rate_shift, _build(build).PF + 1, build)
 
 
+def cost_clocks(build=None) -> int:
+    """Clocks of the cost code's arithmetic (rtl/line_cost.v, and the clock its result is
+    taken): 4 W + FRAC + 7 (167 at the default build)."""
+    b = _build(build)
+    return 4 * b.W + b.FRAC + 7
+
+
 def derive_clocks(build=None) -> int:
     """Clocks the record unpacker spends after a compact record's last byte forming its
-    coded fields (the same with or without codes): max(W, 64 + max(FEED_W, PF + 1)) + ZW + 15
-    (181 at the default build)."""
+    coded fields (the same with or without codes): the cost's, then max(W, 64 + max(FEED_W,
+    PF + 1)) + ZW + 15 for the others (348 at the default build)."""
     b = _build(build)
-    return max(b.W, SPAN + max(b.FEED_W, b.PF + 1)) + b.ZW + 15
+    return cost_clocks(b) + max(b.W, SPAN + max(b.FEED_W, b.PF + 1)) + b.ZW + 15
 
 
 def derived_scaled(cost: int, scale: int, shift: int, bits: int, build=None) -> int:
@@ -165,13 +179,30 @@ def derived_scaled(cost: int, scale: int, shift: int, bits: int, build=None) -> 
     return (product >> (shift & 63)) & ((1 << bits) - 1)
 
 
+def _magnitude(value: int, bits: int) -> int:
+    """|value| of a two's complement word of `bits` bits."""
+    value &= (1 << bits) - 1
+    return (1 << bits) - value if value >> (bits - 1) else value
+
+
+def derived_cost(x: int, y: int, z: int, axis: str, build=None) -> int:
+    """A cost code's value, a line's true length per step event when its step events are
+    |axis|: round(2^FRAC sqrt(x^2 + y^2 + z^2) / |axis|) (halves up) modulo 2^FEED_W, as
+    rtl/line_cost.v forms it: q = floor(isqrt((x^2 + y^2 + z^2) 4^(FRAC + 1)) / |axis|)
+    modulo 2^(FEED_W + 1) (|axis| = 0: all W + FRAC + 1 bits one), then (q + 1) / 2."""
+    b = _build(build)
+    x, y, z = (_magnitude(v, b.W) for v in (x, y, z))
+    n = {"x": x, "y": y, "z": z}[axis]
+    root_bits = b.W + b.FRAC + 1
+    q = math.isqrt((x * x + y * y + z * z) << (2 * b.FRAC + 2)) // n if n else (1 << root_bits) - 1
+    q &= (1 << (b.FEED_W + 1)) - 1
+    return ((q + 1) >> 1) & ((1 << b.FEED_W) - 1)
+
+
 def derived_length(axis: int, cost: int, build=None) -> int:
     """A length code's value: |axis| x cost (axis as signed W bits, cost FEED_W bits)."""
     b = _build(build)
-    axis &= (1 << b.W) - 1
-    if axis >> (b.W - 1):
-        axis = (1 << b.W) - axis
-    return axis * (cost & ((1 << b.FEED_W) - 1))
+    return _magnitude(axis, b.W) * (cost & ((1 << b.FEED_W) - 1))
 
 
 def derived_budget(rate: int, length: int, block_shift: int, build=None) -> int:
@@ -186,7 +217,7 @@ def unpack_interval(build=None, compact_records: bool = True) -> int:
     """Clocks between two records the controller's record unpacker hands to motion_top
     from a filled queue: RECORD_BYTES clocks to form the bytes (one a clock) and one to
     push, and for a compact record (the link's) the 7 clocks of its nibble table and the
-    DERIVE_CLOCKS of its coded fields (257 at the default build; 69 for plain records).
+    DERIVE_CLOCKS of its coded fields (424 at the default build; 69 for plain records).
     interp gcode pushes its commands no faster."""
     return record_bytes(build) + 1 + (TABLE_BYTES + derive_clocks(build) if compact_records else 0)
 
@@ -297,8 +328,17 @@ def compact(record: bytes, previous: bytes, build=None, codes=None) -> bytes | N
     settings, codes = Codes.of(codes), {}
     if settings is not None:
         f = decode(record, b)
+        if f["cost"] == 0:
+            codes["cost"] = ZERO_COST_CODE
+        else:
+            for code, axis in COST_CODES.items():
+                if derived_cost(f["x"], f["y"], f["z"], axis, b) == f["cost"]:
+                    codes["cost"] = code
+                    break
         if settings.limit(f["cost"], b) == f["limit"]:
             codes["limit"] = SCALED_CODE
+        elif f["limit"] == f["feed"]:
+            codes["limit"] = FEED_CODE
         if settings.rate(f["cost"], b) == f["rate"]:
             codes["rate"] = SCALED_CODE
         for code, axis in LENGTH_CODES.items():
@@ -354,7 +394,9 @@ def table_nibbles(data) -> list[int] | None:
 def is_code(field: int, n: int) -> bool:
     """A nibble that is a code (no bytes follow)."""
     return ((field == LENGTH_FIELD and n in LENGTH_CODES) or (field == BUDGET_FIELD and n == BUDGET_CODE)
-            or (field in (LIMIT_FIELD, RATE_FIELD) and n == SCALED_CODE))
+            or (field in (LIMIT_FIELD, RATE_FIELD) and n == SCALED_CODE)
+            or (field == LIMIT_FIELD and n == FEED_CODE)
+            or (field == COST_FIELD and (n == ZERO_COST_CODE or n in COST_CODES)))
 
 
 class RecordReader:
@@ -421,7 +463,8 @@ class RecordReader:
             value = (int.from_bytes(self.previous[at:at + size], "little") + difference) % (1 << (8 * size))
             out += value.to_bytes(size, "little")
             at, body = at + size, body + n
-        for name, code, at, size in coded:      # limit, rate, length, budget: in record order
+        # the cost first (the others use it), then limit, rate, length, budget in record order
+        for name, code, at, size in sorted(coded, key=lambda c: c[0] != "cost"):
             out[at:at + size] = self._coded_value(name, code, bytes(out)).to_bytes(size, "little")
         self.previous = bytes(out)
         if bad:
@@ -436,6 +479,11 @@ class RecordReader:
             at, size = places[which]
             return int.from_bytes(formed[at:at + size], "little", signed=signed)
         c, b = self.codes, self.build
+        if name == "cost":
+            return 0 if code == ZERO_COST_CODE else derived_cost(field("x", True), field("y", True),
+                                                                 field("z", True), COST_CODES[code], b)
+        if name == "limit" and code == FEED_CODE:
+            return field("feed")
         if name in ("limit", "rate"):
             return getattr(c, name)(field("cost"), b)
         if name == "length":

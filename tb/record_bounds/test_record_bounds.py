@@ -18,8 +18,9 @@ BUILDS = (records.Build(), records.Build(**{k: motion_build.PARAMETERS[k] for k 
 
 def random_stream(rng, build, count):
     """`count` records of random fields, each compact or plain at random, after a reset;
-    many with a limit and a rate of cost x scale, a length of an axis x cost and a budget
-    of rate x length (their codes, no bytes)."""
+    many with a cost of their geometry or zero, a limit and a rate of cost x scale or a
+    limit of the feed, a length of an axis x cost and a budget of rate x length (their
+    codes, no bytes)."""
     size = records.record_bytes(build)
     codes = records.Codes(rng.randint(0, 15), rng.getrandbits(32), rng.randrange(64), rng.getrandbits(32),
                           rng.randrange(64))
@@ -29,7 +30,13 @@ def random_stream(rng, build, count):
         for name in records.SIGNED:                         # small moves: short differences
             fields[name] = rng.randint(-300, 300)
         fields.update(kind=rng.randint(0, 5), plane=rng.randint(0, 3))
-        if n % 3 and rng.random() < 0.5:
+        if n % 4 == 1 or rng.random() < 0.3:
+            fields["cost"] = records.derived_cost(fields["x"], fields["y"], fields["z"], rng.choice("xyz"), build)
+        elif n % 4 == 3 or rng.random() < 0.2:
+            fields["cost"] = 0
+        if n % 5 == 2:
+            fields["limit"] = fields["feed"]
+        elif n % 3 and rng.random() < 0.5:
             fields.update({name: records.decode(previous, build)[name] for name in ("limit", "rate")})
         elif n % 3 == 0 or rng.random() < 0.6:
             fields["limit"], fields["rate"] = codes.limit(fields["cost"], build), codes.rate(fields["cost"], build)
@@ -51,7 +58,7 @@ async def bounds(dut):
     build = next(b for b in BUILDS if records.record_bytes(b) == size)
     tb = TB(dut)
     await tb.reset({"flush": 0, "write": 0, "data": 0})
-    recs = random_stream(rng, build, 30)
+    recs = random_stream(rng, build, 60)
     partial = rng.choice(recs)[:rng.randrange(1, 12)]       # flushed before record 10
     stream = [(byte, n == len(rec) - 1) for rec in recs[:10] for n, byte in enumerate(rec)]
     stream += [(byte, None) for byte in partial]
@@ -62,9 +69,11 @@ async def bounds(dut):
     assert any(r[0] & records.COMPACT and records.table_nibbles(r)[records.BUDGET_FIELD] == records.BUDGET_CODE
                for r in recs), "no budget code"
     assert any(r[0] & records.ZERO_IJKL for r in recs), "no table of 5 bytes"
-    for field in (records.LIMIT_FIELD, records.RATE_FIELD):
-        assert any(r[0] & records.COMPACT and records.table_nibbles(r)[field] == records.SCALED_CODE
-                   for r in recs), f"no code in field {field}"
+    for field, code in ((records.LIMIT_FIELD, records.SCALED_CODE), (records.RATE_FIELD, records.SCALED_CODE),
+                        (records.LIMIT_FIELD, records.FEED_CODE), (records.COST_FIELD, records.ZERO_COST_CODE),
+                        (records.COST_FIELD, (13, 14, 15))):
+        assert any(r[0] & records.COMPACT and records.table_nibbles(r)[field] in (code if isinstance(code, tuple) else (code,))
+                   for r in recs), f"no code {code} in field {field}"
     at, lasts = 0, 0
     while at < len(stream) or at == flush_at:
         await FallingEdge(dut.clk)

@@ -6,10 +6,11 @@ a byte stream with random gaps, against random cmd_full back-pressure: each reco
 The records come from the host's encoder (interp.link.records), checked against the local one.
 Compact records (differences from the previous record) mixed with plain ones, a flush that
 zeroes the previous record, a difference longer than its field (record_error); records with
-i .. l zero (head bit 6, a table of 5 bytes) after records without; the limit, rate, length
-and budget codes (fields the unpacker forms: cost x scale / 2^shift, |x|, |y| or |z| x
-cost, rate x length / 2^(block_shift - 1)) at random block shifts, scales (0 and 2^32 - 1
-among them) and shifts, against the host's reader; and the pace
+i .. l zero (head bit 6, a table of 5 bytes) after records without; the cost, limit, rate,
+length and budget codes (fields the unpacker forms: the cost of the geometry or zero, the
+limit of the feed, cost x scale / 2^shift, |x|, |y| or |z| x cost, rate x length /
+2^(block_shift - 1)) at random block shifts, scales (0 and 2^32 - 1 among them) and shifts,
+against the host's reader; and the pace
 from a stream without gaps: RECORD_BYTES + 1 clocks a plain record, RECORD_BYTES + 8 +
 DERIVE_CLOCKS a compact one, codes or not."""
 from dataclasses import replace
@@ -105,7 +106,7 @@ async def run_stream(tb, rng, stream, flush_before, valid_share, full_rate):
     dut = tb.dut
     pushed, errors, at, flushed, idle = [], 0, 0, flush_before is None, 0
     for cycle in range(200_000):
-        if at >= len(stream) and (not int(dut.assembling.value) or idle > 400):
+        if at >= len(stream) and (not int(dut.assembling.value) or idle > 1000):
             break
         idle = idle + 1 if at >= len(stream) else 0
         await FallingEdge(dut.clk)
@@ -152,12 +153,23 @@ async def compact_records(dut):
     assert_pushed(pushed, want)
 
 
-def coded_command(rng, b, command, codes, every=False):
-    """The command with the limit and the rate of its cost (records.Codes' scales), the
-    length of one of its axes (|axis| x cost) and the budget of its rate and length, each
-    at random (else its own), or all four with `every`."""
-    if every or rng.random() < 0.6:
+def coded_command(rng, b, command, codes, every=None):
+    """The command with the cost of its geometry (round(2^FRAC sqrt(x^2 + y^2 + z^2) / |axis|),
+    of a random axis) or zero, the limit of its cost (records.Codes' scales) or its feed,
+    the rate of its cost, the length of one of its axes (|axis| x cost) and the budget of
+    its rate and length, each at random (else its own); with `every` "line" all of them,
+    the cost of its geometry and the limit of its cost, with "arc" a cost of zero and the
+    limit of its feed."""
+    how = rng.random()
+    if every == "line" or (not every and how < 0.5):
+        command = replace(command, cost=records.derived_cost(command.x, command.y, command.z, rng.choice("xyz"), b))
+    elif every == "arc" or how < 0.65:
+        command = replace(command, cost=0)
+    how = rng.random()
+    if every == "line" or (not every and how < 0.5):
         command = replace(command, limit=codes.limit(command.cost, b))
+    elif every == "arc" or how < 0.7:
+        command = replace(command, limit=command.feed)
     if every or rng.random() < 0.6:
         command = replace(command, rate=codes.rate(command.cost, b))
     if every or rng.random() < 0.8:
@@ -190,15 +202,16 @@ async def coded_records(dut):
             cmds.append(changed_command(rng, b, cmds[-1]))
         extremes = (0, (1 << b["FEED_W"]) - 1)                  # the cost's
         cmds = [replace(c, cost=rng.choice(extremes)) if rng.random() < 0.15 else c for c in cmds]
-        every = {n for n in range(len(cmds)) if n % 4 == 1}                # all four codes
-        cmds = [coded_command(rng, b, c, codes, n in every) if n in every or rng.random() < 0.7 else c
+        every = {n: "line" if n % 8 == 1 else "arc" for n in range(len(cmds)) if n % 4 == 1}   # all codes
+        cmds = [coded_command(rng, b, c, codes, every.get(n)) if n in every or rng.random() < 0.7 else c
                 for n, c in enumerate(cmds)]
         cmds = [replace(c, kind=c.kind % 6) for c in cmds]
         zeroed = {n for n in range(len(cmds)) if n % 3 == 0 or rng.random() < 0.2}   # a line's i .. l
         cmds = [replace(c, i=0, j=0, k=0, l=0) if n in zeroed else c for n, c in enumerate(cmds)]
         stream = compact_stream(rng, b, enumerate(cmds), 0.1, codes)
         reader, coded, short = records.RecordReader(b, codes), 0, 0
-        fields = (records.LIMIT_FIELD, records.RATE_FIELD, records.LENGTH_FIELD, records.BUDGET_FIELD)
+        fields = (records.LIMIT_FIELD, records.RATE_FIELD, records.COST_FIELD, records.LENGTH_FIELD,
+                  records.BUDGET_FIELD)
         for n in range(len(cmds)):
             raw = bytes(byte for byte, k in stream if k == n)
             if raw[0] & records.COMPACT:                # (10 % go plain)
@@ -236,7 +249,7 @@ async def pace(dut):
             cmds = [replace(c, i=0, j=0, k=0, l=0) if n % 4 >= 2 else c for n, c in enumerate(cmds)]
         stream = compact_stream(rng, b, enumerate(cmds), share, codes)
         at, cycle, pushes = 0, 0, []
-        while len(pushes) < len(cmds) and cycle < 4000:
+        while len(pushes) < len(cmds) and cycle < 8000:
             await FallingEdge(dut.clk)
             tb.drive({"in_valid": int(at < len(stream)), "in_data": stream[at][0] if at < len(stream) else 0})
             await ReadOnly()
