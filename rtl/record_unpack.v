@@ -108,9 +108,8 @@ module record_unpack #(
     localparam integer T = W > SCALED_END ? W : SCALED_END;         // the budget's start at block_shift 16
     localparam integer SL = 8 * O_LENGTH, SB = 8 * O_BUDGET;      // the length's, budget's bits
     localparam integer PB = W + FEED_W;                          // |axis| x cost
-    localparam integer COST_CLOCKS = 4 * W + FRAC + 7;              // line_cost's, and one to take its cost
-    localparam integer FORM_CLOCKS = T + ZW + 15;                   // then the others'
-    localparam integer DERIVE_CLOCKS = COST_CLOCKS + FORM_CLOCKS;
+    // DERIVE_CLOCKS = 4 W + FRAC + 7 (line_cost's, and one to take its cost) + FORM_CLOCKS
+    localparam integer FORM_CLOCKS = T + ZW + 15;                   // the other codes' clocks
     localparam integer FEED_SLOT = 8 * (RECORD_BYTES - O_LIMIT + O_FEED);   // a new feed byte, as a limit byte enters
     localparam integer SL_LIMIT = 8 * O_LIMIT, SL_RATE = 8 * O_RATE;  // the limit's, rate's bits
     initial begin
