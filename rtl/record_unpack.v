@@ -9,7 +9,9 @@
 // pushed: `record_error` strobes and the record is dropped.  `taken` strobes for every
 // record that leaves (pushed or dropped).  `flush` drops the record being assembled.
 // A compact record (head bit 7 set) carries each field as a difference from the same
-// field of the previous record (zero after rst or flush): after the head, 7 bytes of
+// field of its base (zero after rst or flush): the previous record of its class, arcs
+// (kinds 1 and 2) or the others (a CAM program's arcs and lines alternate, and each
+// repeats its own feed, limit and rate).  After the head, 7 bytes of
 // nibbles give each field's difference length n (field 2t in the low nibble of byte t),
 // then come the n bytes of each field (two's complement, little-endian, sign-extended
 // to the field's bytes and added modulo 2^(8 B)); n > B(field) is an error like kinds
@@ -28,10 +30,11 @@
 // A compact head with bit 6 set also says i, j, k and l are zero (a line's, an event's):
 // the table then has 5 bytes (none for those four fields: the table's bytes 2 and 3 are
 // zero, formed in the clocks they would have taken) and those fields' bytes are zero.
-// The register rotates one byte a clock: the byte leaving at the bottom is the
-// previous record's byte of the position entering at the top (a limit = feed byte is
-// the feed's, a fixed number of bytes above it).  After the last byte of a compact record
-// come DERIVE_CLOCKS = C + T + ZW + 15 clocks (C = 4 W + FRAC + 7, T = max(W, 64 +
+// The register rotates one byte a clock: the byte leaving at the bottom is the base's
+// byte of the position entering at the top (a limit = feed byte is the feed's, a fixed
+// number of bytes above it); the last record of the other class waits in a second
+// register, and a head of the other class swaps the two.  After the last byte of a
+// compact record come DERIVE_CLOCKS = C + T + ZW + 15 clocks (C = 4 W + FRAC + 7, T = max(W, 64 +
 // max(FEED_W, PF + 1))), the same for every compact record: first line_cost's C clocks
 // for the cost (its result taken the clock after), then the length's shift-and-add
 // multiplication in place in its bytes (W clocks, the axis's magnitude formed
@@ -139,6 +142,8 @@ module record_unpack #(
     endfunction
 
     reg  [RB-1:0]   record;         // byte 0 at bits 7:0 once all bytes are in
+    reg  [RB-9:0]   other;          // the last record of the other class, but its head
+    reg             arc_class;      // the class of `record`'s: 1 arcs (kinds 1, 2), 0 the others
     reg  [CW-1:0]   count;          // bytes assembled (the head included)
     reg             compact;        // the record being assembled is compact
     reg             zero_ijkl;      // ... with head bit 6: i, j, k, l zero, no table bytes for them
@@ -254,10 +259,14 @@ module record_unpack #(
     integer b;                      // (the fields' bytes' bits above their widths)
     wire take    = in_valid & in_ready;
     wire advance = body ? (take | ~use_in) : take & ~in_table;   // a byte of the record is formed
+    wire head_arc = in_data[2:0] == 3'd1 || in_data[2:0] == 3'd2;
+    wire swap    = take && count == {CW{1'b0}} && head_arc != arc_class;   // a head of the other class
+    wire [RB-9:0] base = swap ? other : record[RB-1:8];   // the base, rotated
 
     always @(posedge clk) begin
         if (rst | flush) begin
-            count <= {CW{1'b0}}; record <= {RB{1'b0}}; compact <= 1'b0; zero_ijkl <= 1'b0; table_count <= 3'd0;
+            count <= {CW{1'b0}}; record <= {RB{1'b0}}; other <= {(RB-8){1'b0}}; arc_class <= 1'b0;
+            compact <= 1'b0; zero_ijkl <= 1'b0; table_count <= 3'd0;
             nibbles <= {(8*TB){1'b0}}; left <= 4'd0; carry <= 1'b0; sign <= 1'b0; bad_length <= 1'b0;
             length_axis <= 2'd0; budget_code <= 1'b0; clock_count <= 9'd0; derived <= 1'b0;
             negative <= 1'b0; seen <= 1'b0; partial <= {(PF+1){1'b0}};
@@ -275,7 +284,11 @@ module record_unpack #(
             if (advance) begin
                 count  <= count + 1'b1;
                 record <= {~body ? in_data : (zero_ijkl & ijkl) | fill_now[0] ? 8'd0
-                                   : fill_now[1] ? record[FEED_SLOT +: 8] : sum[7:0], record[RB-1:8]};
+                                   : fill_now[1] ? record[FEED_SLOT +: 8] : sum[7:0], base};
+            end
+            if (swap) begin
+                other     <= record[RB-1:8];
+                arc_class <= head_arc;
             end
             if (take && count == {CW{1'b0}}) begin          // the head
                 compact <= in_data[7]; zero_ijkl <= in_data[7] & in_data[6];

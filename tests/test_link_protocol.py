@@ -186,7 +186,7 @@ def test_compact_round_trip(previous, fields, kept):
     before, record = r.encode(previous), r.encode(fields)
     short = r.compact(record, before)
     reader = r.RecordReader()
-    reader.previous = before
+    reader.bases[r.record_class(record[0])] = before
     assert reader.length(short) == len(short)
     assert reader.take(short) == record
     sizes = dict(r.layout())
@@ -243,7 +243,7 @@ def test_limit_and_rate_codes_of_a_compiled_program():
             assert nibbles[r.LIMIT_FIELD] == nibbles[r.RATE_FIELD] == r.SCALED_CODE
             lines += 1
             other = r.RecordReader(codes=r.Codes(codes.block_shift))
-            other.previous = reader.previous
+            other.bases = list(reader.bases)
             assert r.decode(other.take(record))["limit"] != cmd.limit
         assert r.decode(reader.take(record)) == dict(zip(r.FIELD_NAMES, cmd.fields()))
         at += size
@@ -297,7 +297,7 @@ def test_cost_and_feed_codes():
             if want["kind"] == 0:
                 assert nibbles[r.COST_FIELD] == 13 + axes.index(max(axes))
                 other = r.RecordReader(codes=codes)
-                other.previous = reader.previous
+                other.bases = list(reader.bases)
                 wrong = bytearray(record)
                 place = 1 + r.COST_FIELD // 2 - (2 if record[0] & r.ZERO_IJKL else 0)   # (a table of 5 bytes)
                 axis = {13: 14, 14: 15, 15: 13}[nibbles[r.COST_FIELD]]                 # another axis
@@ -310,3 +310,26 @@ def test_cost_and_feed_codes():
     assert at == len(stream)
     assert [k for k, _, _ in seen] == [0, 1, 0, 2, 0, 0] and seen[-1][2] == r.FEED_CODE
     assert r.derived_cost(3, -4, 0, "y") == 5 << 30 and r.derived_cost(0, 0, 0, "x") == 0
+
+
+def test_bases_by_class():
+    """A compact record's base is the last record of its class (arcs, kinds 1 and 2, or the
+    others): an arc after a line is sent as its difference from the arc before, so the
+    arcs' repeated feed, limit and rate cost no bytes; a reader with one base for all
+    would read it wrong; a flush (a new Encoder, a new RecordReader) zeroes both."""
+    line = {"kind": 0, "feed": 1000, "x": 5, "y": 3, "limit": 5000, "exit": 900, "rate": 200, "cost": 7}
+    arc = {"kind": 2, "feed": 1200, "x": -1, "y": 1, "i": -20, "j": -45, "k": 2, "limit": 1250, "exit": 900,
+           "rate": 50, "length": 1 << 33}
+    commands = [line, arc, {**line, "x": 6}, {**arc, "i": -21}, {**line, "x": 4}, {**arc, "kind": 1}]
+    encoder, reader = r.Encoder(), r.RecordReader()
+    for n, fields in enumerate(commands):
+        sent = encoder.record(fields)
+        if n >= 2:            # the head, the table (5 bytes for a line) and the one field that changed
+            assert len(sent) == {2: 7, 3: 9, 4: 7, 5: 9}[n], f"record {n}: {sent.hex()}"
+        if n == 3:
+            single = r.RecordReader()
+            single.bases = [reader.bases[0]] * 2    # (the line before as the base)
+            assert r.decode(single.take(sent)) != r.decode(r.encode(fields))
+        assert reader.take(sent) == r.encode(fields)
+        assert [r.record_class(b[0]) for b in reader.bases] == [0, 1] or n == 0
+    assert [r.record_class(k) for k in range(8)] == [0, 1, 1, 0, 0, 0, 0, 0]

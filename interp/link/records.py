@@ -15,8 +15,8 @@ At the default build (W 32, FEED_W 34, NW 24, PF 16, LEN_W 66, ZW 68) a record i
 16-field command line: kind plane feed x y z i j k l limit exit rate cost length budget.
 
 A compact record (head bit 7 set) carries each of the 14 fields after the head as its
-difference from the same field of the previous record (all zero after a reset or a
-flush): the head, 7 bytes of nibbles (the difference length n of field 2t in the low
+difference from the same field of its base, the previous record of its class (arcs,
+kinds 1 and 2, or the others; all zero after a reset or a flush): the head, 7 bytes of nibbles (the difference length n of field 2t in the low
 nibble of byte t, 0 .. B, or a code below), then each field's n bytes, two's complement,
 little-endian; the controller sign-extends them and adds them to the field's bytes
 modulo 2^(8 B).  A compact head with bit 6 set (ZERO_IJKL) says i, j, k and l are zero:
@@ -320,8 +320,8 @@ def _offsets(build: Build) -> dict[str, tuple[int, int]]:
 
 
 def compact(record: bytes, previous: bytes, build=None, codes=None) -> bytes | None:
-    """A plain record -> its compact form after `previous` (a plain record, or zeros after a
-    reset or flush); None when a field's difference needs more than 15 bytes.  With the
+    """A plain record -> its compact form against the base `previous` (the last plain record
+    of its class, record_class, or zeros after a reset or flush: Encoder keeps them); None when a field's difference needs more than 15 bytes.  With the
     controller's Codes (or anything Codes.of takes), a field its code gives exactly is sent
     as the code."""
     b = _build(build)
@@ -374,6 +374,33 @@ def compact(record: bytes, previous: bytes, build=None, codes=None) -> bytes | N
     return bytes([record[0] | COMPACT | (ZERO_IJKL if zero else 0)]) + table + bytes(body)
 
 
+def record_class(head: int) -> int:
+    """A record's class by its head's kind: 1 arcs (kinds 1, 2), 0 the others.  A compact
+    record's base is the last record of its class: a CAM program's arcs and lines
+    alternate, and each repeats its own feed, limit and rate."""
+    return 1 if head & 7 in (1, 2) else 0
+
+
+class Encoder:
+    """The host's side of the bases: each command's record, compact (against the last
+    record of its class) or plain, as the controller's record unpacker reads them after
+    a reset or a flush (with the controller's Codes, or anything Codes.of takes, the
+    codes wherever they are exact)."""
+
+    def __init__(self, build=None, codes=None):
+        self.build = _build(build)
+        self.codes = Codes.of(codes)
+        self.bases = [bytes(record_bytes(self.build))] * 2
+
+    def record(self, command, compact_record: bool = True) -> bytes:
+        """The bytes to send for one command: compact unless `compact_record` is false or
+        a difference would need more than 15 bytes."""
+        record = encode(fields_of(command), self.build)
+        short = compact(record, self.bases[record_class(record[0])], self.build, self.codes) if compact_record else None
+        self.bases[record_class(record[0])] = record
+        return short if short is not None else record
+
+
 def table_bytes(head: int) -> int:
     """Nibble-table bytes of a compact record with this head: 5 under ZERO_IJKL, else 7."""
     return SHORT_TABLE_BYTES if head & ZERO_IJKL else TABLE_BYTES
@@ -401,13 +428,13 @@ def is_code(field: int, n: int) -> bool:
 
 class RecordReader:
     """The controller's record unpacker on the host: whole plain records out of a stream of
-    plain and compact records, the previous record kept (zeros at first, as after a
-    reset or flush)."""
+    plain and compact records, the last record of each class kept as its base (bases[1]
+    the arcs', bases[0] the others'; zeros at first, as after a reset or flush)."""
 
     def __init__(self, build=None, codes=None):
         self.build = _build(build)
         self.size = record_bytes(self.build)
-        self.previous = bytes(self.size)
+        self.bases = [bytes(self.size)] * 2
         self.codes = Codes.of(codes) or Codes()     # the controller's, for the coded fields
 
     def length(self, data) -> int | None:
@@ -433,13 +460,14 @@ class RecordReader:
 
     def take(self, data) -> bytes:
         """The record that is exactly `data` -> its plain bytes (the head's bit 7 cleared),
-        kept as the previous record.  ValueError when a difference is longer than its
-        field (the controller's error 18)."""
+        kept as its class's base.  ValueError when a difference is longer than its field
+        (the controller's error 18)."""
         data = bytes(data)
+        kind = record_class(data[0])
         if not data[0] & COMPACT:
             if len(data) != self.size:
                 raise ValueError(f"a record is {self.size} bytes, got {len(data)}")
-            self.previous = data
+            self.bases[kind] = data
             return data
         if len(data) != self.length(data):
             raise ValueError("a compact record's length differs from its table's")
@@ -460,16 +488,16 @@ class RecordReader:
             bad |= n > size
             n = min(n, size)                    # the unpacker takes B bytes of a longer difference
             difference = int.from_bytes(data[body:body + n], "little", signed=True) if n else 0
-            value = (int.from_bytes(self.previous[at:at + size], "little") + difference) % (1 << (8 * size))
+            value = (int.from_bytes(self.bases[kind][at:at + size], "little") + difference) % (1 << (8 * size))
             out += value.to_bytes(size, "little")
             at, body = at + size, body + n
         # the cost first (the others use it), then limit, rate, length, budget in record order
         for name, code, at, size in sorted(coded, key=lambda c: c[0] != "cost"):
             out[at:at + size] = self._coded_value(name, code, bytes(out)).to_bytes(size, "little")
-        self.previous = bytes(out)
+        self.bases[kind] = bytes(out)
         if bad:
             raise ValueError("a compact record's difference is longer than its field")
-        return self.previous
+        return self.bases[kind]
 
     def _coded_value(self, name: str, code: int, formed: bytes) -> int:
         """A coded field's value from the record's other fields and the coded ones before it."""
@@ -496,11 +524,5 @@ def encode_program(commands, build=None, compact_records: bool = True, codes=Non
     (plain where a difference would need more than 15 bytes; with the controller's Codes,
     or the compiled program they come from, the codes wherever they are exact), or plain
     ones."""
-    b = _build(build)
-    out, previous = bytearray(), bytes(record_bytes(b))
-    for c in commands:
-        record = encode(fields_of(c), b)
-        short = compact(record, previous, b, codes) if compact_records else None
-        out += short if short is not None else record
-        previous = record
-    return bytes(out)
+    encoder = Encoder(build, codes)
+    return b"".join(encoder.record(c, compact_records) for c in commands)

@@ -55,16 +55,12 @@ def encode(cmd: Command, build: dict) -> bytes:
 
 def mixed_records(rng, commands, build, plain_share: float, codes=None) -> list[bytes]:
     """The commands' records as a stream after a reset or flush sends them: compact ones
-    (interp.link.records.compact; with the controller's codes (records.Codes.of), the
-    codes where they are exact), each plain instead with probability plain_share."""
+    (interp.link.records.Encoder: against the last record of their class; with the
+    controller's codes (records.Codes.of), the codes where they are exact), each plain
+    instead with probability plain_share."""
     from ..link import records
-    previous, out = bytes(records.record_bytes(build)), []
-    for c in commands:
-        record = records.encode(c, build)
-        short = records.compact(record, previous, build, codes)
-        out.append(record if short is None or rng.random() < plain_share else short)
-        previous = record
-    return out
+    encoder = records.Encoder(build, codes)
+    return [encoder.record(c, rng.random() >= plain_share) for c in commands]
 
 
 def local_encode(cmd: Command, build: dict) -> bytes:
