@@ -358,7 +358,7 @@ class DeviceModel:
                 self.error = self.fail_code
                 if self.fail_code == 17:
                     self.limits = 1
-            if self.error:                          # ALARM flushes the queue and the previous record
+            if self.error:                          # ALARM flushes the queue and the bases
                 self.busy = False
                 self.queue.clear()
                 self.reader = RecordReader(self.build)
