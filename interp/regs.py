@@ -174,6 +174,23 @@ def field(name: str, value: int) -> int:
     return raw
 
 
+def compose(register: str, **values: int) -> int:
+    """A value of `register` with these fields (the others 0), e.g. compose("MOTION",
+    block_shift=2, jerk_shift=3); ValueError for a field it does not have or a value
+    that does not fit."""
+    out = 0
+    for name, value in values.items():
+        key = f"{register}.{name}"
+        if key not in FIELDS:
+            raise ValueError(f"{register} has no field {name!r}")
+        lsb, width, _access = FIELDS[key]
+        low = -(1 << (width - 1)) if key in SIGNED else 0
+        if not low <= value < low + (1 << width):
+            raise ValueError(f"{key} = {value} does not fit its {width} bits")
+        out |= (value & ((1 << width) - 1)) << lsb
+    return out
+
+
 def describe(name: str, value: int) -> str:
     """One line for a register value, e.g. "STATUS 0x00000301: state=RUN busy=0 ... records=3"."""
     if name not in REGISTERS:

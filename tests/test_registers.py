@@ -385,3 +385,17 @@ def test_bad_option_is_one_line(capsys):
         regs.main(["--frobnicate"])
     assert stop.value.code == 2
     assert capsys.readouterr().err.strip() == "python -m interp.regs: unrecognized arguments: --frobnicate"
+
+
+def test_compose_is_field_inverted():
+    """compose packs fields where field() finds them, and refuses a field the register does
+    not have or a value that does not fit."""
+    from interp.link.registers import compose, field
+
+    value = compose("MOTION", block_shift=3, jerk_shift=2, limit_shift=44, rate_shift=49)
+    assert value == 0x312C23
+    assert [field(f"MOTION.{n}", value) for n in ("block_shift", "jerk_shift", "limit_shift", "rate_shift")] \
+        == [3, 2, 44, 49]
+    for bad in ({"block_shift": 16}, {"rate_shift": -1}, {"speed": 1}):
+        with pytest.raises(ValueError):
+            compose("MOTION", **bad)

@@ -563,13 +563,13 @@ BOARDS = {
                            {"CLK_HZ": 18_000_000, "PLL_DIVF": 47, "PLL_DIVQ": 5, "CURVES": 0}),
     # ECP5: EHXPLLL 25 MHz -> 15 MHz (25 MHz x 3 / 5; the routed design reaches about 49 MHz;
     # 15 MHz is 5 clocks a bit at 3 Mbaud, exactly: 25 MHz would be 8.33).  The ULX3S with the
-    # 25F: the whole controller, curve core included, fills about 97 % of its 24288 LUT4s (83 %
-    # with CURVES 0).  The 45F and 85F variants share the package and the pins: their `part`,
-    # `device`, `capacity` here.
+    # 25F: the whole controller without the curve core (CURVES 0, as the top's default; with it
+    # the controller no longer fits the 25F).  The 45F and 85F variants share the package and
+    # the pins: their `part`, `device`, `capacity` here (and CURVES 1 if wanted).
     "ulx3s": Board("ulx3s", "ecp5", "LFE5U-25F-CABGA381", ["--25k", "--package", "CABGA381"],
                    "ulx3s.lpf", "--lpf", "yowasp-ecppack", ".bit", 24288,
                    {"CLK_HZ": 15_000_000, "PLL_CLKI_DIV": 5, "PLL_CLKFB_DIV": 3, "PLL_CLKOP_DIV": 40,
-                    "CURVES": 1}),
+                    "CURVES": 0}),
 }
 BOARD_TOP = "top"               # the module in boards/<name>/top.v
 BOARD_DESIGN = "uart_controller"  # the portable design the tops wrap (rtl/)

@@ -28,6 +28,7 @@ from . import protocol as p
 from ..gcode.compile import EVENT_CODES
 from ..models.motion import to_machine
 from .records import DEFAULT_BUILD, Build, Codes, RecordReader, decode, record_bytes
+from .registers import field
 
 
 PROBE_OVERSHOOT = 3         # steps the machine runs past the probe's touch while it stops
@@ -340,8 +341,9 @@ class DeviceModel:
             raw = bytes(self.queue[:size])
             del self.queue[:size]
             motion = self.regs["MOTION"]                # the coded fields' scales
-            self.reader.codes = Codes(motion & 15, self.regs["LIMIT_SCALE"], motion >> 8 & 63,
-                                      self.regs["RATE_SCALE"], motion >> 16 & 63)
+            self.reader.codes = Codes(field("MOTION.block_shift", motion), self.regs["LIMIT_SCALE"],
+                                      field("MOTION.limit_shift", motion), self.regs["RATE_SCALE"],
+                                      field("MOTION.rate_shift", motion))
             try:
                 record = decode(self.reader.take(raw), self.build, strict=False)   # as the ports see it
             except ValueError:

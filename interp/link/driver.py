@@ -24,6 +24,7 @@ from typing import ClassVar
 from . import protocol as p
 from ..models.speed_ramp import BLOCK_SHIFT_MIN
 from .records import DEFAULT_BUILD, Build, Codes, record_bytes
+from .registers import compose
 
 REG = p.REGISTER_ADDRESSES
 MAX_REFUSALS = 8            # NAK 4 in a row without progress before the driver gives up
@@ -487,8 +488,8 @@ def settings_writes(timing: dict, settings: dict, codes=None) -> list[tuple[str,
     order: for a driver, a bench or firmware."""
     quantum = int(settings.get("speed_quantum", 1))
     c = Codes.of(codes) or Codes()
-    motion = (int(settings.get("block_shift", BLOCK_SHIFT_MIN)) | int(settings.get("jerk_shift", 0)) << 4
-              | c.limit_shift << 8 | c.rate_shift << 16)
+    motion = compose("MOTION", block_shift=int(settings.get("block_shift", BLOCK_SHIFT_MIN)),
+                     jerk_shift=int(settings.get("jerk_shift", 0)), limit_shift=c.limit_shift, rate_shift=c.rate_shift)
     return [("PULSE_WIDTH", int(timing["pulse_width"])), ("DIR_SETUP", int(timing["setup"])),
             ("DIR_HOLD", int(timing["hold"])), ("QUANTUM_LO", quantum & 0xFFFFFFFF), ("QUANTUM_HI", quantum >> 32),
             ("MOTION", motion), ("LIMIT_SCALE", c.limit_scale), ("RATE_SCALE", c.rate_scale),
