@@ -14,8 +14,8 @@
 //   3. beside it, one clock behind, the restoring division of the root by |axis|, one
 //      root bit in and one quotient bit out a clock; the quotient's FEED_W + 1 low bits
 //      are kept, and the last clock rounds (the quotient + 1, halved).
-// |axis| = 0 gives a quotient of all ones (the division subtracts nothing) and a cost
-// of 0.  `done` strobes the clock `cost` is formed; x, y, z and `axis` must stay put
+// |axis| = 0 gives a quotient of W + FRAC + 1 ones (the division subtracts nothing):
+// a cost of 2^(W + FRAC) mod 2^FEED_W (0 when FEED_W <= W + FRAC).  `done` strobes the clock `cost` is formed; x, y, z and `axis` must stay put
 // from `start` to `done`.  It is the path length per step event that the lecture's
 // speed-setting block ("БЗС", step_cost) charges, here for a whole line: its true
 // length shared evenly by its step events.
@@ -57,7 +57,7 @@ module line_cost #(
     reg             running;
     reg  [2*W-1:0]  shifted;        // |axis| x 2^k
     reg  [W-1:0]    multiplier;     // |axis| >> k
-    reg  [2*W-1:0]  sum;            // x^2 + y^2 + z^2 (< 3 x 4^(W-1)); then shifted out, two bits a clock
+    reg  [2*W-1:0]  sum;            // x^2 + y^2 + z^2 (<= 3 x 4^(W-1)); then shifted out, two bits a clock
     reg  [RW-1:0]   root;
     reg  [RW:0]     remainder;      // the radicand's so far less root^2 (<= 2 root)
     reg  [W-1:0]    residue;        // the division's remainder (< |axis|)

@@ -213,8 +213,8 @@ module record_unpack #(
     assign cmd_length = record[SL +: LEN_W];
     assign cmd_budget = record[SB +: ZW];
 
-    // The derivation, clock c of DERIVE_CLOCKS.  c = 0: the length's bytes take the axis;
-    // (Those clock numbers count from line_cost's cost taken, COST_CLOCKS after the last byte.)
+    // The derivation after line_cost's (its cost taken, 4 W + FRAC + 7 clocks after the
+    // last byte), clock c of FORM_CLOCKS.  c = 0: the length's bytes take the axis;
     // c = 1 .. W: a shift-and-add step, its multiplier bit the axis's magnitude's (a
     // two's complement negated bit-serially: inverted after the first one bit).
     // c = SPAN - shift + j, j = 0 .. shift + width - 1: the limit's (rate's) step j, the

@@ -16,10 +16,11 @@ At the default build (W 32, FEED_W 34, NW 24, PF 16, LEN_W 66, ZW 68) a record i
 
 A compact record (head bit 7 set) carries each of the 14 fields after the head as its
 difference from the same field of its base, the previous record of its class (arcs,
-kinds 1 and 2, or the others; all zero after a reset or a flush): the head, 7 bytes of nibbles (the difference length n of field 2t in the low
-nibble of byte t, 0 .. B, or a code below), then each field's n bytes, two's complement,
-little-endian; the controller sign-extends them and adds them to the field's bytes
-modulo 2^(8 B).  A compact head with bit 6 set (ZERO_IJKL) says i, j, k and l are zero:
+kinds 1 and 2, or the others; all zero after a reset or a flush): the head, 7 bytes
+of nibbles (the difference length n of field 2t in the low nibble of byte t, 0 .. B,
+or a code below), then each field's n bytes, two's complement, little-endian; the
+controller sign-extends them and adds them to the field's bytes modulo 2^(8 B).  A
+compact head with bit 6 set (ZERO_IJKL) says i, j, k and l are zero:
 its table has 5 bytes (none for those four fields) and no bytes follow for them.
 Codes send no bytes and have the controller form the field: limit 15 and rate 15
 (floor(cost x LIMIT_SCALE / 2^limit_shift), floor(cost x RATE_SCALE / 2^rate_shift), modulo
@@ -28,7 +29,7 @@ feed), cost 12 (zero: a flat arc's), cost 13, 14, 15 (round(2^FRAC sqrt(x^2 + y^
 |x|, |y|, |z|): a line's true length per step event), length 13, 14, 15 (|x|, |y|, |z| x
 cost: a line's step events x cost) and budget 15 (floor(rate x length / 2^(block_shift -
 1)), the compiler's budget when the speed quantum is 1).  The driver sends compact records,
-with the codes wherever they give the field's value exactly (a fifth to a third of the
+with the codes wherever they give the field's value exactly (a ninth to a third of the
 bytes of plain ones on CAM programs); the controller's record unpacker takes
 RECORD_BYTES + 8 + DERIVE_CLOCKS clocks for one (DERIVE_CLOCKS = 4 W + FRAC + 7 for the
 cost, then max(W, 64 + max(FEED_W, PF + 1)) + ZW + 15, codes or not), RECORD_BYTES + 1
@@ -321,8 +322,8 @@ def _offsets(build: Build) -> dict[str, tuple[int, int]]:
 
 def compact(record: bytes, previous: bytes, build=None, codes=None) -> bytes | None:
     """A plain record -> its compact form against the base `previous` (the last plain record
-    of its class, record_class, or zeros after a reset or flush: Encoder keeps them); None when a field's difference needs more than 15 bytes.  With the
-    controller's Codes (or anything Codes.of takes), a field its code gives exactly is sent
+    of its class, record_class, or zeros after a reset or flush: Encoder keeps them); None
+    when a field's difference needs more than 15 bytes.  With the controller's Codes (or anything Codes.of takes), a field its code gives exactly is sent
     as the code."""
     b = _build(build)
     settings, codes = Codes.of(codes), {}

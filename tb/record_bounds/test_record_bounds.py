@@ -72,7 +72,8 @@ async def bounds(dut):
     for field, code in ((records.LIMIT_FIELD, records.SCALED_CODE), (records.RATE_FIELD, records.SCALED_CODE),
                         (records.LIMIT_FIELD, records.FEED_CODE), (records.COST_FIELD, records.ZERO_COST_CODE),
                         (records.COST_FIELD, (13, 14, 15))):
-        assert any(r[0] & records.COMPACT and records.table_nibbles(r)[field] in (code if isinstance(code, tuple) else (code,))
+        codes = code if isinstance(code, tuple) else (code,)
+        assert any(r[0] & records.COMPACT and records.table_nibbles(r)[field] in codes
                    for r in recs), f"no code {code} in field {field}"
     at, lasts = 0, 0
     while at < len(stream) or at == flush_at:

@@ -4,8 +4,8 @@ a byte stream with random gaps, against random cmd_full back-pressure: each reco
 0 .. 5 is pushed once with exactly its fields, only while cmd_full is low, none dropped; kinds
 6, 7 strobe record_error and are not pushed; a flush mid-record drops the partial record.
 The records come from the host's encoder (interp.link.records), checked against the local one.
-Compact records (differences from the previous record) mixed with plain ones, a flush that
-zeroes the previous record, a difference longer than its field (record_error); records with
+Compact records (differences from their base, the last record of their class: arcs or the
+others) mixed with plain ones, a flush that zeroes both bases, a difference longer than its field (record_error); records with
 i .. l zero (head bit 6, a table of 5 bytes) after records without; the cost, limit, rate,
 length and budget codes (fields the unpacker forms: the cost of the geometry or zero, the
 limit of the feed, cost x scale / 2^shift, |x|, |y| or |z| x cost, rate x length /
@@ -138,7 +138,7 @@ async def compact_records(dut):
     cmds = [random_command(rng, b)]
     for _ in range(59):
         cmds.append(changed_command(rng, b, cmds[-1]))
-    # 20 records, a partial one flushed (the previous record is zero again), 40 more
+    # 20 records, a partial one flushed (the bases are zero again), 40 more
     partial = [(byte, 20) for byte, _ in compact_stream(rng, b, [(20, cmds[20])], 0.0)[:rng.randrange(1, 12)]]
     stream = compact_stream(rng, b, enumerate(cmds[:20]), 0.2) + partial \
         + compact_stream(rng, b, [(n + 21, c) for n, c in enumerate(cmds[20:])], 0.2)
@@ -265,6 +265,6 @@ async def pace(dut):
 def test_record_unpack(sim):
     icarus_in_make_test(sim)
     p = motion_build.PARAMETERS
-    for params in ({}, {k: p[k] for k in ("W", "FEED_W", "NW", "PF", "LEN_W", "ZW")}):
+    for params in ({}, {k: p[k] for k in ("W", "FEED_W", "FRAC", "NW", "PF", "LEN_W", "ZW")}):
         run_cocotb(toplevel="record_unpack", test_module="test_record_unpack", sim=sim, parameters=params,
                    name="record_unpack")

@@ -14,8 +14,8 @@
 // (cmd_valid) in every cycle whose previous sample showed cmd_full low and that is at
 // least --push-interval cycles (default 1) after the previous push: the controller's
 // record unpacker hands a record on every RECORD_BYTES + 8 + DERIVE_CLOCKS clocks at
-// most (compact records, DERIVE_CLOCKS = max(W, 64 + max(FEED_W, PF + 1)) + ZW + 15;
-// RECORD_BYTES + 1 plain ones).
+// most (compact records, DERIVE_CLOCKS = 4 W + FRAC + 7 + max(W, 64 + max(FEED_W,
+// PF + 1)) + ZW + 15; RECORD_BYTES + 1 plain ones).
 // Settings: speed_quantum, block_shift, jerk_shift, override (default 1,0,0,100).
 // Controls file: lines "CYCLE hold|resume|override VALUE", cycles not decreasing;
 // each is applied after the sample of that cycle (cycle 0: before the first edge),
