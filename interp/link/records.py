@@ -323,8 +323,8 @@ def _offsets(build: Build) -> dict[str, tuple[int, int]]:
 def compact(record: bytes, previous: bytes, build=None, codes=None) -> bytes | None:
     """A plain record -> its compact form against the base `previous` (the last plain record
     of its class, record_class, or zeros after a reset or flush: Encoder keeps them); None
-    when a field's difference needs more than 15 bytes.  With the controller's Codes (or anything Codes.of takes), a field its code gives exactly is sent
-    as the code."""
+    when a field's difference needs more than 15 bytes.  With the controller's Codes (or
+    anything Codes.of takes), a field its code gives exactly is sent as the code."""
     b = _build(build)
     settings, codes = Codes.of(codes), {}
     if settings is not None:
@@ -397,8 +397,9 @@ class Encoder:
         """The bytes to send for one command: compact unless `compact_record` is false or
         a difference would need more than 15 bytes."""
         record = encode(fields_of(command), self.build)
-        short = compact(record, self.bases[record_class(record[0])], self.build, self.codes) if compact_record else None
-        self.bases[record_class(record[0])] = record
+        which = record_class(record[0])
+        short = compact(record, self.bases[which], self.build, self.codes) if compact_record else None
+        self.bases[which] = record
         return short if short is not None else record
 
 
@@ -464,11 +465,11 @@ class RecordReader:
         kept as its class's base.  ValueError when a difference is longer than its field
         (the controller's error 18)."""
         data = bytes(data)
-        kind = record_class(data[0])
+        which = record_class(data[0])
         if not data[0] & COMPACT:
             if len(data) != self.size:
                 raise ValueError(f"a record is {self.size} bytes, got {len(data)}")
-            self.bases[kind] = data
+            self.bases[which] = data
             return data
         if len(data) != self.length(data):
             raise ValueError("a compact record's length differs from its table's")
@@ -489,16 +490,16 @@ class RecordReader:
             bad |= n > size
             n = min(n, size)                    # the unpacker takes B bytes of a longer difference
             difference = int.from_bytes(data[body:body + n], "little", signed=True) if n else 0
-            value = (int.from_bytes(self.bases[kind][at:at + size], "little") + difference) % (1 << (8 * size))
+            value = (int.from_bytes(self.bases[which][at:at + size], "little") + difference) % (1 << (8 * size))
             out += value.to_bytes(size, "little")
             at, body = at + size, body + n
         # the cost first (the others use it), then limit, rate, length, budget in record order
         for name, code, at, size in sorted(coded, key=lambda c: c[0] != "cost"):
             out[at:at + size] = self._coded_value(name, code, bytes(out)).to_bytes(size, "little")
-        self.bases[kind] = bytes(out)
+        self.bases[which] = bytes(out)
         if bad:
             raise ValueError("a compact record's difference is longer than its field")
-        return self.bases[kind]
+        return self.bases[which]
 
     def _coded_value(self, name: str, code: int, formed: bytes) -> int:
         """A coded field's value from the record's other fields and the coded ones before it."""
