@@ -34,8 +34,8 @@
 // byte of the position entering at the top (a limit = feed byte is the feed's, a fixed
 // number of bytes above it); the last record of the other class waits in a second
 // register, and a head of the other class swaps the two.  After the last byte of a
-// compact record come DERIVE_CLOCKS = C + T + ZW + 15 clocks (C = 4 W + FRAC + 7, T = max(W, 64 +
-// max(FEED_W, PF + 1))), the same for every compact record: first line_cost's C clocks
+// compact record come DERIVE_CLOCKS = C + T + ZW + 15 clocks (C = 4 W + FRAC + 7,
+// T = max(W, 64 + max(FEED_W, PF + 1))), the same for every compact record: first line_cost's C clocks
 // for the cost (its result taken the clock after), then the length's shift-and-add
 // multiplication in place in its bytes (W clocks, the axis's magnitude formed
 // bit-serially) and beside it the limit's and the rate's (the scale in parallel, the
@@ -252,8 +252,9 @@ module record_unpack #(
     wire [32:0]     rate_sum = {1'b0, rate_partial} + (bit_rc ? {1'b0, rate_scale} : 33'd0);
 
     // the cost code's arithmetic, first after a compact record's last byte (whatever its codes)
+    wire cost_start = whole & compact & ~cost_started;
     line_cost #(.W(W), .FEED_W(FEED_W), .FRAC(FRAC)) u_cost (
-        .clk(clk), .rst(rst | flush), .start(whole & compact & ~cost_started),
+        .clk(clk), .rst(rst | flush), .start(cost_start),
         .x(cmd_x), .y(cmd_y), .z(cmd_z), .axis(cost_axis), .cost(line_cost_value), .done(cost_done));
 
     integer b;                      // (the fields' bytes' bits above their widths)
@@ -311,7 +312,7 @@ module record_unpack #(
                     if (!code_here && {4'd0, code} > here_bytes) bad_length <= 1'b1;
                 end
             end
-            if (whole & compact & ~cost_started) cost_started <= 1'b1;
+            if (cost_start) cost_started <= 1'b1;
             if (cost_done) begin
                 costed <= 1'b1;
                 if (cost_axis != 2'd0) begin
