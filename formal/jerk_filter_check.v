@@ -3,7 +3,7 @@
 // Formal harness of the S-curve filter (formal/jerk_filter.sby): a ramp that
 // follows the filter's contract (a strobe only with a block tick, blocks of
 // 2^block_shift clocks, the speed n * A changing at the end of the strobe's
-// clock), any quantum A, any jerk_shift 0 .. MW and block_shift 0 .. 1, the
+// clock), any quantum A, any jerk_shift 0 .. MW and block_shift 0 .. 1 (0 with jerk_shift 0 only), the
 // delay line's memory with any contents at power-up.  Property: in every
 // clock the filter's F equals the golden moving sum
 //     F(t) = v(t) + v(t - B) + ... + v(t - (M - 1) B)
@@ -50,6 +50,7 @@ module jerk_filter_check #(
     always @(*) if (!f_past_valid) assume (rst);
     always @(*) begin
         assume (jerk_shift <= MW);
+        if (!block_shift) assume (jerk_shift == 0);     // shift > 0: blocks of 2 clocks or more
 `ifdef LATE
         if (up) assume (block && !rst);
         if (down && !block) assume (!rst && n == 2'd1 && !f_late);

@@ -11,7 +11,9 @@
 // read-write ones (machine settings) are held here and drive the outputs.  CONTROL:
 // [0] hold (RW; also set by `hold_set`, a pause event or the probe's touch, which wins
 // over a CONTROL write in the same clock), write-1
-// strobes [1] abort, [2] clear, [3] probe_arm, [4] enable (RW), [5] fill (RW),
+// strobes [1] abort, [2] clear (registered: high in the ack cycle), [3] probe_arm
+// (in the access cycle),
+// [4] enable (RW), [5] fill (RW),
 // [6] probe_stop (RW: the armed probe's touch sets hold).  QUANTUM_LO/HI, MOTION and the
 // code scales LIMIT_SCALE / RATE_SCALE are
 // taken only while `busy` is low, and fill rises only then (or with abort in the same
@@ -78,9 +80,9 @@ module controller_regs #(
     output reg               enable,
     output reg               fill,          // CONTROL.fill: records wait, motion_top at reset
     output reg               probe_stop,    // CONTROL.probe_stop: the probe's touch holds
-    output wire              abort_strobe,  // CONTROL write-1 strobes: abort, clear, probe_arm
-    output wire              clear_strobe,
-    output wire              arm_strobe,
+    output reg               abort_strobe,  // CONTROL write-1 strobes: abort, clear (in the ack cycle),
+    output reg               clear_strobe,
+    output wire              arm_strobe,    // probe_arm (in the access cycle)
     output reg  [7:0]        override_percent,
     output reg  [TW-1:0]     pulse_width,
     output reg  [TW-1:0]     dir_setup,
@@ -151,9 +153,8 @@ module controller_regs #(
     assign data_word  = wb_dat_w;
     assign data_lanes = wb_sel;
     wire   control_write = write && address == REG_CONTROL[7:0];
-    assign abort_strobe = control_write & wb_dat_w[1];
-    assign clear_strobe = control_write & wb_dat_w[2];
-    assign arm_strobe   = control_write & wb_dat_w[3];
+    wire   clear_now     = control_write & wb_dat_w[2];    // STATUS.refused: a refusal in the same write wins
+    assign arm_strobe    = control_write & wb_dat_w[3];    // (the probe latch: a touch in its clock is not taken)
     // QUANTUM and MOTION are taken only while nothing runs (the speed generator and the
     // S-curve filter hold them constant): a write while busy is refused and flagged
     wire   speed_write   = write && (address == REG_QUANTUM_LO[7:0] || address == REG_QUANTUM_HI[7:0] ||
@@ -230,9 +231,17 @@ module controller_regs #(
         if (rst) begin
             wb_ack   <= 1'b0;
             wb_dat_r <= 32'd0;
+            abort_strobe <= 1'b0;
+            clear_strobe <= 1'b0;
         end else begin
             wb_ack   <= done;
             wb_dat_r <= done & ~wb_we ? value : 32'd0;
+            // registered, so that no decode of the bus reaches what they reset (an abort
+            // resets motion_top: thousands of flip-flops); clear with it, so that an error
+            // in the access cycle is cleared by an abort + clear as one in the ack cycle is
+            // discarded by the abort
+            abort_strobe <= control_write & wb_dat_w[1];
+            clear_strobe <= clear_now;
         end
     end
 
@@ -262,7 +271,7 @@ module controller_regs #(
             refused          <= 1'b0;
             position_set     <= 3'b000;
         end else begin
-            refused <= refuse | (refused & ~clear_strobe);
+            refused <= refuse | (refused & ~clear_now);
             position_set <= position_set | position_write;
             if (hold_set)
                 hold <= 1'b1;

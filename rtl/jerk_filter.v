@@ -23,7 +23,9 @@
 // filter then keeps the old speed to the block's end, books the extra travel,
 // A << shift per clock, as a debt and pays it back from F (sum = F - pay,
 // pay = min(debt, F)) before it empties, so the distance stays exact.
-// speed_quantum is constant while the filter is not empty.  jerk_shift is
+// With shift > 0, block ticks come at least 2 clocks apart (the delay line's word,
+// read at a tick, is taken from a flip-flop a clock later; speed_ramp's blocks are of
+// 4 clocks or more).  speed_quantum is constant while the filter is not empty.  jerk_shift is
 // latched into `shift` only while the filter is empty (a new value then
 // restarts the delay line; values above MW count as MW); the pacer must use
 // `shift`.
@@ -62,6 +64,7 @@ module jerk_filter #(
     reg  [MW-1:0]     write_address;
     reg  [1:0]        code_last;
     wire [1:0]        code_read;
+    reg  [1:0]        code_held;    // code_read a clock after the read: the RAM's output alone in its path
     reg               pending;      // a drop inside this block, booked at its end
     reg  [OW-1:0]     owed;         // travel F owes back (F units)
 
@@ -70,7 +73,7 @@ module jerk_filter #(
     wire [MW:0] span     = {{MW{1'b0}}, 1'b1} << shift_q;                // M
     wire        single   = shift_q == 4'd0;
     wire        aged     = count >= span;                                 // the code M ticks ago exists
-    wire [1:0]  code_old = ~aged ? 2'b00 : single ? code_last : code_read;
+    wire [1:0]  code_old = ~aged ? 2'b00 : single ? code_last : code_held;
     wire [MW-1:0] read_address = write_address + 1'b1 - span[MW-1:0];     // the code M - 1 ticks ago
 
     // A * (c_now - c_old), c in {-2 .. +1}: 0, +-A, +-2A or +-3A
@@ -131,11 +134,13 @@ module jerk_filter #(
             count         <= {(MW+1){1'b0}};
             write_address <= {MW{1'b0}};
             code_last     <= 2'b00;
+            code_held     <= 2'b00;
             shift_q       <= wanted;
             pending       <= 1'b0;
             owed          <= {OW{1'b0}};
         end else begin
             pending <= ~block & (pending | down);
+            code_held <= code_read;
             owed    <= owed_now + accrue;
             if (block) begin
                 delta         <= delta_next;

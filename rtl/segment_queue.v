@@ -24,7 +24,7 @@ module segment_queue #(
     output wire          out_valid, // a byte at the output
     output wire [7:0]    out_data,  // the oldest byte
     input  wire          out_ready, // take the byte at the output
-    output wire [AW:0]   level,     // bytes held (0 .. 2^AW)
+    output reg  [AW:0]   level,     // bytes held (0 .. 2^AW)
     output wire [AW:0]   free,      // 2^AW - level
     output reg  [15:0]   free_records   // free / RECORD_BYTES
 );
@@ -43,14 +43,14 @@ module segment_queue #(
     reg  [AW:0] write_pointer, read_pointer;    // one bit more than the address: full vs empty
     reg         held;                           // read_data holds a byte not yet taken
 
-    wire [AW:0] stored = write_pointer - read_pointer;     // bytes in the RAM
     wire        write  = in_valid & in_ready;
     wire        take   = held & out_ready;
-    wire        fetch  = stored != {(AW+1){1'b0}} & (~held | out_ready);
+    wire        fetch  = write_pointer != read_pointer & (~held | out_ready);  // a byte in the RAM
 
-    assign level     = stored + {{AW{1'b0}}, held};
+    // level = the RAM's bytes + held, counted as bytes come and go, so that in_ready is a flip-flop
+    // (level = 2^AW is its top bit alone)
     assign free      = SIZE - level;
-    assign in_ready  = level != SIZE;
+    assign in_ready  = ~level[AW];
     assign out_valid = held;
     assign out_data  = read_data;
 
@@ -93,7 +93,12 @@ module segment_queue #(
             write_pointer <= {(AW+1){1'b0}};
             read_pointer  <= {(AW+1){1'b0}};
             held          <= 1'b0;
+            level         <= {(AW+1){1'b0}};
         end else begin
+            if (write & ~take)
+                level <= level + 1'b1;
+            else if (take & ~write)
+                level <= level - 1'b1;
             if (write)
                 write_pointer <= write_pointer + 1'b1;
             if (fetch)

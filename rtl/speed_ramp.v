@@ -88,6 +88,7 @@ module speed_ramp #(
     reg             bend;        // this clock ends a block (bc >= 2^bs_q - 1, formed a clock ahead)
     reg  [PF-1:0]   acc;         // DDA phase
     reg  [NW-1:0]   n;
+    reg             zero_speed;  // n == 0 (kept beside n: no reduction of n in the decisions' paths)
     reg  [QW-1:0]   q;           // n (n + 1)
     reg  [PW-1:0]   p;           // rate * n
     reg  [NAW-1:0]  na;          // n * acc
@@ -118,10 +119,10 @@ module speed_ramp #(
     wire [NW-1:0] floor_n = succ ? fx_cur : ONE_N;
     wire [QW-1:0] f_sq    = succ ? f_sq_cur : {{(QW-2){1'b0}}, 2'd2};
     wire        exit_zero = ~succ | (exit_cur == {NW{1'b0}});
-    assign moving  = (n != {NW{1'b0}}) | seg;
+    assign moving  = ~zero_speed | seg;
     assign cruise  = feed;
     assign segment = seg;
-    assign stopped = hold_q & (n == {NW{1'b0}});
+    assign stopped = hold_q & zero_speed;
 
     wire [7:0]  ovr = override == 8'd0 ? 8'd1 : override > 8'd200 ? 8'd200 : override;
 
@@ -160,9 +161,9 @@ module speed_ramp #(
     always @* begin
         step = 2'sd0;
         if (dtick) begin
-            if (hold) step = n != {NW{1'b0}} ? -2'sd1 : 2'sd0;
+            if (hold) step = zero_speed ? 2'sd0 : -2'sd1;
             else if (!seg) step = 2'sd0;
-            else if (n == {NW{1'b0}}) step = 2'sd1;
+            else if (zero_speed) step = 2'sd1;
             else if (!seen) step = 2'sd0;
             else if (over && n_many) step = -2'sd1;
             else if (room && ok_up) step = 2'sd1;
@@ -179,10 +180,12 @@ module speed_ramp #(
     wire switch_s = crossing & succ;
     wire end_s    = crossing & ~succ;
     wire load     = ~seg & succ;
-    wire bar_pop  = bar_head & ~seg & (n == {NW{1'b0}}) & ((bar_count != 8'd0) | barrier_done);
+    wire bar_pop  = bar_head & ~seg & zero_speed & ((bar_count != 8'd0) | barrier_done);
     wire pop      = switch_s | load | bar_pop;
     wire [NW-1:0] n_d = st_up ? n + ONE_N : st_dn ? n - ONE_N : n;
     wire [NW-1:0] n_less  = n - ONE_N;                         // st_dn only with n >= 1
+    // n_d = 0: n = 0 kept, 1 lowered, or all ones raised (wraps)
+    wire zero_next = (zero_speed & ~st_up) | (st_dn & ~n_many) | (st_up & (&n));
     wire late_n   = crossing & (exit_zero ? n_many :
                                 st_up ? n >= floor_n : st_dn ? n_less > floor_n : n > floor_n);
     wire [MW+SW-1:0] rem_ext = {{MW{1'b0}}, remaining};    // S > 0 at a switch
@@ -229,13 +232,13 @@ module speed_ramp #(
         .known(known), .p_sh(p_sh), .f_pre(f_pre), .fo_next(fo_next), .fn_valid(fn_valid));
     // + 2 p' floor(S / A) over the NW clocks after a switch above rest or a load
     speed_ramp_refine #(.FEED_W(FEED_W), .NW(NW), .PF(PF)) u_refine (
-        .clk(clk), .rst(rst), .start((switch_s & (n != {NW{1'b0}})) | load), .cancel(crossing),
+        .clk(clk), .rst(rst), .start((switch_s & ~zero_speed) | load), .cancel(crossing),
         .remainder(ref_load_r), .speed_quantum(speed_quantum), .rate(next_rate), .gift(gift));
 
     always @(posedge clk) begin
         if (rst) begin
             bc <= 15'd0; bs_q <= 4'd0; bend <= 1'b1; acc <= {PF{1'b0}};
-            n <= {NW{1'b0}}; speed <= {FEED_W{1'b0}}; q <= {QW{1'b0}}; p <= {PW{1'b0}}; na <= {NAW{1'b0}};
+            n <= {NW{1'b0}}; zero_speed <= 1'b1; speed <= {FEED_W{1'b0}}; q <= {QW{1'b0}}; p <= {PW{1'b0}}; na <= {NAW{1'b0}};
             remaining <= {SW{1'b0}}; gap <= {SW{1'b0}}; cross_q <= 1'b0; carry_q <= 1'b0; budget_x <= {ZXW{1'b0}};
             seg <= 1'b0; rate <= {(PF+1){1'b0}}; feed <= {FEED_W{1'b0}}; limit <= {FEED_W{1'b0}};
             exit_cur <= {NW{1'b0}}; f_sq_cur <= {QW{1'b0}};
@@ -243,6 +246,7 @@ module speed_ramp #(
             up <= 1'b0; down <= 1'b0; next_pop <= 1'b0; late <= 1'b0; hold_q <= 1'b0;
         end else begin
             // speed and its companions
+            zero_speed <= final_q | zero_next;
             if (final_q) begin
                 n <= {NW{1'b0}}; q <= {QW{1'b0}}; p <= {PW{1'b0}}; na <= {NAW{1'b0}};
             end else begin
@@ -263,7 +267,7 @@ module speed_ramp #(
             cross_q   <= seg_next & (gap_next[SW-1] | (gap_next == {SW{1'b0}}));
             carry_q   <= acc_sum_next[PF];
             up       <= final_q ? 1'b0 : st_up;
-            down     <= final_q ? n != {NW{1'b0}} : st_dn;
+            down     <= final_q ? ~zero_speed : st_dn;
             late     <= late_n;
             next_pop <= pop;
             acc      <= acc_n;

@@ -19,6 +19,7 @@
         assert (rate <= {1'b1, {PF{1'b0}}});
         if (!seg) assert (n == {NW{1'b0}});
         assert (q == f_q);
+        assert (zero_speed == (n == {NW{1'b0}}));
         assert (gap == remaining - $signed({{(SW-FEED_W){1'b0}}, speed}));
         assert (cross_q == (seg && gap <= 0));
         assert (carry_q == acc_sum[PF]);

@@ -2,7 +2,7 @@
 """controller_regs on its own, cycle by cycle: wb_ack exactly one cycle after a strobe is seen
 (one cycle high, back-to-back accesses), read data with the ack; a CMD_DATA write held
 until data_ready, then data_write for one cycle with the word; CONTROL's abort / clear /
-probe_arm one-cycle strobes, hold and enable RW, hold_set (winning over a CONTROL write in
+probe_arm one-cycle strobes (abort and clear in the ack cycle), hold and enable RW, hold_set (winning over a CONTROL write in
 its clock); the status inputs composed into
 STATUS, ERROR, QUEUE_FREE, OUTPUTS and the sign-extended positions at POS_W 20; the speed
 settings refused while busy (STATUS.refused until CONTROL.clear), taken at rest; CONTROL.fill
@@ -18,6 +18,7 @@ STATUS_IN = {"state": 0, "busy": 0, "stopped": 0, "probe_valid": 0, "records": 0
              "error_limits": 0, "free_bytes": 0, "free_records": 0, "pos_x": 0, "pos_y": 0, "pos_z": 0,
              "probe_x": 0, "probe_y": 0, "probe_z": 0, "inputs": 0, "outputs": 0, "duty": 0, "link_frames": 0,
              "link_duplicates": 0, "link_errors": 0, "link_gaps": 0, "executed": 0, "hold_set": 0, "data_ready": 0}
+STROBES = ("data_write", "abort_strobe", "clear_strobe", "arm_strobe")
 BUS = {"wb_adr": 0, "wb_dat_w": 0, "wb_we": 0, "wb_sel": 0, "wb_stb": 0, "wb_cyc": 0}
 
 
@@ -29,13 +30,14 @@ async def access(tb, address, value=None, ready_after=0):
     seen = []
     for cycle in range(1, 50):
         await ReadOnly()
-        seen.append({n: int(getattr(dut, n).value) for n in ("data_write", "abort_strobe", "clear_strobe",
-                                                            "arm_strobe")})
+        seen.append({n: int(getattr(dut, n).value) for n in STROBES})
         await FallingEdge(dut.clk)
         if cycle >= ready_after:
             tb.drive({"data_ready": 1})
         if int(dut.wb_ack.value):
             data = int(dut.wb_dat_r.value)
+            # the ack cycle's strobes (CONTROL's are registered; data_write is not, and is low)
+            seen.append({n: int(getattr(dut, n).value) for n in STROBES})
             tb.drive({**BUS, "data_ready": 0})
             await FallingEdge(dut.clk)
             assert not int(dut.wb_ack.value), "ack longer than a cycle"
@@ -51,10 +53,10 @@ async def bus_and_fields(dut):
     assert (cycles, data) == (1, 0x494E5450)
     # CMD_DATA waits for data_ready; data_write strobes once, with the word
     cycles, _, seen = await access(tb, REG["CMD_DATA"], 0xA1B2C3D4, ready_after=5)
-    assert cycles == 6 and [s["data_write"] for s in seen] == [0] * 5 + [1], seen
-    # CONTROL strobes: one cycle each, hold, enable and fill kept
+    assert cycles == 6 and [s["data_write"] for s in seen] == [0] * 5 + [1, 0], seen
+    # CONTROL strobes: one cycle each, abort and clear in the ack cycle, probe_arm in the access cycle; hold, enable and fill kept
     _, _, seen = await access(tb, REG["CONTROL"], 0b111111)
-    assert [(s["abort_strobe"], s["clear_strobe"], s["arm_strobe"]) for s in seen] == [(1, 1, 1)]
+    assert [(s["abort_strobe"], s["clear_strobe"], s["arm_strobe"]) for s in seen] == [(0, 0, 1), (1, 1, 0)]
     assert int(dut.hold.value) == 1 and int(dut.enable.value) == 1 and int(dut.fill.value) == 1
     assert (await access(tb, REG["CONTROL"]))[1] == 0b110001
     await access(tb, REG["CONTROL"], 0)
@@ -106,6 +108,11 @@ async def bus_and_fields(dut):
     assert (await access(tb, REG["CONTROL"]))[1] == 0b110000
     await access(tb, REG["CONTROL"], 0)
     assert (await access(tb, REG["CONTROL"]))[1] == 0 and not (await access(tb, REG["STATUS"]))[1] & 128
+    # a refused fill and a clear in one write: the refusal wins (clear is in the ack cycle)
+    await access(tb, REG["CONTROL"], 0b100100)
+    assert int(dut.fill.value) == 0 and (await access(tb, REG["STATUS"]))[1] & 128
+    await access(tb, REG["CONTROL"], 0b000100)
+    assert not (await access(tb, REG["STATUS"]))[1] & 128
     # quantum: FEED_W 40 across LO and HI, at rest
     tb.drive({"busy": 0})
     await access(tb, REG["QUANTUM_LO"], 0x12345678)
