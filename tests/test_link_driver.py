@@ -129,6 +129,9 @@ def test_speed_settings_wait_for_idle(monkeypatch):
     driver.write_register("CONTROL", p.CONTROL_FILL | p.CONTROL_ENABLE)   # fill under a program
     assert driver.read_register("CONTROL") == p.CONTROL_ENABLE
     assert driver.read_register("STATUS") & p.STATUS_REFUSED
+    driver.write_register("CONTROL", p.CONTROL_CLEAR)
+    driver.write_register("CONTROL", p.CONTROL_FILL | p.CONTROL_CLEAR)    # a refusal wins over its clear
+    assert driver.read_register("STATUS") & p.STATUS_REFUSED
     model.busy = False
     assert driver.read_register("STATUS") & p.STATUS_REFUSED              # sticky
     driver.write_register("CONTROL", p.CONTROL_CLEAR)

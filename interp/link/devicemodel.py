@@ -498,6 +498,8 @@ class DeviceModel:
             self.probe_stop = bool(value & p.CONTROL_PROBE_STOP)
             if value & p.CONTROL_PROBE_ARM:
                 self.probe_armed, self.probe_valid = True, False
+            if value & p.CONTROL_CLEAR:                 # (a refusal in the same write wins)
+                self.error, self.limits, self.refused = 0, 0, False
             rise = value & p.CONTROL_FILL and not self.fill and not value & p.CONTROL_ABORT
             if rise and self._busy():
                 self.refused = True                 # fill would reset a running program
@@ -507,8 +509,6 @@ class DeviceModel:
                 self.queue.clear()
                 self.reader = RecordReader(self.build)
                 self.busy = False
-            if value & p.CONTROL_CLEAR:
-                self.error, self.limits, self.refused = 0, 0, False
             if value & p.CONTROL_ABORT and at_speed and not self.error:
                 self.error = p.ERROR_ABORT_AT_SPEED
             self._execute()
