@@ -3,8 +3,8 @@
 // Formal harness of the S-curve filter (formal/jerk_filter.sby): a ramp that
 // follows the filter's contract (a strobe only with a block tick, blocks of
 // 2^block_shift clocks, the speed n * A changing at the end of the strobe's
-// clock), any quantum A, any jerk_shift 0 .. MW and block_shift 0 .. 1 (0 with jerk_shift 0 only), the
-// delay line's memory with any contents at power-up.  Property: in every
+// clock), any quantum A, any jerk_shift 0 .. MW and block_shift 0 .. 1 (0 with
+// jerk_shift 0 only), the delay line's memory with any contents at power-up.  Property: in every
 // clock the filter's F equals the golden moving sum
 //     F(t) = v(t) + v(t - B) + ... + v(t - (M - 1) B)
 // over a shadow history of the speed (so the distance is exactly M times the

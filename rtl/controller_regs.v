@@ -12,8 +12,7 @@
 // [0] hold (RW; also set by `hold_set`, a pause event or the probe's touch, which wins
 // over a CONTROL write in the same clock), write-1
 // strobes [1] abort, [2] clear (registered: high in the ack cycle), [3] probe_arm
-// (in the access cycle),
-// [4] enable (RW), [5] fill (RW),
+// (in the access cycle), [4] enable (RW), [5] fill (RW),
 // [6] probe_stop (RW: the armed probe's touch sets hold).  QUANTUM_LO/HI, MOTION and the
 // code scales LIMIT_SCALE / RATE_SCALE are
 // taken only while `busy` is low, and fill rises only then (or with abort in the same

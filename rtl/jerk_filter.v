@@ -25,8 +25,8 @@
 // pay = min(debt, F)) before it empties, so the distance stays exact.
 // With shift > 0, block ticks come at least 2 clocks apart (the delay line's word,
 // read at a tick, is taken from a flip-flop a clock later; speed_ramp's blocks are of
-// 4 clocks or more).  speed_quantum is constant while the filter is not empty.  jerk_shift is
-// latched into `shift` only while the filter is empty (a new value then
+// 4 clocks or more).  speed_quantum is constant while the filter is not empty.
+// jerk_shift is latched into `shift` only while the filter is empty (a new value then
 // restarts the delay line; values above MW count as MW); the pacer must use
 // `shift`.
 module jerk_filter #(

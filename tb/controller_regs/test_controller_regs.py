@@ -2,8 +2,8 @@
 """controller_regs on its own, cycle by cycle: wb_ack exactly one cycle after a strobe is seen
 (one cycle high, back-to-back accesses), read data with the ack; a CMD_DATA write held
 until data_ready, then data_write for one cycle with the word; CONTROL's abort / clear /
-probe_arm one-cycle strobes (abort and clear in the ack cycle), hold and enable RW, hold_set (winning over a CONTROL write in
-its clock); the status inputs composed into
+probe_arm one-cycle strobes (abort and clear in the ack cycle), hold and enable RW, hold_set
+(winning over a CONTROL write in its clock); the status inputs composed into
 STATUS, ERROR, QUEUE_FREE, OUTPUTS and the sign-extended positions at POS_W 20; the speed
 settings refused while busy (STATUS.refused until CONTROL.clear), taken at rest; CONTROL.fill
 rising while busy only with abort."""
@@ -54,7 +54,8 @@ async def bus_and_fields(dut):
     # CMD_DATA waits for data_ready; data_write strobes once, with the word
     cycles, _, seen = await access(tb, REG["CMD_DATA"], 0xA1B2C3D4, ready_after=5)
     assert cycles == 6 and [s["data_write"] for s in seen] == [0] * 5 + [1, 0], seen
-    # CONTROL strobes: one cycle each, abort and clear in the ack cycle, probe_arm in the access cycle; hold, enable and fill kept
+    # CONTROL strobes: one cycle each, abort and clear in the ack cycle, probe_arm in the
+    # access cycle; hold, enable and fill kept
     _, _, seen = await access(tb, REG["CONTROL"], 0b111111)
     assert [(s["abort_strobe"], s["clear_strobe"], s["arm_strobe"]) for s in seen] == [(0, 0, 1), (1, 1, 0)]
     assert int(dut.hold.value) == 1 and int(dut.enable.value) == 1 and int(dut.fill.value) == 1

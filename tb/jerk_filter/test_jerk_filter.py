@@ -102,7 +102,8 @@ async def trapezoid_is_the_speed(dut):
 
 @cocotb.test()
 async def moving_sum_random(dut):
-    """Random profiles, every jerk_shift 0 .. MW, block_shift 0 (jerk_shift 0 only) .. 3: F is the moving sum."""
+    """Random profiles, every jerk_shift 0 .. MW, block_shift 0 (jerk_shift 0 only) .. 3: F is
+    the moving sum."""
     rng = seeded_rng(dut, "moving_sum_random")
     tb = await FilterTB(dut).start(0)
     mw = tb.mw
