@@ -15,10 +15,11 @@
 //      root bit in and one quotient bit out a clock; the quotient's FEED_W + 1 low bits
 //      are kept, and the last clock rounds (the quotient + 1, halved).
 // |axis| = 0 gives a quotient of W + FRAC + 1 ones (the division subtracts nothing):
-// a cost of 2^(W + FRAC) mod 2^FEED_W (0 when FEED_W <= W + FRAC).  `done` strobes the clock `cost` is formed; x, y, z and `axis` must stay put
-// from `start` to `done`.  It is the path length per step event that the lecture's
-// speed-setting block ("БЗС", step_cost) charges, here for a whole line: its true
-// length shared evenly by its step events.
+// a cost of 2^(W + FRAC) mod 2^FEED_W (0 when FEED_W <= W + FRAC).  `done` strobes
+// the clock `cost` is formed; x, y, z and `axis` must stay put from `start` to `done`.
+// It is the path length per step event that the lecture's speed-setting block ("БЗС",
+// step_cost) charges, here for a whole line: its true length shared evenly by its step
+// events.
 module line_cost #(
     parameter integer W      = 32,  // axis width, signed (>= 2)
     parameter integer FEED_W = 34,  // cost width (>= 2)

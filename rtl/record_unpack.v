@@ -35,9 +35,9 @@
 // number of bytes above it); the last record of the other class waits in a second
 // register, and a head of the other class swaps the two.  After the last byte of a
 // compact record come DERIVE_CLOCKS = C + T + ZW + 15 clocks (C = 4 W + FRAC + 7,
-// T = max(W, 64 + max(FEED_W, PF + 1))), the same for every compact record: first line_cost's C clocks
-// for the cost (its result taken the clock after), then the length's shift-and-add
-// multiplication in place in its bytes (W clocks, the axis's magnitude formed
+// T = max(W, 64 + max(FEED_W, PF + 1))), the same for every compact record: first
+// line_cost's C clocks for the cost (its result taken the clock after), then the
+// length's shift-and-add multiplication in place in its bytes (W clocks, the axis's magnitude formed
 // bit-serially) and beside it the limit's and the rate's (the scale in parallel, the
 // cost's bits serially by index; the product's bits from bit `shift` on shifted into the
 // field's bytes, ending at clock 64 + the field's width), then the budget's (rate in

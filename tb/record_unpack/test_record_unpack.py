@@ -5,8 +5,8 @@ a byte stream with random gaps, against random cmd_full back-pressure: each reco
 6, 7 strobe record_error and are not pushed; a flush mid-record drops the partial record.
 The records come from the host's encoder (interp.link.records), checked against the local one.
 Compact records (differences from their base, the last record of their class: arcs or the
-others) mixed with plain ones, a flush that zeroes both bases, a difference longer than its field (record_error); records with
-i .. l zero (head bit 6, a table of 5 bytes) after records without; the cost, limit, rate,
+others) mixed with plain ones, a flush that zeroes both bases, a difference longer than its
+field (record_error); records with i .. l zero (head bit 6, a table of 5 bytes) after records without; the cost, limit, rate,
 length and budget codes (fields the unpacker forms: the cost of the geometry or zero, the
 limit of the feed, cost x scale / 2^shift, |x|, |y| or |z| x cost, rate x length /
 2^(block_shift - 1)) at random block shifts, scales (0 and 2^32 - 1 among them) and shifts,
